@@ -1,0 +1,1 @@
+//! dhgen's symbolic engine.

@@ -1,0 +1,1 @@
+//! The `robot!` proc macro of dhgen.

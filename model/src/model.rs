@@ -1,0 +1,323 @@
+//! The validated robot model: what every other part of dhgen reads.
+//!
+//! A [`RobotModel`] only exists after validation (see [`crate::validate`]), so code that
+//! receives one may rely on its invariants: at least one link, finite numbers, physical
+//! inertias, consistent dynamics (all links or none).
+
+use crate::Angle;
+
+/// Which Denavit-Hartenberg convention the table uses.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Convention {
+    /// Standard (distal) DH, Spong: `A_i = Rz(θ_i) Tz(d_i) Tx(a_i) Rx(α_i)`; joint i moves
+    /// about/along `z_{i-1}`.
+    Standard,
+    /// Modified (proximal) DH, Craig: `A_i = Rx(α_{i-1}) Tx(a_{i-1}) Rz(θ_i) Tz(d_i)`;
+    /// joint i moves about/along `z_i`. Row i holds `a_{i-1}`, `α_{i-1}`.
+    Modified,
+}
+
+/// The kind of a joint.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum JointKind {
+    /// `θ_i = q_i + theta`, `d` constant.
+    Revolute,
+    /// `d_i = q_i + d`, `theta` constant.
+    Prismatic,
+}
+
+/// A rigid transform given as a translation and URDF roll-pitch-yaw angles:
+/// `R = Rz(yaw) Ry(pitch) Rx(roll)`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Pose {
+    /// Translation, m.
+    pub xyz: [f64; 3],
+    /// `[roll, pitch, yaw]`.
+    pub rpy: [Angle; 3],
+}
+
+impl Pose {
+    /// The rotation matrix `Rz(yaw) Ry(pitch) Rx(roll)`, row-major, with exact entries for
+    /// quarter turns.
+    pub fn rotation(&self) -> [[f64; 3]; 3] {
+        let (cr, sr) = self.rpy[0].cos_sin();
+        let (cp, sp) = self.rpy[1].cos_sin();
+        let (cy, sy) = self.rpy[2].cos_sin();
+        [
+            [cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr],
+            [sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr],
+            [-sp, cp * sr, cp * cr],
+        ]
+    }
+
+    /// The pose as a [`Frame`] of any ring.
+    pub fn frame<R: Ring>(&self) -> Frame<R> {
+        let r = self.rotation();
+        Frame {
+            r: r.map(|row| row.map(R::from_f64)),
+            p: self.xyz.map(R::from_f64),
+        }
+    }
+
+    /// True for the identity pose (no translation, no rotation).
+    pub fn is_identity(&self) -> bool {
+        self.xyz == [0.0; 3] && self.rpy.iter().all(|a| a.quarter_turn() == Some((1, 0)))
+    }
+}
+
+/// Mass properties of one link, in that link's frame.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Inertial {
+    /// Mass, kg.
+    pub mass: f64,
+    /// Centre of mass in link frame i, m.
+    pub com: [f64; 3],
+    /// Inertia tensor about the centre of mass, link-frame axes, kg·m²
+    /// (`[[xx, xy, xz], [xy, yy, yz], [xz, yz, zz]]`, products as tensor entries).
+    pub inertia: [[f64; 3]; 3],
+}
+
+/// Rotor inertia and gear ratio of a joint's motor.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Motor {
+    /// Rotor inertia Jm, kg·m².
+    pub inertia: f64,
+    /// Gear ratio G (non-zero); the reflected inertia is `Jm·G²`.
+    pub gear: f64,
+}
+
+impl Motor {
+    /// The inertia the motor adds to `D(q)_ii`.
+    pub fn reflected_inertia(&self) -> f64 {
+        self.inertia * self.gear * self.gear
+    }
+}
+
+/// Joint-side friction: `τ_f = viscous·q̇ + coulomb·sign(q̇)`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Friction {
+    /// Viscous coefficient, N·m·s/rad (N·s/m for prismatic joints).
+    pub viscous: f64,
+    /// Coulomb friction, N·m (N).
+    pub coulomb: f64,
+}
+
+/// One row of the DH table together with its link's properties.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Link {
+    /// Revolute or prismatic.
+    pub joint: JointKind,
+    /// Link length a (for modified DH: `a_{i-1}`), m.
+    pub a: f64,
+    /// Link twist α (for modified DH: `α_{i-1}`).
+    pub alpha: Angle,
+    /// Link offset d; for a prismatic joint the constant added to q.
+    pub d: f64,
+    /// Joint angle offset θ; for a revolute joint the constant added to q.
+    pub theta: Angle,
+    /// Joint limits `[lower, upper]` (rad or m).
+    pub limits: Option<[f64; 2]>,
+    /// Mass properties; `None` for a kinematics-only robot.
+    pub inertial: Option<Inertial>,
+    /// Motor rotor inertia and gear ratio.
+    pub motor: Option<Motor>,
+    /// Joint friction.
+    pub friction: Option<Friction>,
+}
+
+/// A validated serial robot: the one model type of dhgen.
+#[derive(Clone, Debug, PartialEq)]
+pub struct RobotModel {
+    /// Identifier; also the default module name.
+    pub name: String,
+    /// Free text.
+    pub description: Option<String>,
+    /// DH convention of the table.
+    pub convention: Convention,
+    /// Gravitational acceleration in the base frame, m/s².
+    pub gravity: [f64; 3],
+    /// Base frame pose in the world frame.
+    pub base: Option<Pose>,
+    /// Tool frame pose in the last link frame.
+    pub tool: Option<Pose>,
+    /// The DH table, base to tip.
+    pub links: Vec<Link>,
+}
+
+impl RobotModel {
+    /// Number of joints.
+    pub fn dof(&self) -> usize {
+        self.links.len()
+    }
+
+    /// True when every link has mass properties (validation guarantees all or none).
+    pub fn has_dynamics(&self) -> bool {
+        self.links.iter().all(|l| l.inertial.is_some())
+    }
+
+    /// The base pose, if it is not the identity.
+    pub fn base_pose(&self) -> Option<&Pose> {
+        self.base.as_ref().filter(|p| !p.is_identity())
+    }
+
+    /// The tool pose, if it is not the identity.
+    pub fn tool_pose(&self) -> Option<&Pose> {
+        self.tool.as_ref().filter(|p| !p.is_identity())
+    }
+}
+
+/// The arithmetic the DH conventions need. Implemented by `f64` (the runtime path) and by
+/// the symbolic polynomials of `dhgen-codegen`, so both paths derive their transforms from
+/// the one formula in [`Link::transform`].
+pub trait Ring:
+    Clone
+    + core::ops::Add<Output = Self>
+    + core::ops::Sub<Output = Self>
+    + core::ops::Mul<Output = Self>
+    + core::ops::Neg<Output = Self>
+{
+    /// The constant `x`.
+    fn from_f64(x: f64) -> Self;
+}
+
+impl Ring for f64 {
+    fn from_f64(x: f64) -> Self {
+        x
+    }
+}
+
+/// A rigid transform over a [`Ring`]: rotation `r` (row-major) and translation `p`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Frame<R> {
+    /// Rotation matrix, row-major.
+    pub r: [[R; 3]; 3],
+    /// Translation.
+    pub p: [R; 3],
+}
+
+impl<R: Ring> Frame<R> {
+    /// The identity transform.
+    pub fn identity() -> Frame<R> {
+        let o = R::from_f64(0.0);
+        let i = R::from_f64(1.0);
+        Frame {
+            r: [
+                [i.clone(), o.clone(), o.clone()],
+                [o.clone(), i.clone(), o.clone()],
+                [o.clone(), o.clone(), i],
+            ],
+            p: [o.clone(), o.clone(), o],
+        }
+    }
+
+    /// `self · other`.
+    pub fn compose(&self, other: &Frame<R>) -> Frame<R> {
+        let r = core::array::from_fn(|i| {
+            core::array::from_fn(|j| {
+                self.r[i][0].clone() * other.r[0][j].clone()
+                    + self.r[i][1].clone() * other.r[1][j].clone()
+                    + self.r[i][2].clone() * other.r[2][j].clone()
+            })
+        });
+        let p = core::array::from_fn(|i| {
+            self.r[i][0].clone() * other.p[0].clone()
+                + self.r[i][1].clone() * other.p[1].clone()
+                + self.r[i][2].clone() * other.p[2].clone()
+                + self.p[i].clone()
+        });
+        Frame { r, p }
+    }
+
+    /// Applies the transform to a point.
+    pub fn point(&self, v: &[R; 3]) -> [R; 3] {
+        core::array::from_fn(|i| {
+            self.r[i][0].clone() * v[0].clone()
+                + self.r[i][1].clone() * v[1].clone()
+                + self.r[i][2].clone() * v[2].clone()
+                + self.p[i].clone()
+        })
+    }
+
+    /// The z axis (third column of the rotation).
+    pub fn z_axis(&self) -> [R; 3] {
+        [
+            self.r[0][2].clone(),
+            self.r[1][2].clone(),
+            self.r[2][2].clone(),
+        ]
+    }
+}
+
+/// The value of a joint variable as a ring element: for a revolute joint its cosine and
+/// sine, for a prismatic joint the displacement itself.
+#[derive(Clone, Debug)]
+pub enum JointValue<R> {
+    /// `cos q`, `sin q` of a revolute joint.
+    Revolute {
+        /// cos q
+        cos: R,
+        /// sin q
+        sin: R,
+    },
+    /// `q` of a prismatic joint.
+    Prismatic(R),
+}
+
+impl Link {
+    /// The link transform `A_i(q_i)` in the given convention: the one definition of the DH
+    /// conventions in dhgen, used by the runtime path and by the symbolic engine alike.
+    ///
+    /// The joint offsets are applied here: `θ_i = q + theta` (revolute) or `d_i = q + d`
+    /// (prismatic). Exact quarter-turn constants stay exact.
+    pub fn transform<R: Ring>(&self, convention: Convention, q: JointValue<R>) -> Frame<R> {
+        let k = R::from_f64;
+        let (ct0, st0) = self.theta.cos_sin();
+        let (ct, st, d) = match q {
+            JointValue::Revolute { cos, sin } => {
+                // cos(q + θ0), sin(q + θ0) by the addition formulas; exact when θ0 = 0.
+                if (ct0, st0) == (1.0, 0.0) {
+                    (cos, sin, k(self.d))
+                } else {
+                    (
+                        cos.clone() * k(ct0) - sin.clone() * k(st0),
+                        sin * k(ct0) + cos * k(st0),
+                        k(self.d),
+                    )
+                }
+            }
+            JointValue::Prismatic(q) => (k(ct0), k(st0), q + k(self.d)),
+        };
+        let (ca, sa) = self.alpha.cos_sin();
+        let z = k(0.0);
+        match convention {
+            Convention::Standard => Frame {
+                r: [
+                    [ct.clone(), -(st.clone() * k(ca)), st.clone() * k(sa)],
+                    [st.clone(), ct.clone() * k(ca), -(ct.clone() * k(sa))],
+                    [z, k(sa), k(ca)],
+                ],
+                p: [ct * k(self.a), st * k(self.a), d],
+            },
+            Convention::Modified => Frame {
+                r: [
+                    [ct.clone(), -st.clone(), z],
+                    [st.clone() * k(ca), ct.clone() * k(ca), k(-sa)],
+                    [st * k(sa), ct * k(sa), k(ca)],
+                ],
+                p: [k(self.a), -(d.clone() * k(sa)), d * k(ca)],
+            },
+        }
+    }
+}
+
+impl Convention {
+    /// The index of the frame whose z axis and origin carry joint i (0-based `i`, frames
+    /// numbered 0 = base .. n): `i` for standard DH (`z_{i-1}` in 1-based terms), `i + 1`
+    /// for modified DH.
+    pub fn joint_frame(self, i: usize) -> usize {
+        match self {
+            Convention::Standard => i,
+            Convention::Modified => i + 1,
+        }
+    }
+}

@@ -1,0 +1,533 @@
+//! Validation: the raw description tree becomes a [`RobotModel`], or an [`Error`] naming
+//! the link and the field at fault, located at the offending value.
+//!
+//! Every rule of the description format lives here, once, for both front ends.
+
+use crate::raw::{Table, Value};
+use crate::{Angle, Convention, Friction, Inertial, JointKind, Link, Motor, Pose, RobotModel};
+use core::fmt;
+
+/// A validation error at location `L` (`()` for files, a token span in the macro).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Error<L> {
+    /// Where the offending value (or, for a missing field, its table) is.
+    pub loc: L,
+    /// 1-based link index, when the error is inside `links`.
+    pub link: Option<usize>,
+    /// The field, as a dotted path inside the link or the document (`inertia.xy`).
+    pub field: Option<String>,
+    /// What is wrong, for a person.
+    pub message: String,
+}
+
+impl<L> fmt::Display for Error<L> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match (&self.link, &self.field) {
+            (Some(l), Some(field)) => write!(f, "link {l}, field `{field}`: ")?,
+            (Some(l), None) => write!(f, "link {l}: ")?,
+            (None, Some(field)) => write!(f, "field `{field}`: ")?,
+            (None, None) => {}
+        }
+        f.write_str(&self.message)
+    }
+}
+
+impl<L: fmt::Debug> std::error::Error for Error<L> {}
+
+const TOP_FIELDS: &[&str] = &[
+    "name",
+    "description",
+    "convention",
+    "gravity",
+    "base",
+    "tool",
+    "links",
+    "allow_nonphysical_inertia",
+];
+const LINK_FIELDS: &[&str] = &[
+    "joint", "a", "alpha", "d", "theta", "limits", "mass", "com", "inertia", "motor", "friction",
+];
+const INERTIA_FIELDS: &[&str] = &["xx", "yy", "zz", "xy", "yz", "xz"];
+
+/// Where in the description we are: the link (if any) and the field path.
+#[derive(Clone, Copy)]
+struct At<'a> {
+    link: Option<usize>,
+    field: &'a str,
+}
+
+impl At<'_> {
+    fn err<L: Clone>(&self, loc: &L, message: impl Into<String>) -> Error<L> {
+        Error {
+            loc: loc.clone(),
+            link: self.link,
+            field: (!self.field.is_empty()).then(|| self.field.to_string()),
+            message: message.into(),
+        }
+    }
+}
+
+/// A table being read: checks for unknown keys up front, then hands out fields.
+struct Fields<'t, L> {
+    table: &'t Table<L>,
+    link: Option<usize>,
+    prefix: &'t str,
+}
+
+impl<'t, L: Clone> Fields<'t, L> {
+    fn new(
+        table: &'t Table<L>,
+        link: Option<usize>,
+        prefix: &'t str,
+        allowed: &[&str],
+    ) -> Result<Self, Error<L>> {
+        for (i, (key, key_loc, _)) in table.entries.iter().enumerate() {
+            let path = join(prefix, key);
+            let at = At { link, field: &path };
+            if !allowed.contains(&key.as_str()) {
+                return Err(at.err(
+                    key_loc,
+                    format!(
+                        "unknown field `{key}`; expected one of: {}",
+                        allowed.join(", ")
+                    ),
+                ));
+            }
+            if table.entries[..i].iter().any(|(k, _, _)| k == key) {
+                return Err(at.err(key_loc, format!("field `{key}` is given twice")));
+            }
+        }
+        Ok(Fields {
+            table,
+            link,
+            prefix,
+        })
+    }
+
+    fn get(&self, key: &str) -> Option<&'t Value<L>> {
+        self.table
+            .entries
+            .iter()
+            .find(|(k, _, _)| k == key)
+            .map(|(_, _, v)| v)
+    }
+
+    fn path(&self, key: &str) -> String {
+        join(self.prefix, key)
+    }
+
+    fn required(&self, key: &str) -> Result<&'t Value<L>, Error<L>> {
+        self.get(key).ok_or_else(|| {
+            let path = self.path(key);
+            At {
+                link: self.link,
+                field: &path,
+            }
+            .err(&self.table.loc, format!("missing required field `{key}`"))
+        })
+    }
+
+    fn with<T>(
+        &self,
+        key: &str,
+        read: impl FnOnce(At<'_>, &'t Value<L>) -> Result<T, Error<L>>,
+    ) -> Result<Option<T>, Error<L>> {
+        let path = self.path(key);
+        let at = At {
+            link: self.link,
+            field: &path,
+        };
+        self.get(key).map(|v| read(at, v)).transpose()
+    }
+
+    fn with_required<T>(
+        &self,
+        key: &str,
+        read: impl FnOnce(At<'_>, &'t Value<L>) -> Result<T, Error<L>>,
+    ) -> Result<T, Error<L>> {
+        let v = self.required(key)?;
+        let path = self.path(key);
+        read(
+            At {
+                link: self.link,
+                field: &path,
+            },
+            v,
+        )
+    }
+}
+
+fn join(prefix: &str, key: &str) -> String {
+    if prefix.is_empty() {
+        key.to_string()
+    } else {
+        format!("{prefix}.{key}")
+    }
+}
+
+fn number<L: Clone>(at: At<'_>, v: &Value<L>) -> Result<f64, Error<L>> {
+    match v {
+        Value::Number(x, loc) if x.is_nan() => Err(at.err(loc, "value is NaN")),
+        Value::Number(x, loc) if x.is_infinite() => Err(at.err(loc, "value is infinite")),
+        Value::Number(x, _) => Ok(*x),
+        other => Err(at.err(
+            other.loc(),
+            format!("expected a number, found {}", other.kind()),
+        )),
+    }
+}
+
+fn angle<L: Clone>(at: At<'_>, v: &Value<L>) -> Result<Angle, Error<L>> {
+    match v {
+        Value::Str(s, loc) => Angle::parse(s).map_err(|m| at.err(loc, m)),
+        Value::Number(..) => number(at, v).map(Angle::from_radians),
+        other => Err(at.err(
+            other.loc(),
+            format!(
+                "expected an angle (a number in radians or a string like \"90deg\"), found {}",
+                other.kind()
+            ),
+        )),
+    }
+}
+
+fn string<L: Clone>(at: At<'_>, v: &Value<L>) -> Result<String, Error<L>> {
+    match v {
+        Value::Str(s, _) => Ok(s.clone()),
+        other => Err(at.err(
+            other.loc(),
+            format!("expected a string, found {}", other.kind()),
+        )),
+    }
+}
+
+/// A keyword such as a joint type: a string in TOML, a bare word in the macro.
+fn keyword<'v, L: Clone>(at: At<'_>, v: &'v Value<L>) -> Result<(&'v str, &'v L), Error<L>> {
+    match v {
+        Value::Str(s, loc) | Value::Word(s, loc) => Ok((s.as_str(), loc)),
+        other => Err(at.err(
+            other.loc(),
+            format!("expected a keyword, found {}", other.kind()),
+        )),
+    }
+}
+
+fn array<'v, L: Clone>(
+    at: At<'_>,
+    v: &'v Value<L>,
+    len: usize,
+) -> Result<&'v [Value<L>], Error<L>> {
+    match v {
+        Value::Array(items, _) if items.len() == len => Ok(items),
+        Value::Array(items, loc) => Err(at.err(
+            loc,
+            format!("expected {len} elements, found {}", items.len()),
+        )),
+        other => Err(at.err(
+            other.loc(),
+            format!(
+                "expected an array of {len} elements, found {}",
+                other.kind()
+            ),
+        )),
+    }
+}
+
+fn vec3<L: Clone>(at: At<'_>, v: &Value<L>) -> Result<[f64; 3], Error<L>> {
+    let items = array(at, v, 3)?;
+    Ok([
+        number(at, &items[0])?,
+        number(at, &items[1])?,
+        number(at, &items[2])?,
+    ])
+}
+
+fn table<'v, L: Clone>(at: At<'_>, v: &'v Value<L>) -> Result<&'v Table<L>, Error<L>> {
+    match v {
+        Value::Table(t) => Ok(t),
+        other => Err(at.err(
+            other.loc(),
+            format!("expected a table, found {}", other.kind()),
+        )),
+    }
+}
+
+fn boolean<L: Clone>(at: At<'_>, v: &Value<L>) -> Result<bool, Error<L>> {
+    match v {
+        Value::Bool(b, _) => Ok(*b),
+        other => Err(at.err(
+            other.loc(),
+            format!("expected true or false, found {}", other.kind()),
+        )),
+    }
+}
+
+fn pose<L: Clone>(at: At<'_>, v: &Value<L>) -> Result<Pose, Error<L>> {
+    let t = table(at, v)?;
+    let f = Fields::new(t, at.link, at.field, &["xyz", "rpy"])?;
+    let xyz = f.with("xyz", vec3)?.unwrap_or([0.0; 3]);
+    let rpy = f
+        .with("rpy", |at, v| {
+            let items = array(at, v, 3)?;
+            Ok([
+                angle(at, &items[0])?,
+                angle(at, &items[1])?,
+                angle(at, &items[2])?,
+            ])
+        })?
+        .unwrap_or([Angle::ZERO; 3]);
+    Ok(Pose { xyz, rpy })
+}
+
+/// Builds and validates a robot from its description tree.
+///
+/// `default_name` stands in for a missing `name` (the macro passes the module's name).
+pub fn validate<L: Clone>(
+    root: &Table<L>,
+    default_name: Option<&str>,
+) -> Result<RobotModel, Error<L>> {
+    let f = Fields::new(root, None, "", TOP_FIELDS)?;
+    let name = match (f.with("name", string)?, default_name) {
+        (Some(n), _) => n,
+        (None, Some(d)) => d.to_string(),
+        (None, None) => f.with_required("name", string)?,
+    };
+    let description = f.with("description", string)?;
+    let convention = f.with_required("convention", |at, v| {
+        let (word, loc) = keyword(at, v)?;
+        match word {
+            "standard" => Ok(Convention::Standard),
+            "modified" => Ok(Convention::Modified),
+            other => Err(at.err(
+                loc,
+                format!("unknown convention `{other}`; expected `standard` or `modified`"),
+            )),
+        }
+    })?;
+    let gravity = f.with("gravity", vec3)?.unwrap_or([0.0, 0.0, -9.81]);
+    let base = f.with("base", pose)?;
+    let tool = f.with("tool", pose)?;
+    let allow_nonphysical = f
+        .with("allow_nonphysical_inertia", boolean)?
+        .unwrap_or(false);
+    let links = f.with_required("links", |at, v| match v {
+        Value::Array(items, loc) => {
+            if items.is_empty() {
+                return Err(at.err(loc, "the robot has zero links; give at least one"));
+            }
+            items
+                .iter()
+                .enumerate()
+                .map(|(i, item)| link(i + 1, item, allow_nonphysical))
+                .collect::<Result<Vec<_>, _>>()
+        }
+        other => Err(at.err(
+            other.loc(),
+            format!("expected an array of link tables, found {}", other.kind()),
+        )),
+    })?;
+    // Dynamics are all or nothing: a link silently treated as massless would be a bug.
+    if let Some(with) = links.iter().position(|l| l.inertial.is_some()) {
+        if let Some(without) = links.iter().position(|l| l.inertial.is_none()) {
+            let Value::Array(items, _) = f.required("links")? else {
+                unreachable!("links was read as an array above")
+            };
+            return Err(Error {
+                loc: items[without].loc().clone(),
+                link: Some(without + 1),
+                field: Some("mass".into()),
+                message: format!(
+                    "link {} has no mass, com and inertia but link {} has them; give every link its mass properties, or none",
+                    without + 1,
+                    with + 1
+                ),
+            });
+        }
+    }
+    Ok(RobotModel {
+        name,
+        description,
+        convention,
+        gravity,
+        base,
+        tool,
+        links,
+    })
+}
+
+fn link<L: Clone>(index: usize, v: &Value<L>, allow_nonphysical: bool) -> Result<Link, Error<L>> {
+    let at = At {
+        link: Some(index),
+        field: "",
+    };
+    let t = table(at, v)?;
+    let f = Fields::new(t, Some(index), "", LINK_FIELDS)?;
+    let joint = f.with_required("joint", |at, v| {
+        let (word, loc) = keyword(at, v)?;
+        match word {
+            "revolute" => Ok(JointKind::Revolute),
+            "prismatic" => Ok(JointKind::Prismatic),
+            other => Err(at.err(
+                loc,
+                format!("unknown joint type `{other}`; expected `revolute` or `prismatic`"),
+            )),
+        }
+    })?;
+    let a = f.with_required("a", number)?;
+    let alpha = f.with_required("alpha", angle)?;
+    let d = f.with_required("d", number)?;
+    let theta = f.with_required("theta", angle)?;
+    let limits = f.with("limits", |at, v| {
+        let items = array(at, v, 2)?;
+        let bound = |item: &Value<L>| match joint {
+            JointKind::Revolute => angle(at, item).map(Angle::radians),
+            JointKind::Prismatic => number(at, item),
+        };
+        let (lo, hi) = (bound(&items[0])?, bound(&items[1])?);
+        if lo >= hi {
+            return Err(at.err(
+                v.loc(),
+                format!("lower limit {lo} is not below upper limit {hi}"),
+            ));
+        }
+        Ok([lo, hi])
+    })?;
+    let inertial = inertial(&f, allow_nonphysical)?;
+    let motor = f.with("motor", |at, v| {
+        let m = Fields::new(table(at, v)?, at.link, at.field, &["inertia", "gear"])?;
+        let inertia = m.with_required("inertia", |at, v| {
+            let x = number(at, v)?;
+            if x < 0.0 {
+                return Err(at.err(v.loc(), format!("rotor inertia {x} is negative")));
+            }
+            Ok(x)
+        })?;
+        let gear = m.with_required("gear", |at, v| {
+            let g = number(at, v)?;
+            if g == 0.0 {
+                return Err(at.err(v.loc(), "gear ratio is 0; it must be non-zero"));
+            }
+            Ok(g)
+        })?;
+        Ok(Motor { inertia, gear })
+    })?;
+    let friction = f.with("friction", |at, v| {
+        let m = Fields::new(table(at, v)?, at.link, at.field, &["viscous", "coulomb"])?;
+        let coefficient = |at: At<'_>, v: &Value<L>| {
+            let x = number(at, v)?;
+            if x < 0.0 {
+                return Err(at.err(v.loc(), format!("friction coefficient {x} is negative")));
+            }
+            Ok(x)
+        };
+        Ok(Friction {
+            viscous: m.with("viscous", coefficient)?.unwrap_or(0.0),
+            coulomb: m.with("coulomb", coefficient)?.unwrap_or(0.0),
+        })
+    })?;
+    Ok(Link {
+        joint,
+        a,
+        alpha,
+        d,
+        theta,
+        limits,
+        inertial,
+        motor,
+        friction,
+    })
+}
+
+fn inertial<L: Clone>(
+    f: &Fields<'_, L>,
+    allow_nonphysical: bool,
+) -> Result<Option<Inertial>, Error<L>> {
+    let mass = f.with("mass", |at, v| {
+        let m = number(at, v)?;
+        if m < 0.0 {
+            return Err(at.err(v.loc(), format!("mass {m} is negative")));
+        }
+        Ok(m)
+    })?;
+    let com = f.with("com", vec3)?;
+    let inertia = f.with("inertia", |at, v| {
+        let t = table(at, v)?;
+        let fields = Fields::new(t, at.link, at.field, INERTIA_FIELDS)?;
+        let mut e = [0.0; 6];
+        for (slot, key) in e.iter_mut().zip(INERTIA_FIELDS) {
+            *slot = fields.with(key, number)?.unwrap_or(0.0);
+        }
+        let [xx, yy, zz, xy, yz, xz] = e;
+        let tensor = [[xx, xy, xz], [xy, yy, yz], [xz, yz, zz]];
+        check_inertia(at, t.loc.clone(), &tensor, allow_nonphysical)?;
+        Ok(tensor)
+    })?;
+    let group = ["mass", "com", "inertia"];
+    let present = [mass.is_some(), com.is_some(), inertia.is_some()];
+    match (mass, com, inertia) {
+        (Some(mass), Some(com), Some(inertia)) => Ok(Some(Inertial { mass, com, inertia })),
+        (None, None, None) => Ok(None),
+        _ => {
+            let given = group
+                .iter()
+                .zip(present)
+                .filter(|(_, p)| *p)
+                .map(|(g, _)| *g)
+                .collect::<Vec<_>>();
+            let missing = group
+                .iter()
+                .zip(present)
+                .find(|(_, p)| !*p)
+                .map(|(g, _)| *g)
+                .unwrap_or("mass");
+            let loc = f
+                .get(given[0])
+                .map(|v| v.loc().clone())
+                .unwrap_or_else(|| f.table.loc.clone());
+            Err(Error {
+                loc,
+                link: f.link,
+                field: Some(missing.to_string()),
+                message: format!(
+                    "`{}` is given but `{missing}` is missing: mass, com and inertia go together",
+                    given.join("`, `")
+                ),
+            })
+        }
+    }
+}
+
+/// Principal moments must be non-negative (positive semi-definite) and obey the triangle
+/// inequality, unless the description explicitly allows published non-physical values.
+fn check_inertia<L: Clone>(
+    at: At<'_>,
+    loc: L,
+    tensor: &[[f64; 3]; 3],
+    allow_nonphysical: bool,
+) -> Result<(), Error<L>> {
+    let m = nalgebra::Matrix3::from_fn(|i, j| tensor[i][j]);
+    let mut e = m.symmetric_eigenvalues();
+    e.as_mut_slice().sort_by(f64::total_cmp);
+    let scale = e.amax().max(f64::MIN_POSITIVE);
+    let tol = 1e-9 * scale;
+    if e[0] < -tol {
+        return Err(at.err(
+            &loc,
+            format!(
+                "inertia tensor is not positive semi-definite (principal moments {:.6e}, {:.6e}, {:.6e})",
+                e[0], e[1], e[2]
+            ),
+        ));
+    }
+    if !allow_nonphysical && e[0] + e[1] < e[2] - tol {
+        return Err(at.err(
+            &loc,
+            format!(
+                "principal moments {:.6e}, {:.6e}, {:.6e} violate the triangle inequality ({:.6e} + {:.6e} < {:.6e}); \
+                 set `allow_nonphysical_inertia = true` at the top level to accept published values like these",
+                e[0], e[1], e[2], e[0], e[1], e[2]
+            ),
+        ));
+    }
+    Ok(())
+}

@@ -1,0 +1,3 @@
+//! dhgen
+#![cfg_attr(not(feature = "std"), no_std)]
+pub use nalgebra;
