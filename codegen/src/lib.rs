@@ -1,1 +1,23 @@
-//! dhgen's symbolic engine.
+//! dhgen's symbolic engine: a validated [`RobotModel`] becomes a Rust module of
+//! straight-line, allocation-free functions.
+//!
+//! The pipeline, one module per step:
+//! - [`chain`]: the kinematic chain in joint frames, generic over the arithmetic;
+//! - [`poly`]: the normal form (polynomials in cos/sin of the joint angles) and Horner
+//!   factoring back into expressions;
+//! - [`graph`]: the hash-consed expression DAG (common subexpressions shared by
+//!   construction, constants folded, signs pushed outward);
+//! - [`derive`]: each quantity (T, J, D, c_ijk, C, g, τ), choosing the cheaper derivation;
+//! - [`emit`]: tokens, one `let` per node, functions split under a statement limit;
+//! - [`module`]: the generated module around them.
+
+pub mod chain;
+pub mod derive;
+pub mod emit;
+pub mod graph;
+pub mod module;
+pub mod poly;
+
+pub use dhgen_model::RobotModel;
+pub use graph::OpCount;
+pub use module::{Generated, generate};

@@ -34,6 +34,9 @@ pub use model::{
 use std::path::Path;
 
 /// An error reading a description: where (the file, or `<string>`), and what.
+///
+/// A rule violation displays as `file:line:column: link N, field NAME: what is wrong`,
+/// the form editors jump to.
 #[derive(Clone, Debug, PartialEq)]
 pub struct LoadError {
     /// The file, or `<string>` for in-memory text.
@@ -49,8 +52,8 @@ pub enum LoadErrorKind {
     Io(String),
     /// The text is not valid TOML.
     Syntax(String),
-    /// The description breaks a rule of the format.
-    Invalid(validate::Error<()>),
+    /// The description breaks a rule of the format, at a line and column of the text.
+    Invalid(validate::Error<raw::Position>),
 }
 
 impl std::fmt::Display for LoadError {
@@ -60,7 +63,7 @@ impl std::fmt::Display for LoadError {
             LoadErrorKind::Syntax(e) => {
                 write!(f, "{}: invalid TOML: {}", self.source, e.trim_end())
             }
-            LoadErrorKind::Invalid(e) => write!(f, "{}: {e}", self.source),
+            LoadErrorKind::Invalid(e) => write!(f, "{}:{}: {e}", self.source, e.loc),
         }
     }
 }
@@ -90,9 +93,7 @@ impl RobotModel {
             source: source.to_string(),
             kind,
         };
-        let table: toml::Table =
-            toml::from_str(text).map_err(|e| err(LoadErrorKind::Syntax(e.to_string())))?;
-        validate::validate(&raw::from_toml(&table), None)
-            .map_err(|e| err(LoadErrorKind::Invalid(e)))
+        let table = raw::from_toml_text(text).map_err(|e| err(LoadErrorKind::Syntax(e)))?;
+        validate::validate(&table, None).map_err(|e| err(LoadErrorKind::Invalid(e)))
     }
 }

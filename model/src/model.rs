@@ -287,6 +287,13 @@ impl Link {
             }
             JointValue::Prismatic(q) => (k(ct0), k(st0), q + k(self.d)),
         };
+        self.dh_transform(convention, ct, st, d)
+    }
+
+    /// The DH formula itself, given the full joint angle's cosine and sine and the full
+    /// offset `d` (offsets already applied): `A_i` for the given convention.
+    pub fn dh_transform<R: Ring>(&self, convention: Convention, ct: R, st: R, d: R) -> Frame<R> {
+        let k = R::from_f64;
         let (ca, sa) = self.alpha.cos_sin();
         let z = k(0.0);
         match convention {

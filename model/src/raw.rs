@@ -1,10 +1,10 @@
 //! The description before validation: a small tree of values, each tagged with where it
 //! came from.
 //!
-//! Both front ends produce this tree: the TOML reader (location = the file) and the
-//! `robot!` macro (location = a token's span). Validation then runs once, on the tree, so
-//! the two forms accept exactly the same fields with the same meanings, and every error
-//! can point back at its source.
+//! Both front ends produce this tree: the TOML reader (location = line and column, see
+//! [`from_toml_text`]) and the `robot!` macro (location = a token's span). Validation then
+//! runs once, on the tree, so the two forms accept exactly the same fields with the same
+//! meanings, and every error can point back at its source.
 
 /// A value of the description, with its source location `L`.
 #[derive(Clone, Debug)]
@@ -58,7 +58,144 @@ impl<L> Value<L> {
     }
 }
 
-/// Converts a parsed TOML document; every location is `()` (the caller knows the file).
+/// A place in a text: 1-based line and column, the column counted in characters.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub struct Position {
+    /// Line, from 1.
+    pub line: usize,
+    /// Column, from 1, in characters (not bytes).
+    pub column: usize,
+}
+
+impl core::fmt::Display for Position {
+    /// `line:column`, the form editors and compilers use after a file name.
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        write!(f, "{}:{}", self.line, self.column)
+    }
+}
+
+/// Byte offsets to [`Position`]s: the start of every line, searched by bisection.
+struct LineIndex<'t> {
+    text: &'t str,
+    starts: Vec<usize>,
+}
+
+impl<'t> LineIndex<'t> {
+    fn new(text: &'t str) -> Self {
+        let starts = core::iter::once(0)
+            .chain(text.match_indices('\n').map(|(i, _)| i + 1))
+            .collect();
+        LineIndex { text, starts }
+    }
+
+    fn position(&self, offset: usize) -> Position {
+        let offset = offset.min(self.text.len());
+        let line = self.starts.partition_point(|&s| s <= offset) - 1;
+        let start = self.starts[line];
+        // Spans fall on character boundaries; should one not, count bytes rather than panic.
+        let column = self
+            .text
+            .get(start..offset)
+            .map_or(offset - start, |s| s.chars().count());
+        Position {
+            line: line + 1,
+            column: column + 1,
+        }
+    }
+}
+
+/// Parses TOML text into the tree, each value and key located by its line and column.
+///
+/// Entries keep their order in the text, so the first of several faults in a table is
+/// the one reported. The error is the TOML parser's message (it names line and column).
+pub fn from_toml_text(text: &str) -> Result<Table<Position>, String> {
+    use toml::de::{DeTable, DeValue};
+
+    fn table(
+        lines: &LineIndex<'_>,
+        t: &DeTable<'_>,
+        span: core::ops::Range<usize>,
+    ) -> Result<Table<Position>, String> {
+        let mut entries = t.iter().collect::<Vec<_>>();
+        // DeTable sorts its keys; the text's order is what a reader expects.
+        entries.sort_by_key(|(k, _)| k.span().start);
+        Ok(Table {
+            entries: entries
+                .into_iter()
+                .map(|(k, v)| {
+                    let key_loc = lines.position(k.span().start);
+                    Ok((
+                        k.get_ref().to_string(),
+                        key_loc,
+                        value(lines, v.get_ref(), v.span())?,
+                    ))
+                })
+                .collect::<Result<_, String>>()?,
+            loc: lines.position(span.start),
+        })
+    }
+
+    fn value(
+        lines: &LineIndex<'_>,
+        v: &DeValue<'_>,
+        span: core::ops::Range<usize>,
+    ) -> Result<Value<Position>, String> {
+        let loc = lines.position(span.start);
+        Ok(match v {
+            DeValue::String(s) => Value::Str(s.to_string(), loc),
+            DeValue::Integer(i) => Value::Number(integer(i.as_str(), i.radix()), loc),
+            // The parser hands over the float's text without underscores: `1e3`, `-inf`,
+            // `nan`, all of which Rust reads. A value too large for f64 reads as infinite
+            // and is then rejected by validation with its location.
+            DeValue::Float(f) => match f.as_str().parse::<f64>() {
+                Ok(x) => Value::Number(x, loc),
+                Err(_) => {
+                    return Err(format!(
+                        "TOML parse error at line {}, column {}: cannot read the number `{}`",
+                        loc.line,
+                        loc.column,
+                        f.as_str()
+                    ));
+                }
+            },
+            DeValue::Boolean(b) => Value::Bool(*b, loc),
+            DeValue::Datetime(d) => Value::Str(d.to_string(), loc),
+            DeValue::Array(a) => Value::Array(
+                a.iter()
+                    .map(|item| value(lines, item.get_ref(), item.span()))
+                    .collect::<Result<_, _>>()?,
+                loc,
+            ),
+            DeValue::Table(t) => Value::Table(table(lines, t, span)?),
+        })
+    }
+
+    /// Every number of the description is an f64, and an integer too long for i64 is
+    /// still a number: decimal digits parse as a float (correctly rounded); binary, octal
+    /// and hex digits (never signed in TOML) are summed, exactly up to 2^53.
+    fn integer(digits: &str, radix: u32) -> f64 {
+        if radix == 10 {
+            if let Ok(x) = digits.parse::<f64>() {
+                return x;
+            }
+        }
+        let (sign, digits) = match digits.strip_prefix('-') {
+            Some(rest) => (-1.0, rest),
+            None => (1.0, digits.strip_prefix('+').unwrap_or(digits)),
+        };
+        sign * digits
+            .chars()
+            .filter_map(|c| c.to_digit(radix))
+            .fold(0.0, |acc, d| acc * f64::from(radix) + f64::from(d))
+    }
+
+    let lines = LineIndex::new(text);
+    let doc = DeTable::parse(text).map_err(|e| e.to_string())?;
+    table(&lines, doc.get_ref(), doc.span())
+}
+
+/// Converts an already parsed TOML document; every location is `()` (the caller knows
+/// only the file). [`from_toml_text`] keeps lines and columns instead.
 pub fn from_toml(table: &toml::Table) -> Table<()> {
     fn value(v: &toml::Value) -> Value<()> {
         match v {
@@ -77,5 +214,47 @@ pub fn from_toml(table: &toml::Table) -> Table<()> {
             .map(|(k, v)| (k.clone(), (), value(v)))
             .collect(),
         loc: (),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn number(v: &Value<Position>) -> f64 {
+        match v {
+            Value::Number(x, _) => *x,
+            other => panic!("expected a number, got {other:?}"),
+        }
+    }
+
+    #[test]
+    fn numbers_in_every_toml_form() {
+        let t = from_toml_text("h = 0x1F\no = 0o17\nb = 0b101\nu = 1_000\nf = -2.5e-3\nn = -7\n")
+            .unwrap();
+        let values: Vec<f64> = t.entries.iter().map(|(_, _, v)| number(v)).collect();
+        assert_eq!(values, [31.0, 15.0, 5.0, 1000.0, -2.5e-3, -7.0]);
+        // Larger than i64: still a number, rounded like any float.
+        let t = from_toml_text("big = 99999999999999999999").unwrap();
+        assert_eq!(number(&t.entries[0].2), 1e20);
+    }
+
+    #[test]
+    fn positions_count_lines_and_characters() {
+        let t = from_toml_text("a = 1\r\n\r\n[t]\nkey = \"é\"\nb = [1,\n  22]\n").unwrap();
+        let (key, key_loc, value) = &t.entries[1];
+        assert_eq!(key, "t");
+        assert_eq!(*key_loc, Position { line: 3, column: 2 });
+        let Value::Table(inner) = value else {
+            panic!("expected a table")
+        };
+        assert_eq!(inner.loc, Position { line: 3, column: 1 });
+        assert_eq!(*inner.entries[0].2.loc(), Position { line: 4, column: 7 });
+        let Value::Array(items, loc) = &inner.entries[1].2 else {
+            panic!("expected an array")
+        };
+        assert_eq!(*loc, Position { line: 5, column: 5 });
+        assert_eq!(*items[1].loc(), Position { line: 6, column: 3 });
+        assert_eq!(Position { line: 6, column: 3 }.to_string(), "6:3");
     }
 }

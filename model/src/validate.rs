@@ -88,7 +88,8 @@ impl<'t, L: Clone> Fields<'t, L> {
                 return Err(at.err(
                     key_loc,
                     format!(
-                        "unknown field `{key}`; expected one of: {}",
+                        "unknown field `{key}`{}; expected one of: {}",
+                        suggestion(key, allowed),
                         allowed.join(", ")
                     ),
                 ));
@@ -157,6 +158,40 @@ impl<'t, L: Clone> Fields<'t, L> {
     }
 }
 
+/// `x` to 6 significant digits, without trailing zeros: computed values such as
+/// eigenvalues carry rounding noise that would only distract in a message.
+fn short(x: f64) -> String {
+    let rounded: f64 = format!("{x:.5e}").parse().unwrap_or(x);
+    format!("{rounded}")
+}
+
+/// " (did you mean `x`?)" when an allowed name is one or two edits away from `key`.
+fn suggestion(key: &str, allowed: &[&str]) -> String {
+    allowed
+        .iter()
+        .map(|name| (edit_distance(key, name), name))
+        .filter(|(d, name)| *d <= 2 && *d < name.len())
+        .min_by_key(|(d, _)| *d)
+        .map(|(_, name)| format!(" (did you mean `{name}`?)"))
+        .unwrap_or_default()
+}
+
+/// Levenshtein distance, by characters.
+fn edit_distance(a: &str, b: &str) -> usize {
+    let b: Vec<char> = b.chars().collect();
+    let mut row: Vec<usize> = (0..=b.len()).collect();
+    for (i, ca) in a.chars().enumerate() {
+        let mut diagonal = row[0];
+        row[0] = i + 1;
+        for (j, cb) in b.iter().enumerate() {
+            let substitute = diagonal + usize::from(ca != *cb);
+            diagonal = row[j + 1];
+            row[j + 1] = substitute.min(row[j] + 1).min(diagonal + 1);
+        }
+    }
+    row[b.len()]
+}
+
 fn join(prefix: &str, key: &str) -> String {
     if prefix.is_empty() {
         key.to_string()
@@ -167,8 +202,12 @@ fn join(prefix: &str, key: &str) -> String {
 
 fn number<L: Clone>(at: At<'_>, v: &Value<L>) -> Result<f64, Error<L>> {
     match v {
-        Value::Number(x, loc) if x.is_nan() => Err(at.err(loc, "value is NaN")),
-        Value::Number(x, loc) if x.is_infinite() => Err(at.err(loc, "value is infinite")),
+        Value::Number(x, loc) if x.is_nan() => {
+            Err(at.err(loc, "the value is NaN; give a finite number"))
+        }
+        Value::Number(x, loc) if x.is_infinite() => {
+            Err(at.err(loc, format!("the value is {x}; give a finite number")))
+        }
         Value::Number(x, _) => Ok(*x),
         other => Err(at.err(
             other.loc(),
@@ -201,13 +240,27 @@ fn string<L: Clone>(at: At<'_>, v: &Value<L>) -> Result<String, Error<L>> {
     }
 }
 
-/// A keyword such as a joint type: a string in TOML, a bare word in the macro.
-fn keyword<'v, L: Clone>(at: At<'_>, v: &'v Value<L>) -> Result<(&'v str, &'v L), Error<L>> {
+/// One of a fixed set of keywords (`what`, e.g. "joint type"): a string in TOML, a bare
+/// word in the macro. Returns the index of the keyword in `choices`.
+fn keyword<L: Clone>(
+    at: At<'_>,
+    v: &Value<L>,
+    what: &str,
+    choices: &[&str],
+) -> Result<usize, Error<L>> {
+    let expected = choices
+        .iter()
+        .map(|c| format!("`{c}`"))
+        .collect::<Vec<_>>()
+        .join(" or ");
     match v {
-        Value::Str(s, loc) | Value::Word(s, loc) => Ok((s.as_str(), loc)),
+        Value::Str(s, loc) | Value::Word(s, loc) => choices
+            .iter()
+            .position(|c| c == s)
+            .ok_or_else(|| at.err(loc, format!("unknown {what} `{s}`; expected {expected}"))),
         other => Err(at.err(
             other.loc(),
-            format!("expected a keyword, found {}", other.kind()),
+            format!("expected the {what} ({expected}), found {}", other.kind()),
         )),
     }
 }
@@ -294,15 +347,8 @@ pub fn validate<L: Clone>(
     };
     let description = f.with("description", string)?;
     let convention = f.with_required("convention", |at, v| {
-        let (word, loc) = keyword(at, v)?;
-        match word {
-            "standard" => Ok(Convention::Standard),
-            "modified" => Ok(Convention::Modified),
-            other => Err(at.err(
-                loc,
-                format!("unknown convention `{other}`; expected `standard` or `modified`"),
-            )),
-        }
+        let conventions = [Convention::Standard, Convention::Modified];
+        keyword(at, v, "convention", &["standard", "modified"]).map(|i| conventions[i])
     })?;
     let gravity = f.with("gravity", vec3)?.unwrap_or([0.0, 0.0, -9.81]);
     let base = f.with("base", pose)?;
@@ -337,8 +383,8 @@ pub fn validate<L: Clone>(
                 link: Some(without + 1),
                 field: Some("mass".into()),
                 message: format!(
-                    "link {} has no mass, com and inertia but link {} has them; give every link its mass properties, or none",
-                    without + 1,
+                    "this link has no `mass`, `com` and `inertia` but link {} has them; \
+                     give every link its mass properties, or none",
                     with + 1
                 ),
             });
@@ -363,15 +409,8 @@ fn link<L: Clone>(index: usize, v: &Value<L>, allow_nonphysical: bool) -> Result
     let t = table(at, v)?;
     let f = Fields::new(t, Some(index), "", LINK_FIELDS)?;
     let joint = f.with_required("joint", |at, v| {
-        let (word, loc) = keyword(at, v)?;
-        match word {
-            "revolute" => Ok(JointKind::Revolute),
-            "prismatic" => Ok(JointKind::Prismatic),
-            other => Err(at.err(
-                loc,
-                format!("unknown joint type `{other}`; expected `revolute` or `prismatic`"),
-            )),
-        }
+        let kinds = [JointKind::Revolute, JointKind::Prismatic];
+        keyword(at, v, "joint type", &["revolute", "prismatic"]).map(|i| kinds[i])
     })?;
     let a = f.with_required("a", number)?;
     let alpha = f.with_required("alpha", angle)?;
@@ -387,7 +426,20 @@ fn link<L: Clone>(index: usize, v: &Value<L>, allow_nonphysical: bool) -> Result
         if lo >= hi {
             return Err(at.err(
                 v.loc(),
-                format!("lower limit {lo} is not below upper limit {hi}"),
+                match joint {
+                    JointKind::Revolute => format!(
+                        "lower limit {} rad ({}°) is not below upper limit {} rad ({}°)",
+                        short(lo),
+                        short(lo.to_degrees()),
+                        short(hi),
+                        short(hi.to_degrees())
+                    ),
+                    JointKind::Prismatic => format!(
+                        "lower limit {} m is not below upper limit {} m",
+                        short(lo),
+                        short(hi)
+                    ),
+                },
             ));
         }
         Ok([lo, hi])
@@ -514,8 +566,10 @@ fn check_inertia<L: Clone>(
         return Err(at.err(
             &loc,
             format!(
-                "inertia tensor is not positive semi-definite (principal moments {:.6e}, {:.6e}, {:.6e})",
-                e[0], e[1], e[2]
+                "inertia tensor is not positive semi-definite (principal moments {}, {}, {})",
+                short(e[0]),
+                short(e[1]),
+                short(e[2])
             ),
         ));
     }
@@ -523,9 +577,11 @@ fn check_inertia<L: Clone>(
         return Err(at.err(
             &loc,
             format!(
-                "principal moments {:.6e}, {:.6e}, {:.6e} violate the triangle inequality ({:.6e} + {:.6e} < {:.6e}); \
+                "principal moments {a}, {b}, {c} violate the triangle inequality ({a} + {b} < {c}); \
                  set `allow_nonphysical_inertia = true` at the top level to accept published values like these",
-                e[0], e[1], e[2], e[0], e[1], e[2]
+                a = short(e[0]),
+                b = short(e[1]),
+                c = short(e[2])
             ),
         ));
     }

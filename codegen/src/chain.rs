@@ -1,0 +1,413 @@
+//! The kinematic chain in "joint frames", generic over the arithmetic.
+//!
+//! Both DH conventions factor each link transform into a constant part and the joint
+//! motion `J(q) = Rz(θ) Tz(d)`: standard DH is `A = J(q) · F` with `F = Tx(a) Rx(α)`,
+//! modified DH is `A = F · J(q)` with `F = Rx(α) Tx(a)`. Working in the frame K_k just
+//! after joint k's motion, every joint axis is the local z axis through the origin, every
+//! link's inertia is constant, and consecutive frames differ by `T_k = F' · J(q_k)` with a
+//! constant `F'`. The algorithms below (composite inertia, gravity, Newton-Euler) are
+//! written once for any [`Ring`]: polynomials (the normal form) and expression nodes alike.
+
+use dhgen_model::{Convention, Frame, JointKind, Ring, RobotModel};
+
+/// A 3-vector over a ring.
+pub type V3<R> = [R; 3];
+
+fn k<R: Ring>(x: f64) -> R {
+    R::from_f64(x)
+}
+
+/// `a × b`
+pub fn cross<R: Ring>(a: &V3<R>, b: &V3<R>) -> V3<R> {
+    [
+        a[1].clone() * b[2].clone() - a[2].clone() * b[1].clone(),
+        a[2].clone() * b[0].clone() - a[0].clone() * b[2].clone(),
+        a[0].clone() * b[1].clone() - a[1].clone() * b[0].clone(),
+    ]
+}
+
+fn add3<R: Ring>(a: &V3<R>, b: &V3<R>) -> V3<R> {
+    core::array::from_fn(|i| a[i].clone() + b[i].clone())
+}
+
+fn scale3<R: Ring>(s: &R, a: &V3<R>) -> V3<R> {
+    core::array::from_fn(|i| s.clone() * a[i].clone())
+}
+
+/// `R v`
+pub fn rot<R: Ring>(f: &Frame<R>, v: &V3<R>) -> V3<R> {
+    core::array::from_fn(|i| {
+        f.r[i][0].clone() * v[0].clone()
+            + f.r[i][1].clone() * v[1].clone()
+            + f.r[i][2].clone() * v[2].clone()
+    })
+}
+
+/// `Rᵀ v`
+pub fn rot_t<R: Ring>(f: &Frame<R>, v: &V3<R>) -> V3<R> {
+    core::array::from_fn(|i| {
+        f.r[0][i].clone() * v[0].clone()
+            + f.r[1][i].clone() * v[1].clone()
+            + f.r[2][i].clone() * v[2].clone()
+    })
+}
+
+/// Mass properties about a frame's origin: mass, first moment `h = m c`, and the
+/// rotational inertia about the origin `Ī`.
+#[derive(Clone, Debug)]
+pub struct Body<R> {
+    /// Mass.
+    pub m: R,
+    /// First moment of mass.
+    pub h: V3<R>,
+    /// Rotational inertia about the frame origin.
+    pub i: [[R; 3]; 3],
+}
+
+impl<R: Ring> Body<R> {
+    /// The body seen from the parent frame of `f` (`f` maps child coordinates to parent).
+    ///
+    /// `Ī' = R Ī Rᵀ + 2(p·w)1 − w pᵀ − p wᵀ + m(|p|² 1 − p pᵀ)` with `w = R h`.
+    pub fn transformed(&self, f: &Frame<R>) -> Body<R> {
+        let w = rot(f, &self.h);
+        let p = &f.p;
+        let h = add3(&w, &scale3(&self.m, p));
+        // R Ī Rᵀ
+        let ri: [[R; 3]; 3] = core::array::from_fn(|a| {
+            core::array::from_fn(|b| {
+                f.r[a][0].clone() * self.i[0][b].clone()
+                    + f.r[a][1].clone() * self.i[1][b].clone()
+                    + f.r[a][2].clone() * self.i[2][b].clone()
+            })
+        });
+        let pw = dot(p, &w);
+        let pp = dot(p, p);
+        let i = core::array::from_fn(|a| {
+            core::array::from_fn(|b| {
+                let rir = ri[a][0].clone() * f.r[b][0].clone()
+                    + ri[a][1].clone() * f.r[b][1].clone()
+                    + ri[a][2].clone() * f.r[b][2].clone();
+                let mut v = rir
+                    - w[a].clone() * p[b].clone()
+                    - p[a].clone() * w[b].clone()
+                    - self.m.clone() * p[a].clone() * p[b].clone();
+                if a == b {
+                    v = v + k::<R>(2.0) * pw.clone() + self.m.clone() * pp.clone();
+                }
+                v
+            })
+        });
+        Body {
+            m: self.m.clone(),
+            h,
+            i,
+        }
+    }
+
+    fn plus(&self, o: &Body<R>) -> Body<R> {
+        Body {
+            m: self.m.clone() + o.m.clone(),
+            h: add3(&self.h, &o.h),
+            i: core::array::from_fn(|a| {
+                core::array::from_fn(|b| self.i[a][b].clone() + o.i[a][b].clone())
+            }),
+        }
+    }
+}
+
+fn dot<R: Ring>(a: &V3<R>, b: &V3<R>) -> R {
+    a[0].clone() * b[0].clone() + a[1].clone() * b[1].clone() + a[2].clone() * b[2].clone()
+}
+
+/// How a caller supplies each joint's variables in its own arithmetic.
+pub trait JointSymbols<R> {
+    /// `(cos θ_j, sin θ_j)` of revolute joint j (full angle, offset included).
+    fn angle(&self, j: usize) -> (R, R);
+    /// `d_j` of prismatic joint j (full displacement, offset included).
+    fn length(&self, j: usize) -> R;
+}
+
+/// The chain of one robot in one arithmetic.
+pub struct Chain<R> {
+    /// Joint kinds.
+    pub kinds: Vec<JointKind>,
+    /// `T_k`: frame K_k in frame K_{k−1} (K_0 = the base frame of the DH table).
+    pub t: Vec<Frame<R>>,
+    /// Link frame B_k in K_k (constant).
+    pub link_in_k: Vec<Frame<R>>,
+    /// Each link's mass properties in K_k (when the model has dynamics).
+    pub bodies: Vec<Body<R>>,
+    /// Gravity in the base frame.
+    pub gravity: V3<R>,
+}
+
+/// `Rz(θ) Tz(d)`
+fn joint_motion<R: Ring>(c: R, s: R, d: R) -> Frame<R> {
+    let (o, i) = (k::<R>(0.0), k::<R>(1.0));
+    Frame {
+        r: [
+            [c.clone(), -s.clone(), o.clone()],
+            [s, c, o.clone()],
+            [o.clone(), o.clone(), i],
+        ],
+        p: [o.clone(), o, d],
+    }
+}
+
+impl<R: Ring> Chain<R> {
+    /// Builds the chain; constants come from the model through `Link::dh_transform`.
+    pub fn new(model: &RobotModel, sym: &impl JointSymbols<R>) -> Chain<R> {
+        let n = model.dof();
+        let conv = model.convention;
+        // The constant part F of each link: the DH formula at θ = 0, d = 0.
+        let fixed: Vec<Frame<R>> = model
+            .links
+            .iter()
+            .map(|l| l.dh_transform(conv, k(1.0), k(0.0), k(0.0)))
+            .collect();
+        let motion: Vec<Frame<R>> = (0..n)
+            .map(|j| {
+                let l = &model.links[j];
+                match l.joint {
+                    JointKind::Revolute => {
+                        let (c, s) = sym.angle(j);
+                        joint_motion(c, s, k(l.d))
+                    }
+                    JointKind::Prismatic => {
+                        let (c, s) = l.theta.cos_sin();
+                        joint_motion(k(c), k(s), sym.length(j))
+                    }
+                }
+            })
+            .collect();
+        let t = (0..n)
+            .map(|j| match conv {
+                Convention::Standard if j == 0 => motion[0].clone(),
+                Convention::Standard => fixed[j - 1].compose(&motion[j]),
+                Convention::Modified => fixed[j].compose(&motion[j]),
+            })
+            .collect();
+        let link_in_k: Vec<Frame<R>> = (0..n)
+            .map(|j| match conv {
+                Convention::Standard => fixed[j].clone(),
+                Convention::Modified => Frame::identity(),
+            })
+            .collect();
+        let bodies = model
+            .links
+            .iter()
+            .zip(&link_in_k)
+            .filter_map(|(l, f)| {
+                let inr = l.inertial?;
+                let c = inr.com;
+                let m = inr.mass;
+                let cc = c[0] * c[0] + c[1] * c[1] + c[2] * c[2];
+                let i = core::array::from_fn(|a| {
+                    core::array::from_fn(|b| {
+                        let parallel = if a == b { m * cc } else { 0.0 } - m * c[a] * c[b];
+                        k(inr.inertia[a][b] + parallel)
+                    })
+                });
+                let body = Body {
+                    m: k(m),
+                    h: c.map(|x| k(m * x)),
+                    i,
+                };
+                Some(body.transformed(f))
+            })
+            .collect();
+        Chain {
+            kinds: model.links.iter().map(|l| l.joint).collect(),
+            t,
+            link_in_k,
+            bodies,
+            gravity: model.gravity.map(k),
+        }
+    }
+
+    /// Number of joints.
+    pub fn dof(&self) -> usize {
+        self.kinds.len()
+    }
+
+    /// Composite bodies: `Ic_k` = links k..n, in K_k.
+    pub fn composites(&self) -> Vec<Body<R>> {
+        let n = self.dof();
+        let mut out: Vec<Body<R>> = Vec::with_capacity(n);
+        for j in (0..n).rev() {
+            let own = self.bodies[j].clone();
+            let c = match out.last() {
+                Some(child) => own.plus(&child.transformed(&self.t[j + 1])),
+                None => own,
+            };
+            out.push(c);
+        }
+        out.reverse();
+        out
+    }
+
+    /// The joint-space inertia matrix by the composite-rigid-body algorithm (upper
+    /// triangle computed, mirrored).
+    pub fn mass_matrix(&self) -> Vec<Vec<R>> {
+        let n = self.dof();
+        let ic = self.composites();
+        let mut d = vec![vec![k::<R>(0.0); n]; n];
+        for j in 0..n {
+            let b = &ic[j];
+            // Wrench (n, f) that gives composite j a unit acceleration of joint j, in K_j.
+            let (mut nn, mut f) = match self.kinds[j] {
+                JointKind::Revolute => (
+                    [b.i[0][2].clone(), b.i[1][2].clone(), b.i[2][2].clone()],
+                    [-b.h[1].clone(), b.h[0].clone(), k(0.0)],
+                ),
+                JointKind::Prismatic => (
+                    [b.h[1].clone(), -b.h[0].clone(), k(0.0)],
+                    [k(0.0), k(0.0), b.m.clone()],
+                ),
+            };
+            d[j][j] = self.component(j, &nn, &f);
+            for i in (0..j).rev() {
+                let tf = &self.t[i + 1];
+                let f2 = rot(tf, &f);
+                nn = add3(&rot(tf, &nn), &cross(&tf.p, &f2));
+                f = f2;
+                let v = self.component(i, &nn, &f);
+                d[i][j] = v.clone();
+                d[j][i] = v;
+            }
+        }
+        d
+    }
+
+    fn component(&self, i: usize, n: &V3<R>, f: &V3<R>) -> R {
+        match self.kinds[i] {
+            JointKind::Revolute => n[2].clone(),
+            JointKind::Prismatic => f[2].clone(),
+        }
+    }
+
+    /// Gravity in each K_k.
+    fn gravity_in_frames(&self) -> Vec<V3<R>> {
+        let mut g = Vec::with_capacity(self.dof());
+        let mut cur = self.gravity.clone();
+        for t in &self.t {
+            cur = rot_t(t, &cur);
+            g.push(cur.clone());
+        }
+        g
+    }
+
+    /// The torques that hold the arm still against gravity, from the composite bodies.
+    pub fn gravity_torques(&self) -> Vec<R> {
+        let ic = self.composites();
+        self.gravity_in_frames()
+            .iter()
+            .zip(&ic)
+            .zip(&self.kinds)
+            .map(|((g, b), kind)| match kind {
+                JointKind::Revolute => -(cross(&b.h, g)[2].clone()),
+                JointKind::Prismatic => -(b.m.clone() * g[2].clone()),
+            })
+            .collect()
+    }
+
+    /// Recursive Newton-Euler: `τ = D q̈ + C q̇ + g` (gravity included when `with_gravity`).
+    pub fn rnea(&self, qd: &[R], qdd: &[R], with_gravity: bool) -> Vec<R> {
+        let n = self.dof();
+        let z = || k::<R>(0.0);
+        let mut w: V3<R> = [z(), z(), z()];
+        let mut wd: V3<R> = [z(), z(), z()];
+        // The base accelerates upwards instead of gravity pulling down.
+        let mut a: V3<R> = if with_gravity {
+            self.gravity.clone().map(|x| -x)
+        } else {
+            [z(), z(), z()]
+        };
+        let mut forces = Vec::with_capacity(n);
+        for j in 0..n {
+            let t = &self.t[j];
+            let wr = rot_t(t, &w);
+            let wdr = rot_t(t, &wd);
+            // Acceleration of K_j's origin from the parent's motion.
+            let ap = add3(&add3(&a, &cross(&wd, &t.p)), &cross(&w, &cross(&w, &t.p)));
+            let mut aj = rot_t(t, &ap);
+            let axis_rate = [z(), z(), qd[j].clone()];
+            match self.kinds[j] {
+                JointKind::Revolute => {
+                    w = add3(&wr, &axis_rate);
+                    wd = add3(
+                        &add3(&wdr, &[z(), z(), qdd[j].clone()]),
+                        &cross(&wr, &axis_rate),
+                    );
+                }
+                JointKind::Prismatic => {
+                    w = wr.clone();
+                    wd = wdr;
+                    let cor = cross(&wr, &axis_rate);
+                    aj = add3(
+                        &add3(&aj, &scale3(&k(2.0), &cor)),
+                        &[z(), z(), qdd[j].clone()],
+                    );
+                }
+            }
+            a = aj;
+            let b = &self.bodies[j];
+            let f = add3(
+                &add3(&scale3(&b.m, &a), &cross(&wd, &b.h)),
+                &cross(&w, &cross(&w, &b.h)),
+            );
+            let iw = mat_vec(&b.i, &w);
+            let nn = add3(
+                &add3(&mat_vec(&b.i, &wd), &cross(&w, &iw)),
+                &cross(&b.h, &a),
+            );
+            forces.push((f, nn));
+        }
+        let mut tau = vec![z(); n];
+        let mut carry: Option<(V3<R>, V3<R>)> = None;
+        for j in (0..n).rev() {
+            let (mut f, mut nn) = forces[j].clone();
+            if let Some((fc, nc)) = carry {
+                let t = &self.t[j + 1];
+                let fr = rot(t, &fc);
+                nn = add3(&add3(&nn, &rot(t, &nc)), &cross(&t.p, &fr));
+                f = add3(&f, &fr);
+            }
+            tau[j] = self.component(j, &nn, &f);
+            carry = Some((f, nn));
+        }
+        tau
+    }
+
+    /// Link frames B_k in the base frame of the table (no base pose, no tool).
+    pub fn link_frames(&self) -> Vec<Frame<R>> {
+        let mut cur = Frame::identity();
+        let mut out = Vec::with_capacity(self.dof());
+        for (t, l) in self.t.iter().zip(&self.link_in_k) {
+            cur = cur.compose(t);
+            out.push(cur.compose(l));
+        }
+        out
+    }
+
+    /// Joint frames K_k in the base frame of the table: joint k moves about their z axis
+    /// through their origin.
+    pub fn joint_frames(&self) -> Vec<Frame<R>> {
+        let mut cur = Frame::identity();
+        self.t
+            .iter()
+            .map(|t| {
+                cur = cur.compose(t);
+                cur.clone()
+            })
+            .collect()
+    }
+}
+
+fn mat_vec<R: Ring>(m: &[[R; 3]; 3], v: &V3<R>) -> V3<R> {
+    core::array::from_fn(|i| {
+        m[i][0].clone() * v[0].clone()
+            + m[i][1].clone() * v[1].clone()
+            + m[i][2].clone() * v[2].clone()
+    })
+}

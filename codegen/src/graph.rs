@@ -1,0 +1,395 @@
+//! The expression DAG that generated code is emitted from.
+//!
+//! Every node is hash-consed: building `a * b` twice yields the same node, so common
+//! subexpressions are shared by construction and each becomes one `let` when emitted.
+//! The constructors fold constants and push negations outward (`a + (-b)` becomes
+//! `a - b`, `(-a) * b` becomes `-(a * b)`), so no operation is spent on a sign that the
+//! surrounding sum can absorb.
+//!
+//! [`E`] wraps a node handle and implements [`Ring`], so the one DH formula of the model
+//! (`Link::dh_transform`) and generic algorithms such as Newton-Euler run on it unchanged.
+
+use dhgen_model::Ring;
+use std::cell::RefCell;
+use std::collections::HashMap;
+use std::rc::Rc;
+
+/// Index of a node in a [`Graph`].
+pub type Id = u32;
+
+/// An input of a generated function.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum Sym {
+    /// cos of joint j's full angle (offset included).
+    Cos(usize),
+    /// sin of joint j's full angle.
+    Sin(usize),
+    /// Full displacement of prismatic joint j (offset included).
+    Len(usize),
+    /// Joint velocity j.
+    Qd(usize),
+    /// Joint acceleration j.
+    Qdd(usize),
+    /// Joint torque j.
+    Tau(usize),
+}
+
+/// One operation.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Node {
+    /// A constant (its bit pattern, so nodes can be hashed).
+    Const(u64),
+    /// An input.
+    Sym(Sym),
+    /// a + b
+    Add(Id, Id),
+    /// a - b
+    Sub(Id, Id),
+    /// a * b
+    Mul(Id, Id),
+    /// -a
+    Neg(Id),
+    /// a / b
+    Div(Id, Id),
+    /// sqrt(a)
+    Sqrt(Id),
+}
+
+/// The node arena with its hash-consing index.
+#[derive(Default, Debug)]
+pub struct Graph {
+    nodes: Vec<Node>,
+    index: HashMap<Node, Id>,
+}
+
+impl Graph {
+    /// The nodes in creation order (children before parents).
+    pub fn nodes(&self) -> &[Node] {
+        &self.nodes
+    }
+
+    /// The node with id `id`.
+    pub fn node(&self, id: Id) -> Node {
+        self.nodes[id as usize]
+    }
+
+    fn intern(&mut self, node: Node) -> Id {
+        if let Some(&id) = self.index.get(&node) {
+            return id;
+        }
+        let id = self.nodes.len() as Id;
+        self.nodes.push(node);
+        self.index.insert(node, id);
+        id
+    }
+
+    fn constant(&self, id: Id) -> Option<f64> {
+        match self.nodes[id as usize] {
+            Node::Const(bits) => Some(f64::from_bits(bits)),
+            _ => None,
+        }
+    }
+
+    fn negated(&self, id: Id) -> Option<Id> {
+        match self.nodes[id as usize] {
+            Node::Neg(a) => Some(a),
+            _ => None,
+        }
+    }
+
+    /// The constant `x` (negative zero is normalised to zero).
+    pub fn konst(&mut self, x: f64) -> Id {
+        let x = if x == 0.0 { 0.0 } else { x };
+        self.intern(Node::Const(x.to_bits()))
+    }
+
+    /// An input symbol.
+    pub fn sym(&mut self, s: Sym) -> Id {
+        self.intern(Node::Sym(s))
+    }
+
+    /// `-a`
+    pub fn neg(&mut self, a: Id) -> Id {
+        if let Some(x) = self.constant(a) {
+            return self.konst(-x);
+        }
+        if let Some(inner) = self.negated(a) {
+            return inner;
+        }
+        if let Node::Sub(x, y) = self.nodes[a as usize] {
+            return self.intern(Node::Sub(y, x));
+        }
+        self.intern(Node::Neg(a))
+    }
+
+    /// `a + b`
+    pub fn add(&mut self, a: Id, b: Id) -> Id {
+        match (self.constant(a), self.constant(b)) {
+            (Some(x), Some(y)) => return self.konst(x + y),
+            (Some(x), _) if x == 0.0 => return b,
+            (_, Some(y)) if y == 0.0 => return a,
+            _ => {}
+        }
+        match (self.negated(a), self.negated(b)) {
+            (Some(x), Some(y)) => {
+                let s = self.add(x, y);
+                self.neg(s)
+            }
+            (None, Some(y)) => self.sub(a, y),
+            (Some(x), None) => self.sub(b, x),
+            (None, None) => self.intern(Node::Add(a.min(b), a.max(b))),
+        }
+    }
+
+    /// `a - b`
+    pub fn sub(&mut self, a: Id, b: Id) -> Id {
+        if a == b {
+            return self.konst(0.0);
+        }
+        match (self.constant(a), self.constant(b)) {
+            (Some(x), Some(y)) => return self.konst(x - y),
+            (Some(x), _) if x == 0.0 => return self.neg(b),
+            (_, Some(y)) if y == 0.0 => return a,
+            _ => {}
+        }
+        match (self.negated(a), self.negated(b)) {
+            (_, Some(y)) => self.add(a, y),
+            (Some(x), None) => {
+                let s = self.add(x, b);
+                self.neg(s)
+            }
+            (None, None) => self.intern(Node::Sub(a, b)),
+        }
+    }
+
+    /// `a * b`
+    pub fn mul(&mut self, a: Id, b: Id) -> Id {
+        match (self.constant(a), self.constant(b)) {
+            (Some(x), Some(y)) => return self.konst(x * y),
+            (Some(k), _) | (_, Some(k)) if k == 0.0 => return self.konst(0.0),
+            (Some(k), _) if k == 1.0 => return b,
+            (_, Some(k)) if k == 1.0 => return a,
+            (Some(k), _) if k == -1.0 => return self.neg(b),
+            (_, Some(k)) if k == -1.0 => return self.neg(a),
+            (Some(k), _) if k < 0.0 => {
+                let pk = self.konst(-k);
+                let m = self.mul(pk, b);
+                return self.neg(m);
+            }
+            (_, Some(k)) if k < 0.0 => {
+                let pk = self.konst(-k);
+                let m = self.mul(a, pk);
+                return self.neg(m);
+            }
+            _ => {}
+        }
+        match (self.negated(a), self.negated(b)) {
+            (Some(x), Some(y)) => self.mul(x, y),
+            (Some(x), None) => {
+                let m = self.mul(x, b);
+                self.neg(m)
+            }
+            (None, Some(y)) => {
+                let m = self.mul(a, y);
+                self.neg(m)
+            }
+            (None, None) => self.intern(Node::Mul(a.min(b), a.max(b))),
+        }
+    }
+
+    /// `a / b`
+    pub fn div(&mut self, a: Id, b: Id) -> Id {
+        match (self.constant(a), self.constant(b)) {
+            (Some(x), Some(y)) => return self.konst(x / y),
+            (Some(x), _) if x == 0.0 => return self.konst(0.0),
+            (_, Some(y)) if y == 1.0 => return a,
+            _ => {}
+        }
+        self.intern(Node::Div(a, b))
+    }
+
+    /// `sqrt(a)`
+    pub fn sqrt(&mut self, a: Id) -> Id {
+        if let Some(x) = self.constant(a) {
+            return self.konst(x.sqrt());
+        }
+        self.intern(Node::Sqrt(a))
+    }
+}
+
+/// A shared, growable graph.
+pub type SharedGraph = Rc<RefCell<Graph>>;
+
+/// An expression: a constant not yet placed in a graph, or a node of one.
+///
+/// Keeping constants outside the graph until they meet a node lets constant arithmetic
+/// (products of DH parameters, masses, lengths) fold to one number at generation time.
+#[derive(Clone, Debug)]
+pub enum E {
+    /// A constant.
+    K(f64),
+    /// A node of a graph.
+    N(SharedGraph, Id),
+}
+
+impl E {
+    /// A graph input.
+    pub fn sym(g: &SharedGraph, s: Sym) -> E {
+        let id = g.borrow_mut().sym(s);
+        E::N(g.clone(), id)
+    }
+
+    /// The node id in `g` (constants are placed in `g` first).
+    pub fn id_in(&self, g: &SharedGraph) -> Id {
+        match self {
+            E::K(x) => g.borrow_mut().konst(*x),
+            E::N(_, id) => *id,
+        }
+    }
+
+    /// The constant value, if this is a constant.
+    pub fn as_const(&self) -> Option<f64> {
+        match self {
+            E::K(x) => Some(*x),
+            E::N(g, id) => g.borrow().constant(*id),
+        }
+    }
+
+    /// `sqrt(self)`
+    pub fn sqrt(&self) -> E {
+        match self {
+            E::K(x) => E::K(x.sqrt()),
+            E::N(g, id) => {
+                let r = g.borrow_mut().sqrt(*id);
+                E::N(g.clone(), r)
+            }
+        }
+    }
+
+    /// `self / other`
+    pub fn div(&self, other: &E) -> E {
+        binary(self.clone(), other.clone(), |a, b| a / b, Graph::div)
+    }
+}
+
+fn binary(a: E, b: E, fold: fn(f64, f64) -> f64, op: fn(&mut Graph, Id, Id) -> Id) -> E {
+    match (&a, &b) {
+        (E::K(x), E::K(y)) => E::K(fold(*x, *y)),
+        (E::N(g, _), _) | (_, E::N(g, _)) => {
+            let g = g.clone();
+            let (ia, ib) = (a.id_in(&g), b.id_in(&g));
+            let r = op(&mut g.borrow_mut(), ia, ib);
+            // A result that folded to a constant leaves the graph again.
+            match g.borrow().constant(r) {
+                Some(x) => E::K(x),
+                None => E::N(g.clone(), r),
+            }
+        }
+    }
+}
+
+impl core::ops::Add for E {
+    type Output = E;
+    fn add(self, rhs: E) -> E {
+        binary(self, rhs, |a, b| a + b, Graph::add)
+    }
+}
+
+impl core::ops::Sub for E {
+    type Output = E;
+    fn sub(self, rhs: E) -> E {
+        binary(self, rhs, |a, b| a - b, Graph::sub)
+    }
+}
+
+impl core::ops::Mul for E {
+    type Output = E;
+    fn mul(self, rhs: E) -> E {
+        binary(self, rhs, |a, b| a * b, Graph::mul)
+    }
+}
+
+impl core::ops::Neg for E {
+    type Output = E;
+    fn neg(self) -> E {
+        match self {
+            E::K(x) => E::K(-x),
+            E::N(g, id) => {
+                let r = g.borrow_mut().neg(id);
+                E::N(g, r)
+            }
+        }
+    }
+}
+
+impl Ring for E {
+    fn from_f64(x: f64) -> E {
+        E::K(x)
+    }
+}
+
+/// Operation counts of a set of outputs (each shared node counted once).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct OpCount {
+    /// Additions, subtractions and negations.
+    pub add: usize,
+    /// Multiplications.
+    pub mul: usize,
+    /// Divisions.
+    pub div: usize,
+    /// Square roots.
+    pub sqrt: usize,
+}
+
+impl OpCount {
+    /// All arithmetic operations.
+    pub fn total(&self) -> usize {
+        self.add + self.mul + self.div + self.sqrt
+    }
+}
+
+impl core::ops::AddAssign for OpCount {
+    fn add_assign(&mut self, o: OpCount) {
+        self.add += o.add;
+        self.mul += o.mul;
+        self.div += o.div;
+        self.sqrt += o.sqrt;
+    }
+}
+
+/// The nodes reachable from `roots`, in creation (= dependency) order.
+pub fn reachable(g: &Graph, roots: impl IntoIterator<Item = Id>) -> Vec<Id> {
+    let mut seen = vec![false; g.nodes.len()];
+    let mut stack: Vec<Id> = roots.into_iter().collect();
+    while let Some(id) = stack.pop() {
+        if std::mem::replace(&mut seen[id as usize], true) {
+            continue;
+        }
+        match g.nodes[id as usize] {
+            Node::Add(a, b) | Node::Sub(a, b) | Node::Mul(a, b) | Node::Div(a, b) => {
+                stack.push(a);
+                stack.push(b);
+            }
+            Node::Neg(a) | Node::Sqrt(a) => stack.push(a),
+            Node::Const(_) | Node::Sym(_) => {}
+        }
+    }
+    (0..g.nodes.len() as Id)
+        .filter(|&i| seen[i as usize])
+        .collect()
+}
+
+/// Counts the operations needed to evaluate `roots`, sharing common nodes.
+pub fn count(g: &Graph, roots: impl IntoIterator<Item = Id>) -> OpCount {
+    let mut c = OpCount::default();
+    for id in reachable(g, roots) {
+        match g.nodes[id as usize] {
+            Node::Add(..) | Node::Sub(..) | Node::Neg(..) => c.add += 1,
+            Node::Mul(..) => c.mul += 1,
+            Node::Div(..) => c.div += 1,
+            Node::Sqrt(..) => c.sqrt += 1,
+            Node::Const(_) | Node::Sym(_) => {}
+        }
+    }
+    c
+}

@@ -1,0 +1,592 @@
+//! The generated module: a per-configuration `State` (sine and cosine of every joint
+//! computed once), methods for each quantity, and free functions taking `&[T; DOF]`.
+
+use crate::derive::{christoffel, gravity, inertia, kinematics, newton_euler};
+use crate::emit::{self, Output, constant};
+use crate::graph::{E, OpCount, SharedGraph};
+use dhgen_model::{JointKind, RobotModel};
+use proc_macro2::{Ident, Span, TokenStream};
+use quote::{format_ident, quote};
+
+/// The generated module and what it costs.
+pub struct Generated {
+    /// The `mod name { ... }` item.
+    pub tokens: TokenStream,
+    /// Arithmetic operations per generated function.
+    pub ops: Vec<(String, OpCount)>,
+}
+
+struct Quantity {
+    method: TokenStream,
+    parts: Vec<TokenStream>,
+}
+
+/// Emits `outputs` as the body of a `State` method: inline when small, otherwise as
+/// private part methods called in turn.
+fn quantity(
+    name: &str,
+    params: TokenStream,
+    args: TokenStream,
+    out_ty: TokenStream,
+    out_init: TokenStream,
+    g: &SharedGraph,
+    outputs: Vec<Output>,
+    ops: &mut Vec<(String, OpCount)>,
+) -> (TokenStream, Quantity) {
+    let emitted = emit::emit(g, outputs);
+    ops.push((name.to_string(), emitted.ops));
+    let fname = Ident::new(name, Span::call_site());
+    let mut parts = Vec::new();
+    let body = if emitted.parts.len() == 1 {
+        let stmts = &emitted.parts[0];
+        quote!(#(#stmts)*)
+    } else {
+        let mut calls = Vec::new();
+        for (i, stmts) in emitted.parts.iter().enumerate() {
+            let part = format_ident!("{}_part{}", name, i);
+            parts.push(quote! {
+                #[inline(never)]
+                fn #part(&self, #params out: &mut #out_ty) {
+                    #(#stmts)*
+                }
+            });
+            calls.push(quote!(self.#part(#args &mut out);));
+        }
+        quote!(#(#calls)*)
+    };
+    let inner = quote! {
+        fn #fname(&self, #params) -> #out_ty {
+            let mut out: #out_ty = #out_init;
+            #body
+            out
+        }
+    };
+    (
+        inner,
+        Quantity {
+            method: TokenStream::new(),
+            parts,
+        },
+    )
+}
+
+/// Generates the module `vis mod name { ... }` for `model`.
+pub fn generate(model: &RobotModel, vis: TokenStream, name: &Ident, doc: &str) -> Generated {
+    let n = model.dof();
+    let mut ops = Vec::new();
+    let mut methods = Vec::new();
+    let mut parts = Vec::new();
+    let mut add = |inner: TokenStream, q: Quantity, doc: &str| {
+        methods.push(quote!(#[doc = #doc] #[must_use] pub #inner));
+        parts.extend(q.parts);
+        let _ = q.method;
+    };
+
+    // Forward kinematics: the 4×4 homogeneous matrix and the link frames.
+    {
+        let g = SharedGraph::default();
+        let f = kinematics::fk(model, &g);
+        let outs = frame_outputs(&f, quote!(out));
+        let (inner, q) = quantity(
+            "fk_matrix",
+            quote!(),
+            quote!(),
+            quote!(na::Matrix4<T>),
+            quote!(na::Matrix4::identity()),
+            &g,
+            outs,
+            &mut ops,
+        );
+        add(
+            inner,
+            q,
+            "Pose of the tool frame in the world frame as a homogeneous matrix: base · A1 ⋯ An · tool.",
+        );
+    }
+    {
+        let g = SharedGraph::default();
+        let frames = kinematics::frames(model, &g);
+        let outs = frames
+            .iter()
+            .enumerate()
+            .flat_map(|(i, f)| frame_outputs(f, quote!(out[#i])))
+            .collect();
+        let (inner, q) = quantity(
+            "frames_matrix",
+            quote!(),
+            quote!(),
+            quote!([na::Matrix4<T>; DOF]),
+            quote!([na::Matrix4::identity(); DOF]),
+            &g,
+            outs,
+            &mut ops,
+        );
+        add(
+            inner,
+            q,
+            "The link frames in the world frame (base applied, tool not) as homogeneous matrices.",
+        );
+    }
+    {
+        let g = SharedGraph::default();
+        let cols = kinematics::jacobian(model, &g);
+        let outs = cols
+            .iter()
+            .enumerate()
+            .flat_map(|(c, col)| {
+                col.iter().enumerate().map(move |(r, e)| Output {
+                    target: quote!(out[(#r, #c)]),
+                    value: e.clone(),
+                })
+            })
+            .collect();
+        let (inner, q) = quantity(
+            "jacobian",
+            quote!(),
+            quote!(),
+            quote!(na::SMatrix<T, 6, DOF>),
+            quote!(na::SMatrix::zeros()),
+            &g,
+            outs,
+            &mut ops,
+        );
+        add(
+            inner,
+            q,
+            "Geometric Jacobian of the tool frame origin, world axes, rows [v; ω].",
+        );
+    }
+
+    let dynamics = model.has_dynamics();
+    if dynamics {
+        let (g, d) = inertia::mass_matrix(model);
+        let outs = matrix_outputs(&d, n);
+        let (inner, q) = quantity(
+            "mass_matrix",
+            quote!(),
+            quote!(),
+            quote!(na::SMatrix<T, DOF, DOF>),
+            quote!(na::SMatrix::zeros()),
+            &g,
+            outs,
+            &mut ops,
+        );
+        add(
+            inner,
+            q,
+            "Joint-space inertia matrix D(q) (motor inertia included).",
+        );
+
+        let (g, c) = christoffel::christoffel(model);
+        let outs = (0..n)
+            .flat_map(|i| (0..n).flat_map(move |j| (0..n).map(move |k| (i, j, k))))
+            .map(|(i, j, k)| Output {
+                target: quote!(out[#i][#j][#k]),
+                value: c[(i * n + j) * n + k].clone(),
+            })
+            .collect();
+        let (inner, q) = quantity(
+            "christoffel",
+            quote!(),
+            quote!(),
+            quote!([[[T; DOF]; DOF]; DOF]),
+            quote!([[[T::zero(); DOF]; DOF]; DOF]),
+            &g,
+            outs,
+            &mut ops,
+        );
+        add(
+            inner,
+            q,
+            "Christoffel symbols: `[i][j][k]` = c_ijk = ½(∂d_kj/∂q_i + ∂d_ki/∂q_j − ∂d_ij/∂q_k), k the equation index.",
+        );
+
+        let (g, c) = christoffel::coriolis(model);
+        let outs = matrix_outputs(&c, n);
+        let (inner, q) = quantity(
+            "coriolis",
+            quote!(qd: &[T; DOF],),
+            quote!(qd,),
+            quote!(na::SMatrix<T, DOF, DOF>),
+            quote!(na::SMatrix::zeros()),
+            &g,
+            outs,
+            &mut ops,
+        );
+        add(
+            inner,
+            q,
+            "Coriolis and centrifugal matrix: C_kj = Σ_i c_ijk q̇_i (so Ḋ − 2C is skew-symmetric).",
+        );
+
+        let (g, gr) = gravity::gravity(model);
+        let outs = vector_outputs(&gr);
+        let (inner, q) = quantity(
+            "gravity",
+            quote!(),
+            quote!(),
+            quote!(na::SVector<T, DOF>),
+            quote!(na::SVector::zeros()),
+            &g,
+            outs,
+            &mut ops,
+        );
+        add(
+            inner,
+            q,
+            "Gravity torques g(q): the torques that hold the arm still.",
+        );
+
+        let (g, tau) = newton_euler::inverse_dynamics(model);
+        let outs = vector_outputs(&tau);
+        let (inner, q) = quantity(
+            "inverse_dynamics_smooth",
+            quote!(qd: &[T; DOF], qdd: &[T; DOF],),
+            quote!(qd, qdd,),
+            quote!(na::SVector<T, DOF>),
+            quote!(na::SVector::zeros()),
+            &g,
+            outs,
+            &mut ops,
+        );
+        parts.push(quote!(#inner));
+        parts.extend(q.parts);
+
+        let g = SharedGraph::default();
+        let bias = newton_euler::rnea_exprs(model, &g, true, true);
+        let outs = vector_outputs(&bias);
+        let (inner, q) = quantity(
+            "bias_smooth",
+            quote!(qd: &[T; DOF],),
+            quote!(qd,),
+            quote!(na::SVector<T, DOF>),
+            quote!(na::SVector::zeros()),
+            &g,
+            outs,
+            &mut ops,
+        );
+        parts.push(quote!(#inner));
+        parts.extend(q.parts);
+    }
+
+    let state_new = state_new(model);
+    let coulomb = coulomb(model);
+    let dyn_items = if dynamics {
+        let chol = cholesky_solve(n);
+        quote! {
+            /// Inverse dynamics τ = D(q) q̈ + C(q, q̇) q̇ + g(q), plus motor inertia and friction.
+            #[must_use]
+            pub fn inverse_dynamics(&self, qd: &[T; DOF], qdd: &[T; DOF]) -> na::SVector<T, DOF> {
+                let mut tau = self.inverse_dynamics_smooth(qd, qdd);
+                #coulomb
+                tau
+            }
+
+            /// The torques at zero acceleration: C(q, q̇) q̇ + g(q) + friction.
+            #[must_use]
+            pub fn bias(&self, qd: &[T; DOF]) -> na::SVector<T, DOF> {
+                let mut tau = self.bias_smooth(qd);
+                #coulomb
+                tau
+            }
+
+            /// Forward dynamics q̈ = D⁻¹(τ − C q̇ − g − friction) by an unrolled Cholesky
+            /// solve; `None` where D(q) is not positive definite.
+            #[must_use]
+            pub fn forward_dynamics(&self, qd: &[T; DOF], tau: &[T; DOF]) -> Option<na::SVector<T, DOF>> {
+                let dm = self.mass_matrix();
+                let h = self.bias(qd);
+                let rhs: [T; DOF] = ::core::array::from_fn(|i| tau[i] - h[i]);
+                #chol
+            }
+
+            /// D, C, g and J at once, sharing this state's sines and cosines.
+            #[must_use]
+            pub fn terms(&self, qd: &[T; DOF]) -> Terms<T> {
+                Terms {
+                    mass_matrix: self.mass_matrix(),
+                    coriolis: self.coriolis(qd),
+                    gravity: self.gravity(),
+                    jacobian: self.jacobian(),
+                }
+            }
+        }
+    } else {
+        quote!()
+    };
+    let dyn_free = if dynamics {
+        quote! {
+            /// Joint-space inertia matrix D(q).
+            #[must_use]
+            pub fn mass_matrix<T: na::RealField + Copy>(q: &[T; DOF]) -> na::SMatrix<T, DOF, DOF> {
+                State::new(q).mass_matrix()
+            }
+            /// Christoffel symbols, `[i][j][k]` = c_ijk with k the equation index.
+            #[must_use]
+            pub fn christoffel<T: na::RealField + Copy>(q: &[T; DOF]) -> [[[T; DOF]; DOF]; DOF] {
+                State::new(q).christoffel()
+            }
+            /// Coriolis matrix C(q, q̇), C_kj = Σ_i c_ijk q̇_i.
+            #[must_use]
+            pub fn coriolis<T: na::RealField + Copy>(q: &[T; DOF], qd: &[T; DOF]) -> na::SMatrix<T, DOF, DOF> {
+                State::new(q).coriolis(qd)
+            }
+            /// Gravity torques g(q).
+            #[must_use]
+            pub fn gravity<T: na::RealField + Copy>(q: &[T; DOF]) -> na::SVector<T, DOF> {
+                State::new(q).gravity()
+            }
+            /// Inverse dynamics τ(q, q̇, q̈).
+            #[must_use]
+            pub fn inverse_dynamics<T: na::RealField + Copy>(q: &[T; DOF], qd: &[T; DOF], qdd: &[T; DOF]) -> na::SVector<T, DOF> {
+                State::new(q).inverse_dynamics(qd, qdd)
+            }
+            /// Forward dynamics q̈(q, q̇, τ); `None` where D(q) is not positive definite.
+            #[must_use]
+            pub fn forward_dynamics<T: na::RealField + Copy>(q: &[T; DOF], qd: &[T; DOF], tau: &[T; DOF]) -> Option<na::SVector<T, DOF>> {
+                State::new(q).forward_dynamics(qd, tau)
+            }
+            /// D, C, g and J at one configuration, as a controller needs them.
+            #[derive(Clone, Copy, Debug, PartialEq)]
+            pub struct Terms<T: na::Scalar> {
+                /// D(q)
+                pub mass_matrix: na::SMatrix<T, DOF, DOF>,
+                /// C(q, q̇)
+                pub coriolis: na::SMatrix<T, DOF, DOF>,
+                /// g(q)
+                pub gravity: na::SVector<T, DOF>,
+                /// J(q)
+                pub jacobian: na::SMatrix<T, 6, DOF>,
+            }
+        }
+    } else {
+        quote!()
+    };
+    let robot_name = &model.name;
+    let tokens = quote! {
+        #[doc = #doc]
+        #[allow(clippy::all, clippy::pedantic, clippy::nursery, non_snake_case, unused_parens)]
+        #vis mod #name {
+            use ::dhgen::nalgebra as na;
+
+            /// Number of joints.
+            pub const DOF: usize = #n;
+            /// The robot's name.
+            pub const NAME: &str = #robot_name;
+            /// Whether the description has mass properties (dynamics functions exist).
+            pub const HAS_DYNAMICS: bool = #dynamics;
+
+            /// One configuration, prepared: the sine and cosine of every revolute joint's
+            /// full angle and the full displacement of every prismatic joint, computed once
+            /// and shared by every quantity evaluated at this configuration.
+            #[derive(Clone, Copy, Debug, PartialEq)]
+            pub struct State<T: na::Scalar> {
+                /// cos θ_j (revolute joints; 0 for prismatic ones).
+                pub c: [T; DOF],
+                /// sin θ_j (revolute joints; 0 for prismatic ones).
+                pub s: [T; DOF],
+                /// d_j (prismatic joints; 0 for revolute ones).
+                pub d: [T; DOF],
+            }
+
+            impl<T: na::RealField + Copy> State<T> {
+                /// Prepares configuration `q`.
+                #[must_use]
+                pub fn new(q: &[T; DOF]) -> Self {
+                    #state_new
+                }
+
+                /// Pose of the tool frame in the world frame: base · A1 ⋯ An · tool.
+                #[must_use]
+                pub fn fk(&self) -> na::Isometry3<T> {
+                    isometry(&self.fk_matrix())
+                }
+
+                /// The link frames in the world frame (base applied, tool not).
+                #[must_use]
+                pub fn frames(&self) -> [na::Isometry3<T>; DOF] {
+                    let m = self.frames_matrix();
+                    ::core::array::from_fn(|i| isometry(&m[i]))
+                }
+
+                #(#methods)*
+                #dyn_items
+                #(#parts)*
+            }
+
+            /// Pose of the tool frame in the world frame.
+            #[must_use]
+            pub fn fk<T: na::RealField + Copy>(q: &[T; DOF]) -> na::Isometry3<T> {
+                State::new(q).fk()
+            }
+            /// The link frames in the world frame (tool not applied).
+            #[must_use]
+            pub fn frames<T: na::RealField + Copy>(q: &[T; DOF]) -> [na::Isometry3<T>; DOF] {
+                State::new(q).frames()
+            }
+            /// Geometric Jacobian of the tool frame origin, world axes, rows [v; ω].
+            #[must_use]
+            pub fn jacobian<T: na::RealField + Copy>(q: &[T; DOF]) -> na::SMatrix<T, 6, DOF> {
+                State::new(q).jacobian()
+            }
+            #dyn_free
+
+            fn isometry<T: na::RealField + Copy>(m: &na::Matrix4<T>) -> na::Isometry3<T> {
+                let r = na::Rotation3::from_matrix_unchecked(m.fixed_view::<3, 3>(0, 0).into_owned());
+                na::Isometry3::from_parts(
+                    na::Translation3::new(m[(0, 3)], m[(1, 3)], m[(2, 3)]),
+                    na::UnitQuaternion::from_rotation_matrix(&r),
+                )
+            }
+
+            #[allow(dead_code)]
+            fn sign<T: na::RealField + Copy>(x: T) -> T {
+                if x > T::zero() {
+                    T::one()
+                } else if x < T::zero() {
+                    -T::one()
+                } else {
+                    T::zero()
+                }
+            }
+        }
+    };
+    Generated { tokens, ops }
+}
+
+fn frame_outputs(f: &dhgen_model::Frame<E>, out: TokenStream) -> Vec<Output> {
+    let mut v = Vec::new();
+    for r in 0..3 {
+        for c in 0..3 {
+            v.push(Output {
+                target: quote!(#out[(#r, #c)]),
+                value: f.r[r][c].clone(),
+            });
+        }
+        v.push(Output {
+            target: quote!(#out[(#r, 3)]),
+            value: f.p[r].clone(),
+        });
+    }
+    v
+}
+
+fn matrix_outputs(m: &[E], n: usize) -> Vec<Output> {
+    (0..n * n)
+        .map(|idx| {
+            let (r, c) = (idx / n, idx % n);
+            Output {
+                target: quote!(out[(#r, #c)]),
+                value: m[idx].clone(),
+            }
+        })
+        .collect()
+}
+
+fn vector_outputs(v: &[E]) -> Vec<Output> {
+    v.iter()
+        .enumerate()
+        .map(|(i, e)| Output {
+            target: quote!(out[#i]),
+            value: e.clone(),
+        })
+        .collect()
+}
+
+fn state_new(model: &RobotModel) -> TokenStream {
+    let lines = model.links.iter().enumerate().map(|(j, l)| match l.joint {
+        JointKind::Revolute => {
+            let theta = l.theta.radians();
+            let angle = if theta == 0.0 {
+                quote!(q[#j])
+            } else {
+                let k = constant(theta);
+                quote!(q[#j] + #k)
+            };
+            quote!(let (sj, cj) = (#angle).sin_cos(); s[#j] = sj; c[#j] = cj;)
+        }
+        JointKind::Prismatic => {
+            let k = constant(l.d);
+            quote!(d[#j] = q[#j] + #k;)
+        }
+    });
+    quote! {
+        let mut c = [T::zero(); DOF];
+        let mut s = [T::zero(); DOF];
+        let mut d = [T::zero(); DOF];
+        #(#lines)*
+        State { c, s, d }
+    }
+}
+
+fn coulomb(model: &RobotModel) -> TokenStream {
+    let lines = model.links.iter().enumerate().filter_map(|(j, l)| {
+        let f = l.friction?;
+        (f.coulomb != 0.0).then(|| {
+            let k = constant(f.coulomb);
+            quote!(tau[#j] += #k * sign(qd[#j]);)
+        })
+    });
+    quote!(#(#lines)*)
+}
+
+/// Unrolled `D x = rhs` by Cholesky, `None` on a non-positive pivot.
+fn cholesky_solve(n: usize) -> TokenStream {
+    let l = |i: usize, j: usize| format_ident!("l{}_{}", i, j);
+    let inv = |i: usize| format_ident!("inv{}", i);
+    let y = |i: usize| format_ident!("y{}", i);
+    let x = |i: usize| format_ident!("x{}", i);
+    let mut s = Vec::new();
+    for j in 0..n {
+        let mut diag = quote!(dm[(#j, #j)]);
+        for k in 0..j {
+            let ljk = l(j, k);
+            diag = quote!(#diag - #ljk * #ljk);
+        }
+        let ljj = l(j, j);
+        let invj = inv(j);
+        s.push(quote! {
+            let #ljj: T = #diag;
+            if !(#ljj > T::zero()) {
+                return None;
+            }
+            let #ljj: T = #ljj.sqrt();
+            let #invj: T = T::one() / #ljj;
+        });
+        for i in j + 1..n {
+            let mut e = quote!(dm[(#i, #j)]);
+            for k in 0..j {
+                let (lik, ljk) = (l(i, k), l(j, k));
+                e = quote!(#e - #lik * #ljk);
+            }
+            let lij = l(i, j);
+            s.push(quote!(let #lij: T = (#e) * #invj;));
+        }
+    }
+    for i in 0..n {
+        let mut e = quote!(rhs[#i]);
+        for k in 0..i {
+            let (lik, yk) = (l(i, k), y(k));
+            e = quote!(#e - #lik * #yk);
+        }
+        let (yi, invi) = (y(i), inv(i));
+        s.push(quote!(let #yi: T = (#e) * #invi;));
+    }
+    for i in (0..n).rev() {
+        let mut e = {
+            let yi = y(i);
+            quote!(#yi)
+        };
+        for k in i + 1..n {
+            let (lki, xk) = (l(k, i), x(k));
+            e = quote!(#e - #lki * #xk);
+        }
+        let (xi, invi) = (x(i), inv(i));
+        s.push(quote!(let #xi: T = (#e) * #invi;));
+    }
+    let xs = (0..n).map(x);
+    quote! {
+        #(#s)*
+        Some(na::SVector::<T, DOF>::from([#(#xs),*]))
+    }
+}

@@ -1,0 +1,463 @@
+//! The normal form: sparse polynomials in `cos θ_j`, `sin θ_j` (revolute joints) and the
+//! displacement `d_j` (prismatic joints), reduced by `sin² = 1 − cos²` while multiplying.
+//!
+//! Every kinematic and dynamic quantity of a serial chain is such a polynomial, and with
+//! every `sin` of degree at most one the representation is unique: two derivations of the
+//! same quantity give the same terms, cancellations (`cos² + sin² = 1`) happen on their own,
+//! and differentiation is exact. This is what egg-style rewriting cannot do at the size of
+//! an inertia matrix.
+//!
+//! Floating-point coefficients cancel only up to rounding, so a term is dropped when its
+//! coefficient is below `CANCEL` times the sum of the magnitudes that produced it: a
+//! relative test that never drops a physically meaningful term.
+
+use crate::graph::{E, SharedGraph, Sym};
+use dhgen_model::Ring;
+use std::collections::HashMap;
+
+/// Variables per polynomial: two per joint.
+pub const MAX_VARS: usize = 32;
+
+/// Relative size below which a cancelled coefficient is rounding noise.
+const CANCEL: f64 = 64.0 * f64::EPSILON;
+
+/// Exponents, indexed by variable: `2j` is `cos θ_j` (or `d_j`), `2j + 1` is `sin θ_j`.
+pub type Mono = [u8; MAX_VARS];
+
+const ONE: Mono = [0; MAX_VARS];
+
+/// What variable `2j` stands for.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Var {
+    /// `2j` = cos θ_j, `2j+1` = sin θ_j.
+    Angle,
+    /// `2j` = d_j (prismatic); `2j+1` unused.
+    Length,
+}
+
+/// A polynomial in the joint variables, in normal form.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Poly {
+    /// Terms sorted by monomial; no zero coefficients, no `sin` of degree > 1.
+    terms: Vec<(Mono, f64)>,
+}
+
+impl Poly {
+    /// The zero polynomial.
+    pub fn zero() -> Poly {
+        Poly { terms: Vec::new() }
+    }
+
+    /// A constant.
+    pub fn constant(x: f64) -> Poly {
+        if x == 0.0 {
+            Poly::zero()
+        } else {
+            Poly {
+                terms: vec![(ONE, x)],
+            }
+        }
+    }
+
+    /// The variable with index `v`.
+    pub fn var(v: usize) -> Poly {
+        let mut m = ONE;
+        m[v] = 1;
+        Poly {
+            terms: vec![(m, 1.0)],
+        }
+    }
+
+    /// `cos θ_j`
+    pub fn cos(j: usize) -> Poly {
+        Poly::var(2 * j)
+    }
+
+    /// `sin θ_j`
+    pub fn sin(j: usize) -> Poly {
+        Poly::var(2 * j + 1)
+    }
+
+    /// `d_j` of a prismatic joint.
+    pub fn length(j: usize) -> Poly {
+        Poly::var(2 * j)
+    }
+
+    /// The terms, sorted.
+    pub fn terms(&self) -> &[(Mono, f64)] {
+        &self.terms
+    }
+
+    /// True for the zero polynomial.
+    pub fn is_zero(&self) -> bool {
+        self.terms.is_empty()
+    }
+
+    /// Builds a polynomial from accumulated `(value, magnitude)` per monomial.
+    fn collect(acc: HashMap<Mono, (f64, f64)>) -> Poly {
+        let mut terms: Vec<(Mono, f64)> = acc
+            .into_iter()
+            .filter(|(_, (v, mag))| v.abs() > CANCEL * mag)
+            .map(|(m, (v, _))| (m, v))
+            .collect();
+        terms.sort_unstable_by(|a, b| a.0.cmp(&b.0));
+        Poly { terms }
+    }
+
+    fn combine(&self, other: &Poly, sign: f64) -> Poly {
+        let mut acc: HashMap<Mono, (f64, f64)> =
+            HashMap::with_capacity(self.terms.len() + other.terms.len());
+        for (m, c) in &self.terms {
+            let e = acc.entry(*m).or_insert((0.0, 0.0));
+            e.0 += c;
+            e.1 += c.abs();
+        }
+        for (m, c) in &other.terms {
+            let e = acc.entry(*m).or_insert((0.0, 0.0));
+            e.0 += sign * c;
+            e.1 += c.abs();
+        }
+        Poly::collect(acc)
+    }
+
+    /// `self + other`
+    pub fn add(&self, other: &Poly) -> Poly {
+        self.combine(other, 1.0)
+    }
+
+    /// `self - other`
+    pub fn sub(&self, other: &Poly) -> Poly {
+        self.combine(other, -1.0)
+    }
+
+    /// `self + x`
+    pub fn add_constant(&self, x: f64) -> Poly {
+        self.combine(&Poly::constant(x), 1.0)
+    }
+
+    /// `self * k`
+    pub fn scale(&self, k: f64) -> Poly {
+        if k == 0.0 {
+            return Poly::zero();
+        }
+        Poly {
+            terms: self.terms.iter().map(|(m, c)| (*m, c * k)).collect(),
+        }
+    }
+
+    /// The product, reduced with `sin² = 1 − cos²` for angle variables (`vars[j]`).
+    pub fn mul_with(&self, other: &Poly, vars: &[Var]) -> Poly {
+        if self.is_zero() || other.is_zero() {
+            return Poly::zero();
+        }
+        let mut acc: HashMap<Mono, (f64, f64)> =
+            HashMap::with_capacity(self.terms.len() * other.terms.len());
+        let mut expanded: Vec<(Mono, f64)> = Vec::new();
+        for (ma, ca) in &self.terms {
+            for (mb, cb) in &other.terms {
+                let mut m = *ma;
+                for (x, y) in m.iter_mut().zip(mb) {
+                    *x += y;
+                }
+                reduce(m, ca * cb, vars, &mut expanded);
+                for (m, c) in expanded.drain(..) {
+                    let e = acc.entry(m).or_insert((0.0, 0.0));
+                    e.0 += c;
+                    e.1 += c.abs();
+                }
+            }
+        }
+        Poly::collect(acc)
+    }
+
+    /// `∂/∂q_j` (for an angle: `d cos = −sin`, `d sin = cos`).
+    pub fn derivative(&self, j: usize, vars: &[Var]) -> Poly {
+        let mut acc: HashMap<Mono, (f64, f64)> = HashMap::new();
+        let push = |m: Mono, c: f64, acc: &mut HashMap<Mono, (f64, f64)>| {
+            let e = acc.entry(m).or_insert((0.0, 0.0));
+            e.0 += c;
+            e.1 += c.abs();
+        };
+        let (ci, si) = (2 * j, 2 * j + 1);
+        let mut expanded = Vec::new();
+        for (m, c) in &self.terms {
+            match vars[j] {
+                Var::Length => {
+                    if m[ci] > 0 {
+                        let mut d = *m;
+                        d[ci] -= 1;
+                        push(d, c * f64::from(m[ci]), &mut acc);
+                    }
+                }
+                Var::Angle => {
+                    // d(c^a s^b) = a c^(a-1) s^b (-s) + b c^a s^(b-1) c
+                    if m[ci] > 0 {
+                        let mut d = *m;
+                        d[ci] -= 1;
+                        d[si] += 1;
+                        reduce(d, -c * f64::from(m[ci]), vars, &mut expanded);
+                    }
+                    if m[si] > 0 {
+                        let mut d = *m;
+                        d[si] -= 1;
+                        d[ci] += 1;
+                        reduce(d, c * f64::from(m[si]), vars, &mut expanded);
+                    }
+                    for (m, c) in expanded.drain(..) {
+                        push(m, c, &mut acc);
+                    }
+                }
+            }
+        }
+        Poly::collect(acc)
+    }
+
+    /// The largest coefficient magnitude (0 for the zero polynomial).
+    pub fn max_abs(&self) -> f64 {
+        self.terms.iter().fold(0.0, |m, (_, c)| m.max(c.abs()))
+    }
+
+    /// Evaluates at numeric variable values (`values[v]`).
+    pub fn eval(&self, values: &[f64]) -> f64 {
+        self.terms
+            .iter()
+            .map(|(m, c)| {
+                m.iter()
+                    .enumerate()
+                    .filter(|(_, e)| **e > 0)
+                    .fold(*c, |acc, (v, e)| acc * values[v].powi(i32::from(*e)))
+            })
+            .sum()
+    }
+}
+
+/// Rewrites `s^b` with `b ≥ 2` as `s^(b mod 2) (1 − c²)^(b div 2)` and appends the terms.
+fn reduce(m: Mono, c: f64, vars: &[Var], out: &mut Vec<(Mono, f64)>) {
+    let start = out.len();
+    out.push((m, c));
+    for (j, var) in vars.iter().enumerate() {
+        if *var != Var::Angle {
+            continue;
+        }
+        let (ci, si) = (2 * j, 2 * j + 1);
+        let mut i = start;
+        while i < out.len() {
+            let (mut mono, coef) = out[i];
+            if mono[si] >= 2 {
+                // s^2 = 1 - c^2: keep the "1" part in place, append the "-c^2" part.
+                mono[si] -= 2;
+                out[i] = (mono, coef);
+                let mut other = mono;
+                other[ci] += 2;
+                out.push((other, -coef));
+                // Re-examine both (a sin may still be of degree >= 2).
+                continue;
+            }
+            i += 1;
+        }
+    }
+}
+
+/// A polynomial paired with the variable kinds it is reduced against, so it can implement
+/// [`Ring`] and run the model's generic formulas.
+#[derive(Clone, Debug)]
+pub struct P {
+    /// The polynomial.
+    pub poly: Poly,
+    vars: std::rc::Rc<[Var]>,
+}
+
+impl P {
+    /// Wraps `poly` for the chain with variable kinds `vars`.
+    pub fn new(poly: Poly, vars: &std::rc::Rc<[Var]>) -> P {
+        P {
+            poly,
+            vars: vars.clone(),
+        }
+    }
+
+    /// `∂/∂q_j`
+    pub fn derivative(&self, j: usize) -> P {
+        P::new(self.poly.derivative(j, &self.vars), &self.vars)
+    }
+}
+
+impl core::ops::Add for P {
+    type Output = P;
+    fn add(self, o: P) -> P {
+        let vars = if self.vars.is_empty() {
+            o.vars
+        } else {
+            self.vars
+        };
+        P {
+            poly: self.poly.combine(&o.poly, 1.0),
+            vars,
+        }
+    }
+}
+
+impl core::ops::Sub for P {
+    type Output = P;
+    fn sub(self, o: P) -> P {
+        let vars = if self.vars.is_empty() {
+            o.vars
+        } else {
+            self.vars
+        };
+        P {
+            poly: self.poly.combine(&o.poly, -1.0),
+            vars,
+        }
+    }
+}
+
+impl core::ops::Mul for P {
+    type Output = P;
+    fn mul(self, o: P) -> P {
+        let vars = if self.vars.len() >= o.vars.len() {
+            self.vars
+        } else {
+            o.vars
+        };
+        // A constant factor needs no reduction.
+        let poly = match (self.poly.terms.as_slice(), o.poly.terms.as_slice()) {
+            ([(m, k)], _) if *m == ONE => o.poly.scale(*k),
+            (_, [(m, k)]) if *m == ONE => self.poly.scale(*k),
+            _ => self.poly.mul_with(&o.poly, &vars),
+        };
+        P { poly, vars }
+    }
+}
+
+impl core::ops::Neg for P {
+    type Output = P;
+    fn neg(self) -> P {
+        P {
+            poly: self.poly.scale(-1.0),
+            vars: self.vars,
+        }
+    }
+}
+
+impl Ring for P {
+    fn from_f64(x: f64) -> P {
+        P {
+            poly: Poly::constant(x),
+            vars: std::rc::Rc::from(Vec::new()),
+        }
+    }
+}
+
+/// Turns a polynomial into an expression by greedy multivariate Horner factoring: the
+/// variable present in the most terms is factored out, recursively. Monomials are built
+/// in a fixed variable order so that equal products in different outputs are shared.
+pub fn to_expr(p: &Poly, g: &SharedGraph, vars: &[Var]) -> E {
+    let terms: Vec<(Mono, f64)> = p.terms.clone();
+    horner(terms, g, vars)
+}
+
+fn sym_of(v: usize, vars: &[Var]) -> Sym {
+    let j = v / 2;
+    match (vars[j], v % 2) {
+        (Var::Length, _) => Sym::Len(j),
+        (Var::Angle, 0) => Sym::Cos(j),
+        (Var::Angle, _) => Sym::Sin(j),
+    }
+}
+
+fn horner(terms: Vec<(Mono, f64)>, g: &SharedGraph, vars: &[Var]) -> E {
+    if terms.is_empty() {
+        return E::K(0.0);
+    }
+    // Count, per variable, the terms containing it.
+    let mut counts = [0usize; MAX_VARS];
+    for (m, _) in &terms {
+        for (v, e) in m.iter().enumerate() {
+            if *e > 0 {
+                counts[v] += 1;
+            }
+        }
+    }
+    let best = (0..MAX_VARS).max_by_key(|&v| (counts[v], std::cmp::Reverse(v)));
+    match best {
+        Some(v) if counts[v] >= 2 => {
+            let (with, without): (Vec<_>, Vec<_>) = terms.into_iter().partition(|(m, _)| m[v] > 0);
+            let reduced: Vec<(Mono, f64)> = with
+                .into_iter()
+                .map(|(mut m, c)| {
+                    m[v] -= 1;
+                    (m, c)
+                })
+                .collect();
+            let x = E::sym(g, sym_of(v, vars));
+            // Pull out a common coefficient so that `k*(a + b)` is not `k*a + k*b`.
+            let inner = factor_out_constant(reduced, g, vars);
+            let rest = horner(without, g, vars);
+            x * inner + rest
+        }
+        _ => terms
+            .into_iter()
+            .map(|(m, c)| monomial(&m, c, g, vars))
+            .fold(E::K(0.0), |a, b| a + b),
+    }
+}
+
+fn factor_out_constant(terms: Vec<(Mono, f64)>, g: &SharedGraph, vars: &[Var]) -> E {
+    if terms.len() >= 2 {
+        let k = terms[0].1;
+        if terms
+            .iter()
+            .all(|(_, c)| (c.abs() - k.abs()).abs() <= 1e-15 * k.abs())
+        {
+            let normalised = terms
+                .into_iter()
+                .map(|(m, c)| (m, (c / k).round()))
+                .collect();
+            return E::K(k) * horner(normalised, g, vars);
+        }
+    }
+    horner(terms, g, vars)
+}
+
+fn monomial(m: &Mono, c: f64, g: &SharedGraph, vars: &[Var]) -> E {
+    let mut e = E::K(1.0);
+    for (v, exp) in m.iter().enumerate() {
+        for _ in 0..*exp {
+            e = e * E::sym(g, sym_of(v, vars));
+        }
+    }
+    E::K(c) * e
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn vars(n: usize) -> Vec<Var> {
+        vec![Var::Angle; n]
+    }
+
+    #[test]
+    fn pythagoras_cancels() {
+        let v = vars(1);
+        let c = Poly::cos(0);
+        let s = Poly::sin(0);
+        let sum = c.mul_with(&c, &v).combine(&s.mul_with(&s, &v), 1.0);
+        assert_eq!(sum, Poly::constant(1.0));
+    }
+
+    #[test]
+    fn derivative_of_product() {
+        let v = vars(2);
+        // d/dq0 (c0 s0 c1) = (c0^2 - s0^2) c1 = (2 c0^2 - 1) c1
+        let p = Poly::cos(0)
+            .mul_with(&Poly::sin(0), &v)
+            .mul_with(&Poly::cos(1), &v);
+        let d = p.derivative(0, &v);
+        let q = [0.3_f64, 0.9];
+        let vals = [q[0].cos(), q[0].sin(), q[1].cos(), q[1].sin()];
+        let want = (2.0 * q[0]).cos() * q[1].cos();
+        assert!((d.eval(&vals) - want).abs() < 1e-15);
+    }
+}

@@ -1,0 +1,66 @@
+//! Inverse dynamics by the recursive Newton–Euler algorithm.
+
+use super::BodyState;
+use super::spatial::{Force, Motion};
+use crate::robot::Robot;
+use nalgebra::DVector;
+
+impl Robot {
+    /// Inverse dynamics: the joint torques (forces) `τ = D(q) q̈ + C(q, q̇) q̇ + g(q) + τ_f(q̇)`
+    /// that produce acceleration `qdd` at velocity `qd`, by the recursive Newton–Euler
+    /// algorithm. `D` includes the motor inertias `Jm·G²` and `τ_f` is the joint friction
+    /// `viscous·q̇ + coulomb·sign(q̇)` (`sign(0) = 0`).
+    ///
+    /// # Panics
+    /// If `q`, `qd` or `qdd` does not have `self.dof()` entries, or if the robot has no mass
+    /// properties.
+    pub fn inverse_dynamics(&self, q: &[f64], qd: &[f64], qdd: &[f64]) -> DVector<f64> {
+        self.check_len("inverse_dynamics", "q", q);
+        self.check_len("inverse_dynamics", "qd", qd);
+        self.check_len("inverse_dynamics", "qdd", qdd);
+        self.check_dynamics("inverse_dynamics");
+        let states = self.body_states(q);
+        let mut tau = self.rnea(&states, qd, Some(qdd));
+        for (i, body) in self.bodies.iter().enumerate() {
+            tau[i] += body.armature * qdd[i] + self.friction(i, qd[i]);
+        }
+        tau
+    }
+
+    /// The rigid-body part of inverse dynamics, with gravity, in world coordinates
+    /// (Featherstone, RBDA §5.3): no motor inertia, no friction; `qdd = None` means zero.
+    pub(crate) fn rnea(
+        &self,
+        states: &[BodyState],
+        qd: &[f64],
+        qdd: Option<&[f64]>,
+    ) -> DVector<f64> {
+        let n = states.len();
+        // Gravity enters as an upward acceleration of the base, so that every body's force
+        // includes its weight.
+        let mut velocity = Motion::ZERO;
+        let mut acceleration = Motion {
+            ang: nalgebra::Vector3::zeros(),
+            lin: -self.gravity,
+        };
+        let mut forces = Vec::with_capacity(n);
+        for (i, state) in states.iter().enumerate() {
+            let s = &state.axis;
+            velocity = velocity + *s * qd[i];
+            // The axis moves with the body before it: dS/dt = v × S.
+            acceleration = acceleration + velocity.cross(s) * qd[i];
+            if let Some(qdd) = qdd {
+                acceleration = acceleration + *s * qdd[i];
+            }
+            let momentum = state.inertia.apply(&velocity);
+            forces.push(state.inertia.apply(&acceleration) + velocity.cross_force(&momentum));
+        }
+        let mut tau = DVector::zeros(n);
+        let mut transmitted = Force::ZERO;
+        for i in (0..n).rev() {
+            transmitted += forces[i];
+            tau[i] = states[i].axis.dot(&transmitted);
+        }
+        tau
+    }
+}

@@ -1,0 +1,101 @@
+//! Forward kinematics and the geometric Jacobian of the runtime [`Robot`].
+
+use crate::robot::{Rigid, Robot};
+use dhgen_model::JointKind;
+use nalgebra::{DMatrix, Isometry3};
+
+impl Robot {
+    /// Walks the chain base to tip, calling `visit(i, frame)` with the world pose of each
+    /// body's joint frame (whose z axis and origin carry joint i), and returns the last one.
+    /// The caller has checked the length of `q`.
+    #[inline]
+    pub(crate) fn walk_joint_frames(
+        &self,
+        q: &[f64],
+        mut visit: impl FnMut(usize, &Rigid),
+    ) -> Rigid {
+        let mut frame = Rigid::IDENTITY;
+        for (i, (body, &qi)) in self.bodies.iter().zip(q).enumerate() {
+            frame = if i == 0 {
+                body.parent_to_joint
+            } else {
+                frame.compose(&body.parent_to_joint)
+            };
+            let cos_sin = match body.joint {
+                JointKind::Revolute => {
+                    let (s, c) = qi.sin_cos();
+                    (c, s)
+                }
+                JointKind::Prismatic => (1.0, 0.0),
+            };
+            frame.apply_joint(body.joint, qi, cos_sin);
+            visit(i, &frame);
+        }
+        frame
+    }
+
+    /// Forward kinematics: the tool pose `base · A_1(q_1) ⋯ A_n(q_n) · tool` in the world
+    /// frame.
+    ///
+    /// # Panics
+    /// If `q.len() != self.dof()`.
+    pub fn fk(&self, q: &[f64]) -> Isometry3<f64> {
+        self.check_len("fk", "q", q);
+        self.walk_joint_frames(q, |_, _| {})
+            .compose(&self.tool)
+            .to_isometry()
+    }
+
+    /// The n link frames `base · A_1 ⋯ A_i` (i = 1..n) in the world frame: the base pose is
+    /// applied, the tool pose is not.
+    ///
+    /// # Panics
+    /// If `q.len() != self.dof()`.
+    pub fn frames(&self, q: &[f64]) -> Vec<Isometry3<f64>> {
+        self.check_len("frames", "q", q);
+        let mut frames = Vec::with_capacity(self.dof());
+        self.walk_joint_frames(q, |i, joint_frame| {
+            let link = match &self.bodies[i].link_in_joint {
+                Some(l) => joint_frame.compose(l),
+                None => *joint_frame,
+            };
+            frames.push(link.to_isometry());
+        });
+        frames
+    }
+
+    /// The 6×n geometric Jacobian of the tool frame origin, in world axes, rows
+    /// `[v; ω]`: column i is `[z × (p_e − p_z); z]` for a revolute joint and `[z; 0]` for a
+    /// prismatic one, where `z` and `p_z` are joint i's axis and the origin of the frame
+    /// carrying it (frame i−1 for standard DH, frame i for modified DH) and `p_e` is the
+    /// tool origin.
+    ///
+    /// # Panics
+    /// If `q.len() != self.dof()`.
+    pub fn jacobian(&self, q: &[f64]) -> DMatrix<f64> {
+        self.check_len("jacobian", "q", q);
+        let mut j = DMatrix::zeros(6, self.dof());
+        // p_e is only known at the end of the walk, so a revolute column first holds
+        // p_z × z = −z × p_z, and z × p_e is added afterwards.
+        let last = self.walk_joint_frames(q, |i, frame| {
+            let z = frame.r.column(2);
+            let mut col = j.column_mut(i);
+            match self.bodies[i].joint {
+                JointKind::Revolute => {
+                    col.fixed_rows_mut::<3>(0).copy_from(&frame.p.cross(&z));
+                    col.fixed_rows_mut::<3>(3).copy_from(&z);
+                }
+                JointKind::Prismatic => col.fixed_rows_mut::<3>(0).copy_from(&z),
+            }
+        });
+        let p_e = last.r * self.tool.p + last.p;
+        for (i, body) in self.bodies.iter().enumerate() {
+            if body.joint == JointKind::Revolute {
+                let z = j.fixed_view::<3, 1>(3, i).into_owned();
+                let mut v = j.fixed_view_mut::<3, 1>(0, i);
+                v += z.cross(&p_e);
+            }
+        }
+        j
+    }
+}

@@ -1,0 +1,87 @@
+//! Cubic polynomial: position and velocity given at both ends (section 6.5.1.1, equation 15).
+
+use super::{Profile, State, TrajectoryError, displacement, finite, interval};
+
+/// The cubic `q(t)` with `q(t0) = q0`, `q̇(t0) = v0`, `q(tf) = qf`, `q̇(tf) = vf`.
+///
+/// Position and velocity are continuous; the acceleration is linear in time and generally jumps
+/// at `t0` and `tf` (the text's motivation for the [`Quintic`](super::Quintic)).
+///
+/// It is evaluated in cubic Hermite form in the normalized time `s = (t - t0)/(tf - t0)`, which is
+/// the unique solution of equation 15 and reproduces the four boundary values exactly at
+/// `s = 0` and `s = 1` (no cancellation between large monomial coefficients).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Cubic {
+    t0: f64,
+    tf: f64,
+    duration: f64,
+    q0: f64,
+    qf: f64,
+    v0: f64,
+    vf: f64,
+    /// `(qf - q0) / (tf - t0)`, the average velocity.
+    slope: f64,
+}
+
+impl Cubic {
+    /// The cubic through `(t0, q0, v0)` and `(tf, qf, vf)`; needs `tf > t0` and finite inputs.
+    pub fn new(t0: f64, tf: f64, q0: f64, v0: f64, qf: f64, vf: f64) -> Result<Self, TrajectoryError> {
+        let duration = interval(t0, tf)?;
+        let dq = displacement(q0, qf)?;
+        finite("v0", v0)?;
+        finite("vf", vf)?;
+        Ok(Self { t0, tf, duration, q0, qf, v0, vf, slope: dq / duration })
+    }
+
+    /// The cubic from rest at `q0` to rest at `qf` (Figure 4 of the text).
+    pub fn rest_to_rest(t0: f64, tf: f64, q0: f64, qf: f64) -> Result<Self, TrajectoryError> {
+        Self::new(t0, tf, q0, 0.0, qf, 0.0)
+    }
+
+    /// The monomial coefficients `[a0, a1, a2, a3]` of `q = a0 + a1 τ + a2 τ² + a3 τ³` in the local
+    /// time `τ = t - t0` (equation 15 with `t0 = 0`).
+    pub fn coefficients(&self) -> [f64; 4] {
+        let (t, dq) = (self.duration, self.qf - self.q0);
+        [
+            self.q0,
+            self.v0,
+            (3.0 * dq - (2.0 * self.v0 + self.vf) * t) / (t * t),
+            (-2.0 * dq + (self.v0 + self.vf) * t) / (t * t * t),
+        ]
+    }
+}
+
+impl Profile for Cubic {
+    fn start_time(&self) -> f64 {
+        self.t0
+    }
+
+    fn duration(&self) -> f64 {
+        self.duration
+    }
+
+    fn end_time(&self) -> f64 {
+        self.tf
+    }
+
+    fn eval(&self, t: f64) -> State {
+        if t < self.t0 {
+            return State::rest(self.q0);
+        }
+        if t > self.tf {
+            return State::rest(self.qf);
+        }
+        let s = (t - self.t0) / self.duration;
+        let r = 1.0 - s;
+        let big_t = self.duration;
+        // Hermite basis: h01 carries qf, h00 = 1 - h01 carries q0, h10/h11 carry T v0 / T vf.
+        let h01 = s * s * (3.0 - 2.0 * s);
+        let h00 = 1.0 - h01;
+        let h10 = s * r * r;
+        let h11 = -s * s * r;
+        let q = self.q0 * h00 + self.qf * h01 + big_t * (self.v0 * h10 + self.vf * h11);
+        let qd = 6.0 * s * r * self.slope + self.v0 * r * (1.0 - 3.0 * s) + self.vf * s * (3.0 * s - 2.0);
+        let qdd = ((6.0 - 12.0 * s) * self.slope + self.v0 * (6.0 * s - 4.0) + self.vf * (6.0 * s - 2.0)) / big_t;
+        State { q, qd, qdd }
+    }
+}

@@ -1,0 +1,201 @@
+//! Linear segment with parabolic blends (section 6.5.1.2, with the erratum for the third segment).
+
+use super::{Location, Profile, State, TrajectoryError, abs, displacement, finite, interval, positive, sqrt};
+
+/// Rest-to-rest LSPB ("trapezoidal velocity") profile: constant acceleration `α` for the blend
+/// time `tb`, constant velocity `V`, constant deceleration `-α` for the last `tb`.
+///
+/// With `τ = t - t0` and `T = tf - t0` (the text takes `t0 = 0`):
+/// - `q = q0 + α τ²/2` for `0 ≤ τ ≤ tb`,
+/// - `q = (q0 + qf - V T)/2 + V τ` for `tb < τ < T - tb`,
+/// - `q = qf - α (T - τ)²/2` for `T - tb ≤ τ ≤ T` (the text's third segment with the erratum:
+///   `qf - α T²/2 + α T τ - α τ²/2`).
+///
+/// `V` and `α` carry the sign of the move `qf - q0`. Position and velocity are continuous; the
+/// acceleration jumps at `t0`, `t0 + tb`, `tf - tb` and `tf`. When `tb = T/2` the linear segment
+/// vanishes and the profile is bang-bang. A zero move is the constant profile (`V = α = tb = 0`).
+///
+/// Also built by the minimum-time constructors [`Lspb::bang_bang`] and
+/// [`Lspb::velocity_limited`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Lspb {
+    t0: f64,
+    tf: f64,
+    duration: f64,
+    q0: f64,
+    qf: f64,
+    /// Signed cruise velocity `V`.
+    velocity: f64,
+    /// Signed blend acceleration `α`.
+    acceleration: f64,
+    /// Blend time `tb`, in `[0, T/2]`.
+    blend_time: f64,
+}
+
+impl Lspb {
+    /// The LSPB from rest at `q0` (time `t0`) to rest at `qf` (time `tf`) with cruise velocity `v`.
+    ///
+    /// `v` must lie in `((qf - q0)/T, 2 (qf - q0)/T]` for a positive move and in
+    /// `[2 (qf - q0)/T, (qf - q0)/T)` for a negative one (`T = tf - t0`), else the blends cannot fit;
+    /// for a zero move only `v = 0` is accepted. The blend time is
+    /// `tb = (q0 - qf + V T)/V` and the acceleration `α = V/tb`.
+    pub fn with_velocity(t0: f64, tf: f64, q0: f64, qf: f64, v: f64) -> Result<Self, TrajectoryError> {
+        let duration = interval(t0, tf)?;
+        let dq = displacement(q0, qf)?;
+        finite("V", v)?;
+        let average = dq / duration;
+        let max = 2.0 * average;
+        // Written so that it is the same test for either sign of the move.
+        let inside = if dq > 0.0 {
+            v > average && v <= max
+        } else if dq < 0.0 {
+            v < average && v >= max
+        } else {
+            v == 0.0
+        };
+        if !inside {
+            return Err(TrajectoryError::LspbVelocityOutOfRange {
+                v,
+                exclusive_bound: average,
+                inclusive_bound: max,
+                at: Location::NONE,
+            });
+        }
+        if dq == 0.0 {
+            return Ok(Self::stationary(t0, tf, duration, q0));
+        }
+        // tb = (V T - Δ)/V; rounding may push it a hair past T/2 at V = 2Δ/T.
+        let blend_time = ((v * duration - dq) / v).min(0.5 * duration);
+        Ok(Self {
+            t0,
+            tf,
+            duration,
+            q0,
+            qf,
+            velocity: v,
+            acceleration: v / blend_time,
+            blend_time,
+        })
+    }
+
+    /// The LSPB from rest at `q0` (time `t0`) to rest at `qf` (time `tf`) whose blends use the
+    /// acceleration magnitude `alpha`.
+    ///
+    /// `alpha` must be at least `4 |qf - q0| / T²` (the bang-bang acceleration for this duration);
+    /// the blend time is then `tb = T/2 - sqrt(α² T² - 4 α |qf - q0|) / (2 α)`.
+    pub fn with_acceleration(t0: f64, tf: f64, q0: f64, qf: f64, alpha: f64) -> Result<Self, TrajectoryError> {
+        let duration = interval(t0, tf)?;
+        let dq = displacement(q0, qf)?;
+        positive("alpha", alpha)?;
+        if dq == 0.0 {
+            return Ok(Self::stationary(t0, tf, duration, q0));
+        }
+        let distance = abs(dq);
+        let min = 4.0 * distance / (duration * duration);
+        // Accept the bang-bang acceleration computed by the caller with its own rounding.
+        if alpha < min * (1.0 - 8.0 * f64::EPSILON) {
+            return Err(TrajectoryError::LspbAccelerationTooSmall { alpha, min, at: Location::NONE });
+        }
+        let slack = (alpha * duration * duration - 4.0 * distance).max(0.0);
+        // tb = T/2 - sqrt(α(αT² - 4|Δ|))/(2α), rationalized so that a large α (short blends) does
+        // not lose tb to cancellation.
+        let blend_time = (2.0 * distance / (alpha * duration + sqrt(alpha * slack))).min(0.5 * duration);
+        let sign = if dq > 0.0 { 1.0 } else { -1.0 };
+        Ok(Self {
+            t0,
+            tf,
+            duration,
+            q0,
+            qf,
+            velocity: sign * alpha * blend_time,
+            acceleration: sign * alpha,
+            blend_time,
+        })
+    }
+
+    /// The LSPB of duration `duration > 0` with blend time `blend_time` in `(0, duration/2]`:
+    /// the shape shared by the minimum-time profiles. `dq = qf - q0` must be non-zero.
+    pub(crate) fn from_blend_time(t0: f64, duration: f64, q0: f64, qf: f64, blend_time: f64) -> Self {
+        let velocity = (qf - q0) / (duration - blend_time);
+        Self {
+            t0,
+            tf: t0 + duration,
+            duration,
+            q0,
+            qf,
+            velocity,
+            acceleration: velocity / blend_time,
+            blend_time,
+        }
+    }
+
+    /// The same profile with explicitly given signed velocity and acceleration (used where these
+    /// are limits that must be reproduced exactly rather than recomputed with rounding).
+    pub(crate) fn from_parts(t0: f64, duration: f64, q0: f64, qf: f64, blend_time: f64, velocity: f64, acceleration: f64) -> Self {
+        Self { t0, tf: t0 + duration, duration, q0, qf, velocity, acceleration, blend_time }
+    }
+
+    /// Holding `q` from `t0` to `tf` (a zero move; `duration` may be 0 for minimum-time profiles).
+    pub(crate) fn stationary(t0: f64, tf: f64, duration: f64, q: f64) -> Self {
+        Self {
+            t0,
+            tf,
+            duration,
+            q0: q,
+            qf: q,
+            velocity: 0.0,
+            acceleration: 0.0,
+            blend_time: 0.0,
+        }
+    }
+
+    /// The signed cruise velocity `V` (the peak velocity).
+    pub fn velocity(&self) -> f64 {
+        self.velocity
+    }
+
+    /// The signed blend acceleration `α` (`-α` while decelerating).
+    pub fn acceleration(&self) -> f64 {
+        self.acceleration
+    }
+
+    /// The blend time `tb`, in `[0, T/2]`.
+    pub fn blend_time(&self) -> f64 {
+        self.blend_time
+    }
+}
+
+impl Profile for Lspb {
+    fn start_time(&self) -> f64 {
+        self.t0
+    }
+
+    fn duration(&self) -> f64 {
+        self.duration
+    }
+
+    fn end_time(&self) -> f64 {
+        self.tf
+    }
+
+    fn eval(&self, t: f64) -> State {
+        if t < self.t0 {
+            return State::rest(self.q0);
+        }
+        if t > self.tf {
+            return State::rest(self.qf);
+        }
+        let tau = t - self.t0;
+        let (alpha, tb, big_t) = (self.acceleration, self.blend_time, self.duration);
+        if tau <= tb {
+            State { q: self.q0 + 0.5 * alpha * tau * tau, qd: alpha * tau, qdd: alpha }
+        } else if tau < big_t - tb {
+            let q = 0.5 * (self.q0 + self.qf - self.velocity * big_t) + self.velocity * tau;
+            State { q, qd: self.velocity, qdd: 0.0 }
+        } else {
+            // Anchored at qf so that q(tf) = qf exactly.
+            let left = (big_t - tau).max(0.0);
+            State { q: self.qf - 0.5 * alpha * left * left, qd: alpha * left, qdd: -alpha }
+        }
+    }
+}

@@ -1,0 +1,527 @@
+//! Joint-space trajectory generation (section 6.5 of the reference text).
+//!
+//! Point-to-point profiles for one joint:
+//! - [`Cubic`]: position and velocity given at both ends (equation 15 of the text);
+//! - [`Quintic`]: position, velocity and acceleration given at both ends;
+//! - [`Lspb`]: linear segment with parabolic blends, from the cruise velocity
+//!   ([`Lspb::with_velocity`]) or the blend acceleration ([`Lspb::with_acceleration`]);
+//! - minimum-time profiles, also [`Lspb`]s: bang-bang for an acceleration limit
+//!   ([`Lspb::bang_bang`]) and the trapezoid for velocity and acceleration limits
+//!   ([`Lspb::velocity_limited`]), with their closed-form durations
+//!   ([`bang_bang_duration`], [`velocity_limited_duration`]).
+//!
+//! Many joints: [`Synchronized`] holds one profile per joint, all sharing the same start and end
+//! time (for the limit-based profiles, the slowest joint's minimum duration).
+//!
+//! Via points (needs the `std` feature): [`CubicSpline`] (continuous velocity and acceleration,
+//! natural or clamped ends) and [`BlendedSegments`] (linear segments with parabolic blends, like
+//! Robotics Toolbox's `mstraj`), from given times or from velocity and acceleration limits.
+//!
+//! # Time outside the trajectory
+//! Every profile is defined on the closed interval `[t0, tf]`; at `t0` and `tf` it returns its own
+//! boundary state (including a non-zero boundary velocity or acceleration). Outside that interval
+//! the joint is **at rest at the nearest end point**: `q` is held at `q(t0)` (before) or `q(tf)`
+//! (after) and `q̇ = q̈ = 0`. That triple is the derivative chain of a constant, so it is
+//! kinematically consistent; for rest-to-rest profiles it is the "hold the end state" behaviour
+//! of Robotics Toolbox. The price is a velocity jump at `t0` or `tf` when the profile itself starts
+//! or ends moving (e.g. a cubic with `vf != 0` or a natural spline), and an acceleration jump
+//! where the profile's end acceleration is non-zero (the cubic's, exactly as the text notes for
+//! Figure 4). A NaN time evaluates to NaN.
+//!
+//! Moves with `qf < q0` are handled symmetrically everywhere: velocities and accelerations carry
+//! the sign of the move, limits are magnitudes.
+//!
+//! All of the point-to-point code is `no_std`: it uses only `core` and `f64` arithmetic (square
+//! roots through nalgebra's `ComplexField`, which is backed by `libm` without `std`), and sampling
+//! into caller-provided buffers never allocates.
+
+mod cubic;
+mod lspb;
+mod min_time;
+mod multi;
+mod quintic;
+#[cfg(feature = "std")]
+mod via;
+
+pub use cubic::Cubic;
+pub use lspb::Lspb;
+pub use min_time::{bang_bang_duration, velocity_limited_duration};
+pub use multi::Synchronized;
+pub use quintic::Quintic;
+#[cfg(feature = "std")]
+pub use via::{BlendedSegments, CubicSpline, JointView, SplineEnds};
+
+use core::fmt;
+
+/// Position, velocity and acceleration of one joint at one instant.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct State {
+    /// Position `q`.
+    pub q: f64,
+    /// Velocity `q̇`.
+    pub qd: f64,
+    /// Acceleration `q̈`.
+    pub qdd: f64,
+}
+
+impl State {
+    /// A state with the given position, velocity and acceleration.
+    pub const fn new(q: f64, qd: f64, qdd: f64) -> Self {
+        Self { q, qd, qdd }
+    }
+
+    /// At rest at `q`: zero velocity and acceleration.
+    pub const fn rest(q: f64) -> Self {
+        Self { q, qd: 0.0, qdd: 0.0 }
+    }
+}
+
+impl From<State> for (f64, f64, f64) {
+    fn from(s: State) -> Self {
+        (s.q, s.qd, s.qdd)
+    }
+}
+
+/// A trajectory of one joint: `q(t)`, `q̇(t)`, `q̈(t)` on `[start_time, end_time]`.
+///
+/// Outside that interval the joint is at rest at the nearest end (see the
+/// [module documentation](self)).
+pub trait Profile {
+    /// The start time `t0`.
+    fn start_time(&self) -> f64;
+    /// The duration `tf - t0` (zero only for a minimum-time profile of a zero move).
+    fn duration(&self) -> f64;
+    /// The end time `tf`.
+    fn end_time(&self) -> f64 {
+        self.start_time() + self.duration()
+    }
+    /// Position, velocity and acceleration at time `t`.
+    fn eval(&self, t: f64) -> State;
+}
+
+/// A trajectory of several joints sharing one time interval.
+pub trait MultiProfile {
+    /// Number of joints.
+    fn dof(&self) -> usize;
+    /// The common start time `t0`.
+    fn start_time(&self) -> f64;
+    /// The common duration `tf - t0`.
+    fn duration(&self) -> f64;
+    /// The common end time `tf`.
+    fn end_time(&self) -> f64 {
+        self.start_time() + self.duration()
+    }
+    /// Writes the state of every joint at time `t` into `out` (`out.len()` must equal
+    /// [`dof`](MultiProfile::dof)).
+    fn eval_into(&self, t: f64, out: &mut [State]) -> Result<(), TrajectoryError>;
+}
+
+/// Where in a multi-joint or via-point input a problem was found (indices are 0-based).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Location {
+    /// The joint index, if the problem belongs to one joint.
+    pub joint: Option<usize>,
+    /// The via-point index, if the problem belongs to one via point.
+    pub point: Option<usize>,
+}
+
+impl Location {
+    /// No particular joint or point (a single-joint profile).
+    pub const NONE: Self = Self { joint: None, point: None };
+
+    /// The given joint.
+    pub const fn joint(joint: usize) -> Self {
+        Self { joint: Some(joint), point: None }
+    }
+
+    /// The given joint of the given via point.
+    pub const fn point(point: usize, joint: usize) -> Self {
+        Self { joint: Some(joint), point: Some(point) }
+    }
+}
+
+impl fmt::Display for Location {
+    /// Empty for [`Location::NONE`], else `" (via point 3, joint 1)"`-style text to append.
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match (self.point, self.joint) {
+            (None, None) => Ok(()),
+            (Some(p), Some(j)) => write!(f, " (via point {p}, joint {j})"),
+            (Some(p), None) => write!(f, " (via point {p})"),
+            (None, Some(j)) => write!(f, " (joint {j})"),
+        }
+    }
+}
+
+/// Why a trajectory could not be built or sampled.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum TrajectoryError {
+    /// The final time is not after the start time.
+    EmptyTimeInterval {
+        /// Start time.
+        t0: f64,
+        /// Final time.
+        tf: f64,
+    },
+    /// An input (or a difference of inputs, e.g. `qf - q0`) is NaN or infinite.
+    NonFinite {
+        /// The quantity's name, e.g. `"q0"`, `"vmax"`, `"qf - q0"`.
+        name: &'static str,
+        /// Its value.
+        value: f64,
+        /// Which joint or via point.
+        at: Location,
+    },
+    /// The LSPB cruise velocity `V` lies outside `((qf - q0)/T, 2 (qf - q0)/T]` for a positive
+    /// move, `[2 (qf - q0)/T, (qf - q0)/T)` for a negative move, or is not 0 for a zero move.
+    LspbVelocityOutOfRange {
+        /// The requested cruise velocity.
+        v: f64,
+        /// `(qf - q0)/T`: the average velocity, excluded (the blends would take no time).
+        exclusive_bound: f64,
+        /// `2 (qf - q0)/T`: included (the blends meet in the middle: bang-bang).
+        inclusive_bound: f64,
+        /// Which joint.
+        at: Location,
+    },
+    /// The LSPB blend acceleration cannot cover the move in the given time.
+    LspbAccelerationTooSmall {
+        /// The requested blend acceleration (magnitude).
+        alpha: f64,
+        /// The smallest feasible one, `4 |qf - q0| / T²`.
+        min: f64,
+        /// Which joint.
+        at: Location,
+    },
+    /// A limit or blend time that must be positive is zero or negative.
+    NonPositiveLimit {
+        /// The limit's name, e.g. `"amax"`.
+        name: &'static str,
+        /// Its value.
+        value: f64,
+        /// Which joint.
+        at: Location,
+    },
+    /// Via times do not increase strictly.
+    NonIncreasingTimes {
+        /// Index of the first time that is not greater than its predecessor.
+        index: usize,
+        /// `times[index - 1]`.
+        previous: f64,
+        /// `times[index]`.
+        value: f64,
+    },
+    /// A via-point trajectory needs at least two points.
+    TooFewPoints {
+        /// How many were given.
+        found: usize,
+    },
+    /// A slice has the wrong length.
+    LengthMismatch {
+        /// Which slice, e.g. `"times"`, `"out"`, `"vmax"`.
+        name: &'static str,
+        /// The required length.
+        expected: usize,
+        /// The given length.
+        found: usize,
+        /// Which via point, if the slice is one point's coordinates.
+        at: Location,
+    },
+    /// A trajectory needs at least one joint.
+    NoJoints,
+    /// Uniform sampling needs at least two samples (to include both `t0` and `tf`).
+    TooFewSamples {
+        /// How many were requested.
+        found: usize,
+    },
+    /// Parabolic blends of the given duration do not fit into a segment between via points.
+    BlendsOverlap {
+        /// The segment index `k` (from via point `k - 1` to via point `k`).
+        segment: usize,
+        /// The segment's duration `t[k] - t[k-1]`.
+        available: f64,
+        /// The duration the blends need: `tacc`, plus `tacc/2` if the segment starts at the first
+        /// point, plus `tacc/2` if it ends at the last point (the end blends start or stop at rest
+        /// inside the trajectory).
+        needed: f64,
+    },
+    /// Profiles passed to [`Synchronized::new`] do not share the first joint's time interval.
+    MismatchedTimes {
+        /// The first joint whose interval differs.
+        joint: usize,
+        /// Its start time.
+        t0: f64,
+        /// Its end time.
+        tf: f64,
+        /// Joint 0's start time.
+        expected_t0: f64,
+        /// Joint 0's end time.
+        expected_tf: f64,
+    },
+}
+
+impl TrajectoryError {
+    /// The same error attributed to `joint` (for errors that can belong to one joint and do not
+    /// name one yet); other errors are returned unchanged.
+    pub fn at_joint(self, joint: usize) -> Self {
+        let place = |at: Location| if at.joint.is_none() { Location { joint: Some(joint), ..at } } else { at };
+        match self {
+            Self::NonFinite { name, value, at } => Self::NonFinite { name, value, at: place(at) },
+            Self::LspbVelocityOutOfRange { v, exclusive_bound, inclusive_bound, at } => {
+                Self::LspbVelocityOutOfRange { v, exclusive_bound, inclusive_bound, at: place(at) }
+            }
+            Self::LspbAccelerationTooSmall { alpha, min, at } => {
+                Self::LspbAccelerationTooSmall { alpha, min, at: place(at) }
+            }
+            Self::NonPositiveLimit { name, value, at } => Self::NonPositiveLimit { name, value, at: place(at) },
+            other => other,
+        }
+    }
+}
+
+impl fmt::Display for TrajectoryError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match *self {
+            Self::EmptyTimeInterval { t0, tf } => {
+                write!(f, "final time tf = {tf} must be greater than start time t0 = {t0}")
+            }
+            Self::NonFinite { name, value, at } => write!(f, "{name} = {value} is not finite{at}"),
+            Self::LspbVelocityOutOfRange { v, exclusive_bound, inclusive_bound, at } => {
+                if exclusive_bound > 0.0 {
+                    write!(
+                        f,
+                        "LSPB cruise velocity V = {v} is outside the allowed interval \
+                         ({exclusive_bound}, {inclusive_bound}] = ((qf - q0)/T, 2(qf - q0)/T]{at}"
+                    )
+                } else if exclusive_bound < 0.0 {
+                    write!(
+                        f,
+                        "LSPB cruise velocity V = {v} is outside the allowed interval \
+                         [{inclusive_bound}, {exclusive_bound}) = [2(qf - q0)/T, (qf - q0)/T) \
+                         of this negative move{at}"
+                    )
+                } else {
+                    write!(f, "LSPB cruise velocity V = {v} must be 0 for a zero move (qf = q0){at}")
+                }
+            }
+            Self::LspbAccelerationTooSmall { alpha, min, at } => write!(
+                f,
+                "LSPB blend acceleration {alpha} is too small to finish the move in time: \
+                 it must be at least 4|qf - q0|/T^2 = {min}{at}"
+            ),
+            Self::NonPositiveLimit { name, value, at } => write!(f, "{name} = {value} must be positive{at}"),
+            Self::NonIncreasingTimes { index, previous, value } => write!(
+                f,
+                "via times must increase strictly, but times[{index}] = {value} is not greater \
+                 than times[{}] = {previous}",
+                index - 1
+            ),
+            Self::TooFewPoints { found } => {
+                write!(f, "a via-point trajectory needs at least two points, got {found}")
+            }
+            Self::LengthMismatch { name, expected, found, at } => {
+                write!(f, "{name} has length {found}, expected {expected}{at}")
+            }
+            Self::NoJoints => write!(f, "a trajectory needs at least one joint, got none"),
+            Self::TooFewSamples { found } => {
+                write!(f, "uniform sampling needs at least two samples (t0 and tf), got {found}")
+            }
+            Self::BlendsOverlap { segment, available, needed } => write!(
+                f,
+                "segment {segment} (via point {} to {segment}) lasts {available}, but its parabolic \
+                 blends need {needed}: use a shorter blend time or more time for the segment",
+                segment - 1
+            ),
+            Self::MismatchedTimes { joint, t0, tf, expected_t0, expected_tf } => write!(
+                f,
+                "joint {joint} runs on [{t0}, {tf}] but joint 0 on [{expected_t0}, {expected_tf}]: \
+                 synchronized joints must share one time interval"
+            ),
+        }
+    }
+}
+
+impl core::error::Error for TrajectoryError {}
+
+/// `Ok(x)` if `x` is finite, else the [`TrajectoryError::NonFinite`] naming it.
+pub(crate) fn finite(name: &'static str, value: f64) -> Result<f64, TrajectoryError> {
+    if value.is_finite() {
+        Ok(value)
+    } else {
+        Err(TrajectoryError::NonFinite { name, value, at: Location::NONE })
+    }
+}
+
+/// `Ok(x)` if `x` is finite and positive, else the error naming it.
+pub(crate) fn positive(name: &'static str, value: f64) -> Result<f64, TrajectoryError> {
+    finite(name, value)?;
+    if value > 0.0 {
+        Ok(value)
+    } else {
+        Err(TrajectoryError::NonPositiveLimit { name, value, at: Location::NONE })
+    }
+}
+
+/// Checks `t0` and `tf` and returns the duration `tf - t0`.
+pub(crate) fn interval(t0: f64, tf: f64) -> Result<f64, TrajectoryError> {
+    finite("t0", t0)?;
+    finite("tf", tf)?;
+    if tf <= t0 {
+        return Err(TrajectoryError::EmptyTimeInterval { t0, tf });
+    }
+    // Two huge finite times can still be infinitely far apart.
+    finite("tf - t0", tf - t0)
+}
+
+/// Checks `q0` and `qf` and returns the move `qf - q0`.
+pub(crate) fn displacement(q0: f64, qf: f64) -> Result<f64, TrajectoryError> {
+    finite("q0", q0)?;
+    finite("qf", qf)?;
+    finite("qf - q0", qf - q0)
+}
+
+/// Square root without `std` (nalgebra routes it to `libm` in `no_std` builds).
+pub(crate) fn sqrt(x: f64) -> f64 {
+    nalgebra::ComplexField::sqrt(x)
+}
+
+/// Absolute value without relying on `std`.
+pub(crate) fn abs(x: f64) -> f64 {
+    nalgebra::ComplexField::abs(x)
+}
+
+/// The `i`-th of `n >= 2` equally spaced times from `t0` to `tf`; the last one is exactly `tf`.
+pub fn uniform_time(t0: f64, tf: f64, n: usize, i: usize) -> f64 {
+    if n < 2 || i + 1 >= n {
+        return if i == 0 { t0 } else { tf };
+    }
+    t0 + (tf - t0) * (i as f64 / (n - 1) as f64)
+}
+
+/// Samples `profile` at `out.len() >= 2` equally spaced times from its start to its end time
+/// (both included), without allocating.
+pub fn sample_into<P: Profile + ?Sized>(profile: &P, out: &mut [State]) -> Result<(), TrajectoryError> {
+    let n = out.len();
+    if n < 2 {
+        return Err(TrajectoryError::TooFewSamples { found: n });
+    }
+    let (t0, tf) = (profile.start_time(), profile.end_time());
+    for (i, state) in out.iter_mut().enumerate() {
+        *state = profile.eval(uniform_time(t0, tf, n, i));
+    }
+    Ok(())
+}
+
+/// Samples `profile` at the given (finite) times, without allocating.
+pub fn sample_times_into<P: Profile + ?Sized>(
+    profile: &P,
+    times: &[f64],
+    out: &mut [State],
+) -> Result<(), TrajectoryError> {
+    if out.len() != times.len() {
+        return Err(TrajectoryError::LengthMismatch {
+            name: "out",
+            expected: times.len(),
+            found: out.len(),
+            at: Location::NONE,
+        });
+    }
+    for (state, &t) in out.iter_mut().zip(times) {
+        *state = profile.eval(finite("t", t)?);
+    }
+    Ok(())
+}
+
+/// Samples every joint of `profile` at `n` equally spaced times, where `out` holds `n` rows of
+/// `dof` states (row-major: `out[i * dof + j]` is joint `j` at time `i`), without allocating.
+pub fn sample_multi_into<M: MultiProfile + ?Sized>(profile: &M, out: &mut [State]) -> Result<(), TrajectoryError> {
+    let dof = profile.dof();
+    if dof == 0 {
+        return Err(TrajectoryError::NoJoints);
+    }
+    if out.len() % dof != 0 {
+        return Err(TrajectoryError::LengthMismatch {
+            name: "out (whole rows of dof states)",
+            expected: (out.len() / dof + 1) * dof,
+            found: out.len(),
+            at: Location::NONE,
+        });
+    }
+    let n = out.len() / dof;
+    if n < 2 {
+        return Err(TrajectoryError::TooFewSamples { found: n });
+    }
+    let (t0, tf) = (profile.start_time(), profile.end_time());
+    for (i, row) in out.chunks_exact_mut(dof).enumerate() {
+        profile.eval_into(uniform_time(t0, tf, n, i), row)?;
+    }
+    Ok(())
+}
+
+/// Uniform samples of one joint: `states[i]` at `times[i]`.
+#[cfg(feature = "std")]
+#[derive(Clone, Debug, PartialEq)]
+pub struct Samples {
+    /// The sample times, from the start to the end time.
+    pub times: Vec<f64>,
+    /// The state at each time.
+    pub states: Vec<State>,
+}
+
+/// Samples `profile` at `n >= 2` equally spaced times from its start to its end time.
+#[cfg(feature = "std")]
+pub fn sample<P: Profile + ?Sized>(profile: &P, n: usize) -> Result<Samples, TrajectoryError> {
+    if n < 2 {
+        return Err(TrajectoryError::TooFewSamples { found: n });
+    }
+    let (t0, tf) = (profile.start_time(), profile.end_time());
+    let times: Vec<f64> = (0..n).map(|i| uniform_time(t0, tf, n, i)).collect();
+    let states = times.iter().map(|&t| profile.eval(t)).collect();
+    Ok(Samples { times, states })
+}
+
+/// Uniform samples of several joints.
+#[cfg(feature = "std")]
+#[derive(Clone, Debug, PartialEq)]
+pub struct MultiSamples {
+    /// The sample times, from the start to the end time.
+    pub times: Vec<f64>,
+    /// Number of joints.
+    pub dof: usize,
+    /// `times.len()` rows of `dof` states: `states[i * dof + j]` is joint `j` at `times[i]`.
+    pub states: Vec<State>,
+}
+
+#[cfg(feature = "std")]
+impl MultiSamples {
+    /// Joint `joint` at sample `i`, or `None` if either index is out of range.
+    pub fn get(&self, i: usize, joint: usize) -> Option<State> {
+        if joint >= self.dof {
+            return None;
+        }
+        self.states.get(i * self.dof + joint).copied()
+    }
+
+    /// The `(time, state)` series of one joint (empty if `joint >= dof`).
+    pub fn joint(&self, joint: usize) -> impl Iterator<Item = (f64, State)> + '_ {
+        let dof = self.dof;
+        let states = if joint < dof { &self.states[joint..] } else { &[] };
+        self.times.iter().copied().zip(states.iter().step_by(dof.max(1)).copied())
+    }
+}
+
+/// Samples every joint of `profile` at `n >= 2` equally spaced times.
+#[cfg(feature = "std")]
+pub fn sample_multi<M: MultiProfile + ?Sized>(profile: &M, n: usize) -> Result<MultiSamples, TrajectoryError> {
+    let dof = profile.dof();
+    if dof == 0 {
+        return Err(TrajectoryError::NoJoints);
+    }
+    if n < 2 {
+        return Err(TrajectoryError::TooFewSamples { found: n });
+    }
+    let mut states = vec![State::default(); n * dof];
+    sample_multi_into(profile, &mut states)?;
+    let (t0, tf) = (profile.start_time(), profile.end_time());
+    let times = (0..n).map(|i| uniform_time(t0, tf, n, i)).collect();
+    Ok(MultiSamples { times, dof, states })
+}
