@@ -2,6 +2,10 @@
 #![cfg_attr(not(feature = "std"), no_std)]
 pub use nalgebra;
 
+/// Joint-space trajectory generation: cubic, quintic, LSPB, minimum-time, synchronized
+/// multi-joint and via-point profiles (section 6.5).
+pub mod trajectory;
+
 /// Generates a specialised module for a robot at compile time; see the crate docs.
 pub use dhgen_macros::robot;
 

@@ -21,7 +21,16 @@ fn robot() -> Robot {
 
 /// Configurations spread over the joint range, including the stretched and folded arm.
 fn configurations() -> impl Iterator<Item = [f64; 2]> {
-    let angles = [-3.0, -1.7, -0.4, 0.0, 0.9, 1.5707963267948966, 2.6, 3.1];
+    let angles = [
+        -3.0,
+        -1.7,
+        -0.4,
+        0.0,
+        0.9,
+        std::f64::consts::FRAC_PI_2,
+        2.6,
+        3.1,
+    ];
     angles
         .into_iter()
         .flat_map(move |a| angles.into_iter().map(move |b| [a, 0.37 * a + b]))

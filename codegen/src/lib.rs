@@ -13,6 +13,7 @@
 
 pub mod chain;
 pub mod derive;
+pub mod dual;
 pub mod emit;
 pub mod graph;
 pub mod module;

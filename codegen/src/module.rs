@@ -1,7 +1,7 @@
 //! The generated module: a per-configuration `State` (sine and cosine of every joint
 //! computed once), methods for each quantity, and free functions taking `&[T; DOF]`.
 
-use crate::derive::{christoffel, gravity, inertia, kinematics, newton_euler};
+use crate::derive::{Derivation, christoffel, gravity, inertia, kinematics, newton_euler};
 use crate::emit::{self, Output, constant};
 use crate::graph::{E, OpCount, SharedGraph};
 use dhgen_model::{JointKind, RobotModel};
@@ -159,7 +159,8 @@ pub fn generate(model: &RobotModel, vis: TokenStream, name: &Ident, doc: &str) -
 
     let dynamics = model.has_dynamics();
     if dynamics {
-        let (g, d) = inertia::mass_matrix(model);
+        let dv = Derivation::new(model);
+        let (g, d) = inertia::mass_matrix(&dv);
         let outs = matrix_outputs(&d, n);
         let (inner, q) = quantity(
             "mass_matrix",
@@ -177,7 +178,7 @@ pub fn generate(model: &RobotModel, vis: TokenStream, name: &Ident, doc: &str) -
             "Joint-space inertia matrix D(q) (motor inertia included).",
         );
 
-        let (g, c) = christoffel::christoffel(model);
+        let (g, c) = christoffel::christoffel(&dv);
         let outs = (0..n)
             .flat_map(|i| (0..n).flat_map(move |j| (0..n).map(move |k| (i, j, k))))
             .map(|(i, j, k)| Output {
@@ -201,24 +202,6 @@ pub fn generate(model: &RobotModel, vis: TokenStream, name: &Ident, doc: &str) -
             "Christoffel symbols: `[i][j][k]` = c_ijk = ½(∂d_kj/∂q_i + ∂d_ki/∂q_j − ∂d_ij/∂q_k), k the equation index.",
         );
 
-        let (g, c) = christoffel::coriolis(model);
-        let outs = matrix_outputs(&c, n);
-        let (inner, q) = quantity(
-            "coriolis",
-            quote!(qd: &[T; DOF],),
-            quote!(qd,),
-            quote!(na::SMatrix<T, DOF, DOF>),
-            quote!(na::SMatrix::zeros()),
-            &g,
-            outs,
-            &mut ops,
-        );
-        add(
-            inner,
-            q,
-            "Coriolis and centrifugal matrix: C_kj = Σ_i c_ijk q̇_i (so Ḋ − 2C is skew-symmetric).",
-        );
-
         let (g, gr) = gravity::gravity(model);
         let outs = vector_outputs(&gr);
         let (inner, q) = quantity(
@@ -237,7 +220,7 @@ pub fn generate(model: &RobotModel, vis: TokenStream, name: &Ident, doc: &str) -
             "Gravity torques g(q): the torques that hold the arm still.",
         );
 
-        let (g, tau) = newton_euler::inverse_dynamics(model);
+        let (g, tau) = newton_euler::inverse_dynamics(&dv);
         let outs = vector_outputs(&tau);
         let (inner, q) = quantity(
             "inverse_dynamics_smooth",
@@ -298,6 +281,24 @@ pub fn generate(model: &RobotModel, vis: TokenStream, name: &Ident, doc: &str) -
                 let h = self.bias(qd);
                 let rhs: [T; DOF] = ::core::array::from_fn(|i| tau[i] - h[i]);
                 #chol
+            }
+
+            /// Coriolis and centrifugal matrix: C_kj = Σ_i c_ijk q̇_i (so Ḋ − 2C is
+            /// skew-symmetric), contracted from the generated Christoffel symbols.
+            #[must_use]
+            pub fn coriolis(&self, qd: &[T; DOF]) -> na::SMatrix<T, DOF, DOF> {
+                let c = self.christoffel();
+                let mut out = na::SMatrix::<T, DOF, DOF>::zeros();
+                for k in 0..DOF {
+                    for j in 0..DOF {
+                        let mut sum = T::zero();
+                        for i in 0..DOF {
+                            sum += c[i][j][k] * qd[i];
+                        }
+                        out[(k, j)] = sum;
+                    }
+                }
+                out
             }
 
             /// D, C, g and J at once, sharing this state's sines and cosines.

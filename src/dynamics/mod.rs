@@ -1,4 +1,4 @@
-//! Rigid body dynamics of the runtime [`Robot`](crate::Robot), one algorithm per file:
+//! Rigid body dynamics of the runtime [`Robot`], one algorithm per file:
 //! - [`rnea`]: inverse dynamics by recursive Newton–Euler;
 //! - [`crba`]: the joint-space inertia matrix by composite rigid bodies;
 //! - [`gravity`]: the gravity torques from composite mass moments;

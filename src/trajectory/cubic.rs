@@ -25,12 +25,28 @@ pub struct Cubic {
 
 impl Cubic {
     /// The cubic through `(t0, q0, v0)` and `(tf, qf, vf)`; needs `tf > t0` and finite inputs.
-    pub fn new(t0: f64, tf: f64, q0: f64, v0: f64, qf: f64, vf: f64) -> Result<Self, TrajectoryError> {
+    pub fn new(
+        t0: f64,
+        tf: f64,
+        q0: f64,
+        v0: f64,
+        qf: f64,
+        vf: f64,
+    ) -> Result<Self, TrajectoryError> {
         let duration = interval(t0, tf)?;
         let dq = displacement(q0, qf)?;
         finite("v0", v0)?;
         finite("vf", vf)?;
-        Ok(Self { t0, tf, duration, q0, qf, v0, vf, slope: dq / duration })
+        Ok(Self {
+            t0,
+            tf,
+            duration,
+            q0,
+            qf,
+            v0,
+            vf,
+            slope: dq / duration,
+        })
     }
 
     /// The cubic from rest at `q0` to rest at `qf` (Figure 4 of the text).
@@ -80,8 +96,12 @@ impl Profile for Cubic {
         let h10 = s * r * r;
         let h11 = -s * s * r;
         let q = self.q0 * h00 + self.qf * h01 + big_t * (self.v0 * h10 + self.vf * h11);
-        let qd = 6.0 * s * r * self.slope + self.v0 * r * (1.0 - 3.0 * s) + self.vf * s * (3.0 * s - 2.0);
-        let qdd = ((6.0 - 12.0 * s) * self.slope + self.v0 * (6.0 * s - 4.0) + self.vf * (6.0 * s - 2.0)) / big_t;
+        let qd = 6.0 * s * r * self.slope
+            + self.v0 * r * (1.0 - 3.0 * s)
+            + self.vf * s * (3.0 * s - 2.0);
+        let qdd =
+            ((6.0 - 12.0 * s) * self.slope + self.v0 * (6.0 * s - 4.0) + self.vf * (6.0 * s - 2.0))
+                / big_t;
         State { q, qd, qdd }
     }
 }

@@ -1,6 +1,8 @@
 //! Linear segment with parabolic blends (section 6.5.1.2, with the erratum for the third segment).
 
-use super::{Location, Profile, State, TrajectoryError, abs, displacement, finite, interval, positive, sqrt};
+use super::{
+    Location, Profile, State, TrajectoryError, abs, displacement, finite, interval, positive, sqrt,
+};
 
 /// Rest-to-rest LSPB ("trapezoidal velocity") profile: constant acceleration `α` for the blend
 /// time `tb`, constant velocity `V`, constant deceleration `-α` for the last `tb`.
@@ -39,7 +41,13 @@ impl Lspb {
     /// `[2 (qf - q0)/T, (qf - q0)/T)` for a negative one (`T = tf - t0`), else the blends cannot fit;
     /// for a zero move only `v = 0` is accepted. The blend time is
     /// `tb = (q0 - qf + V T)/V` and the acceleration `α = V/tb`.
-    pub fn with_velocity(t0: f64, tf: f64, q0: f64, qf: f64, v: f64) -> Result<Self, TrajectoryError> {
+    pub fn with_velocity(
+        t0: f64,
+        tf: f64,
+        q0: f64,
+        qf: f64,
+        v: f64,
+    ) -> Result<Self, TrajectoryError> {
         let duration = interval(t0, tf)?;
         let dq = displacement(q0, qf)?;
         finite("V", v)?;
@@ -83,7 +91,13 @@ impl Lspb {
     ///
     /// `alpha` must be at least `4 |qf - q0| / T²` (the bang-bang acceleration for this duration);
     /// the blend time is then `tb = T/2 - sqrt(α² T² - 4 α |qf - q0|) / (2 α)`.
-    pub fn with_acceleration(t0: f64, tf: f64, q0: f64, qf: f64, alpha: f64) -> Result<Self, TrajectoryError> {
+    pub fn with_acceleration(
+        t0: f64,
+        tf: f64,
+        q0: f64,
+        qf: f64,
+        alpha: f64,
+    ) -> Result<Self, TrajectoryError> {
         let duration = interval(t0, tf)?;
         let dq = displacement(q0, qf)?;
         positive("alpha", alpha)?;
@@ -94,12 +108,17 @@ impl Lspb {
         let min = 4.0 * distance / (duration * duration);
         // Accept the bang-bang acceleration computed by the caller with its own rounding.
         if alpha < min * (1.0 - 8.0 * f64::EPSILON) {
-            return Err(TrajectoryError::LspbAccelerationTooSmall { alpha, min, at: Location::NONE });
+            return Err(TrajectoryError::LspbAccelerationTooSmall {
+                alpha,
+                min,
+                at: Location::NONE,
+            });
         }
         let slack = (alpha * duration * duration - 4.0 * distance).max(0.0);
         // tb = T/2 - sqrt(α(αT² - 4|Δ|))/(2α), rationalized so that a large α (short blends) does
         // not lose tb to cancellation.
-        let blend_time = (2.0 * distance / (alpha * duration + sqrt(alpha * slack))).min(0.5 * duration);
+        let blend_time =
+            (2.0 * distance / (alpha * duration + sqrt(alpha * slack))).min(0.5 * duration);
         let sign = if dq > 0.0 { 1.0 } else { -1.0 };
         Ok(Self {
             t0,
@@ -115,7 +134,13 @@ impl Lspb {
 
     /// The LSPB of duration `duration > 0` with blend time `blend_time` in `(0, duration/2]`:
     /// the shape shared by the minimum-time profiles. `dq = qf - q0` must be non-zero.
-    pub(crate) fn from_blend_time(t0: f64, duration: f64, q0: f64, qf: f64, blend_time: f64) -> Self {
+    pub(crate) fn from_blend_time(
+        t0: f64,
+        duration: f64,
+        q0: f64,
+        qf: f64,
+        blend_time: f64,
+    ) -> Self {
         let velocity = (qf - q0) / (duration - blend_time);
         Self {
             t0,
@@ -131,8 +156,25 @@ impl Lspb {
 
     /// The same profile with explicitly given signed velocity and acceleration (used where these
     /// are limits that must be reproduced exactly rather than recomputed with rounding).
-    pub(crate) fn from_parts(t0: f64, duration: f64, q0: f64, qf: f64, blend_time: f64, velocity: f64, acceleration: f64) -> Self {
-        Self { t0, tf: t0 + duration, duration, q0, qf, velocity, acceleration, blend_time }
+    pub(crate) fn from_parts(
+        t0: f64,
+        duration: f64,
+        q0: f64,
+        qf: f64,
+        blend_time: f64,
+        velocity: f64,
+        acceleration: f64,
+    ) -> Self {
+        Self {
+            t0,
+            tf: t0 + duration,
+            duration,
+            q0,
+            qf,
+            velocity,
+            acceleration,
+            blend_time,
+        }
     }
 
     /// Holding `q` from `t0` to `tf` (a zero move; `duration` may be 0 for minimum-time profiles).
@@ -188,14 +230,26 @@ impl Profile for Lspb {
         let tau = t - self.t0;
         let (alpha, tb, big_t) = (self.acceleration, self.blend_time, self.duration);
         if tau <= tb {
-            State { q: self.q0 + 0.5 * alpha * tau * tau, qd: alpha * tau, qdd: alpha }
+            State {
+                q: self.q0 + 0.5 * alpha * tau * tau,
+                qd: alpha * tau,
+                qdd: alpha,
+            }
         } else if tau < big_t - tb {
             let q = 0.5 * (self.q0 + self.qf - self.velocity * big_t) + self.velocity * tau;
-            State { q, qd: self.velocity, qdd: 0.0 }
+            State {
+                q,
+                qd: self.velocity,
+                qdd: 0.0,
+            }
         } else {
             // Anchored at qf so that q(tf) = qf exactly.
             let left = (big_t - tau).max(0.0);
-            State { q: self.qf - 0.5 * alpha * left * left, qd: alpha * left, qdd: -alpha }
+            State {
+                q: self.qf - 0.5 * alpha * left * left,
+                qd: alpha * left,
+                qdd: -alpha,
+            }
         }
     }
 }

@@ -14,7 +14,12 @@ pub fn bang_bang_duration(q0: f64, qf: f64, amax: f64) -> Result<f64, Trajectory
 /// The minimum duration of a rest-to-rest move from `q0` to `qf` with `|q̇| ≤ vmax` and
 /// `|q̈| ≤ amax`: the bang-bang duration while its peak velocity `sqrt(amax |qf - q0|)` stays within
 /// `vmax`, else the trapezoid's `|qf - q0| / vmax + vmax / amax`.
-pub fn velocity_limited_duration(q0: f64, qf: f64, vmax: f64, amax: f64) -> Result<f64, TrajectoryError> {
+pub fn velocity_limited_duration(
+    q0: f64,
+    qf: f64,
+    vmax: f64,
+    amax: f64,
+) -> Result<f64, TrajectoryError> {
     let dq = displacement(q0, qf)?;
     positive("vmax", vmax)?;
     positive("amax", amax)?;
@@ -42,14 +47,28 @@ impl Lspb {
         }
         let sign = if dq > 0.0 { 1.0 } else { -1.0 };
         let switch = 0.5 * duration;
-        Ok(Self::from_parts(t0, duration, q0, qf, switch, sign * amax * switch, sign * amax))
+        Ok(Self::from_parts(
+            t0,
+            duration,
+            q0,
+            qf,
+            switch,
+            sign * amax * switch,
+            sign * amax,
+        ))
     }
 
     /// The fastest rest-to-rest move from `q0` (at `t0`) to `qf` with `|q̇| ≤ vmax` and
     /// `|q̈| ≤ amax`: bang-bang if its peak velocity stays within `vmax`, otherwise the trapezoid
     /// that accelerates at `amax` for `tb = vmax / amax`, cruises at `vmax` and decelerates at
     /// `amax`. Its duration is [`velocity_limited_duration`].
-    pub fn velocity_limited(t0: f64, q0: f64, qf: f64, vmax: f64, amax: f64) -> Result<Self, TrajectoryError> {
+    pub fn velocity_limited(
+        t0: f64,
+        q0: f64,
+        qf: f64,
+        vmax: f64,
+        amax: f64,
+    ) -> Result<Self, TrajectoryError> {
         finite("t0", t0)?;
         let duration = velocity_limited_duration(q0, qf, vmax, amax)?;
         finite("t0 + duration", t0 + duration)?;
@@ -58,6 +77,14 @@ impl Lspb {
             return Self::bang_bang(t0, q0, qf, amax);
         }
         let sign = if dq > 0.0 { 1.0 } else { -1.0 };
-        Ok(Self::from_parts(t0, duration, q0, qf, vmax / amax, sign * vmax, sign * amax))
+        Ok(Self::from_parts(
+            t0,
+            duration,
+            q0,
+            qf,
+            vmax / amax,
+            sign * vmax,
+            sign * amax,
+        ))
     }
 }

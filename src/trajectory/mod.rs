@@ -72,7 +72,11 @@ impl State {
 
     /// At rest at `q`: zero velocity and acceleration.
     pub const fn rest(q: f64) -> Self {
-        Self { q, qd: 0.0, qdd: 0.0 }
+        Self {
+            q,
+            qd: 0.0,
+            qdd: 0.0,
+        }
     }
 }
 
@@ -127,16 +131,25 @@ pub struct Location {
 
 impl Location {
     /// No particular joint or point (a single-joint profile).
-    pub const NONE: Self = Self { joint: None, point: None };
+    pub const NONE: Self = Self {
+        joint: None,
+        point: None,
+    };
 
     /// The given joint.
     pub const fn joint(joint: usize) -> Self {
-        Self { joint: Some(joint), point: None }
+        Self {
+            joint: Some(joint),
+            point: None,
+        }
     }
 
     /// The given joint of the given via point.
     pub const fn point(point: usize, joint: usize) -> Self {
-        Self { joint: Some(joint), point: Some(point) }
+        Self {
+            joint: Some(joint),
+            point: Some(point),
+        }
     }
 }
 
@@ -263,16 +276,43 @@ impl TrajectoryError {
     /// The same error attributed to `joint` (for errors that can belong to one joint and do not
     /// name one yet); other errors are returned unchanged.
     pub fn at_joint(self, joint: usize) -> Self {
-        let place = |at: Location| if at.joint.is_none() { Location { joint: Some(joint), ..at } } else { at };
+        let place = |at: Location| {
+            if at.joint.is_none() {
+                Location {
+                    joint: Some(joint),
+                    ..at
+                }
+            } else {
+                at
+            }
+        };
         match self {
-            Self::NonFinite { name, value, at } => Self::NonFinite { name, value, at: place(at) },
-            Self::LspbVelocityOutOfRange { v, exclusive_bound, inclusive_bound, at } => {
-                Self::LspbVelocityOutOfRange { v, exclusive_bound, inclusive_bound, at: place(at) }
-            }
-            Self::LspbAccelerationTooSmall { alpha, min, at } => {
-                Self::LspbAccelerationTooSmall { alpha, min, at: place(at) }
-            }
-            Self::NonPositiveLimit { name, value, at } => Self::NonPositiveLimit { name, value, at: place(at) },
+            Self::NonFinite { name, value, at } => Self::NonFinite {
+                name,
+                value,
+                at: place(at),
+            },
+            Self::LspbVelocityOutOfRange {
+                v,
+                exclusive_bound,
+                inclusive_bound,
+                at,
+            } => Self::LspbVelocityOutOfRange {
+                v,
+                exclusive_bound,
+                inclusive_bound,
+                at: place(at),
+            },
+            Self::LspbAccelerationTooSmall { alpha, min, at } => Self::LspbAccelerationTooSmall {
+                alpha,
+                min,
+                at: place(at),
+            },
+            Self::NonPositiveLimit { name, value, at } => Self::NonPositiveLimit {
+                name,
+                value,
+                at: place(at),
+            },
             other => other,
         }
     }
@@ -282,10 +322,18 @@ impl fmt::Display for TrajectoryError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match *self {
             Self::EmptyTimeInterval { t0, tf } => {
-                write!(f, "final time tf = {tf} must be greater than start time t0 = {t0}")
+                write!(
+                    f,
+                    "final time tf = {tf} must be greater than start time t0 = {t0}"
+                )
             }
             Self::NonFinite { name, value, at } => write!(f, "{name} = {value} is not finite{at}"),
-            Self::LspbVelocityOutOfRange { v, exclusive_bound, inclusive_bound, at } => {
+            Self::LspbVelocityOutOfRange {
+                v,
+                exclusive_bound,
+                inclusive_bound,
+                at,
+            } => {
                 if exclusive_bound > 0.0 {
                     write!(
                         f,
@@ -300,7 +348,10 @@ impl fmt::Display for TrajectoryError {
                          of this negative move{at}"
                     )
                 } else {
-                    write!(f, "LSPB cruise velocity V = {v} must be 0 for a zero move (qf = q0){at}")
+                    write!(
+                        f,
+                        "LSPB cruise velocity V = {v} must be 0 for a zero move (qf = q0){at}"
+                    )
                 }
             }
             Self::LspbAccelerationTooSmall { alpha, min, at } => write!(
@@ -308,30 +359,57 @@ impl fmt::Display for TrajectoryError {
                 "LSPB blend acceleration {alpha} is too small to finish the move in time: \
                  it must be at least 4|qf - q0|/T^2 = {min}{at}"
             ),
-            Self::NonPositiveLimit { name, value, at } => write!(f, "{name} = {value} must be positive{at}"),
-            Self::NonIncreasingTimes { index, previous, value } => write!(
+            Self::NonPositiveLimit { name, value, at } => {
+                write!(f, "{name} = {value} must be positive{at}")
+            }
+            Self::NonIncreasingTimes {
+                index,
+                previous,
+                value,
+            } => write!(
                 f,
                 "via times must increase strictly, but times[{index}] = {value} is not greater \
                  than times[{}] = {previous}",
                 index - 1
             ),
             Self::TooFewPoints { found } => {
-                write!(f, "a via-point trajectory needs at least two points, got {found}")
+                write!(
+                    f,
+                    "a via-point trajectory needs at least two points, got {found}"
+                )
             }
-            Self::LengthMismatch { name, expected, found, at } => {
+            Self::LengthMismatch {
+                name,
+                expected,
+                found,
+                at,
+            } => {
                 write!(f, "{name} has length {found}, expected {expected}{at}")
             }
             Self::NoJoints => write!(f, "a trajectory needs at least one joint, got none"),
             Self::TooFewSamples { found } => {
-                write!(f, "uniform sampling needs at least two samples (t0 and tf), got {found}")
+                write!(
+                    f,
+                    "uniform sampling needs at least two samples (t0 and tf), got {found}"
+                )
             }
-            Self::BlendsOverlap { segment, available, needed } => write!(
+            Self::BlendsOverlap {
+                segment,
+                available,
+                needed,
+            } => write!(
                 f,
                 "segment {segment} (via point {} to {segment}) lasts {available}, but its parabolic \
                  blends need {needed}: use a shorter blend time or more time for the segment",
                 segment - 1
             ),
-            Self::MismatchedTimes { joint, t0, tf, expected_t0, expected_tf } => write!(
+            Self::MismatchedTimes {
+                joint,
+                t0,
+                tf,
+                expected_t0,
+                expected_tf,
+            } => write!(
                 f,
                 "joint {joint} runs on [{t0}, {tf}] but joint 0 on [{expected_t0}, {expected_tf}]: \
                  synchronized joints must share one time interval"
@@ -347,7 +425,11 @@ pub(crate) fn finite(name: &'static str, value: f64) -> Result<f64, TrajectoryEr
     if value.is_finite() {
         Ok(value)
     } else {
-        Err(TrajectoryError::NonFinite { name, value, at: Location::NONE })
+        Err(TrajectoryError::NonFinite {
+            name,
+            value,
+            at: Location::NONE,
+        })
     }
 }
 
@@ -357,7 +439,11 @@ pub(crate) fn positive(name: &'static str, value: f64) -> Result<f64, Trajectory
     if value > 0.0 {
         Ok(value)
     } else {
-        Err(TrajectoryError::NonPositiveLimit { name, value, at: Location::NONE })
+        Err(TrajectoryError::NonPositiveLimit {
+            name,
+            value,
+            at: Location::NONE,
+        })
     }
 }
 
@@ -399,7 +485,10 @@ pub fn uniform_time(t0: f64, tf: f64, n: usize, i: usize) -> f64 {
 
 /// Samples `profile` at `out.len() >= 2` equally spaced times from its start to its end time
 /// (both included), without allocating.
-pub fn sample_into<P: Profile + ?Sized>(profile: &P, out: &mut [State]) -> Result<(), TrajectoryError> {
+pub fn sample_into<P: Profile + ?Sized>(
+    profile: &P,
+    out: &mut [State],
+) -> Result<(), TrajectoryError> {
     let n = out.len();
     if n < 2 {
         return Err(TrajectoryError::TooFewSamples { found: n });
@@ -433,7 +522,10 @@ pub fn sample_times_into<P: Profile + ?Sized>(
 
 /// Samples every joint of `profile` at `n` equally spaced times, where `out` holds `n` rows of
 /// `dof` states (row-major: `out[i * dof + j]` is joint `j` at time `i`), without allocating.
-pub fn sample_multi_into<M: MultiProfile + ?Sized>(profile: &M, out: &mut [State]) -> Result<(), TrajectoryError> {
+pub fn sample_multi_into<M: MultiProfile + ?Sized>(
+    profile: &M,
+    out: &mut [State],
+) -> Result<(), TrajectoryError> {
     let dof = profile.dof();
     if dof == 0 {
         return Err(TrajectoryError::NoJoints);
@@ -504,14 +596,24 @@ impl MultiSamples {
     /// The `(time, state)` series of one joint (empty if `joint >= dof`).
     pub fn joint(&self, joint: usize) -> impl Iterator<Item = (f64, State)> + '_ {
         let dof = self.dof;
-        let states = if joint < dof { &self.states[joint..] } else { &[] };
-        self.times.iter().copied().zip(states.iter().step_by(dof.max(1)).copied())
+        let states = if joint < dof {
+            &self.states[joint..]
+        } else {
+            &[]
+        };
+        self.times
+            .iter()
+            .copied()
+            .zip(states.iter().step_by(dof.max(1)).copied())
     }
 }
 
 /// Samples every joint of `profile` at `n >= 2` equally spaced times.
 #[cfg(feature = "std")]
-pub fn sample_multi<M: MultiProfile + ?Sized>(profile: &M, n: usize) -> Result<MultiSamples, TrajectoryError> {
+pub fn sample_multi<M: MultiProfile + ?Sized>(
+    profile: &M,
+    n: usize,
+) -> Result<MultiSamples, TrajectoryError> {
     let dof = profile.dof();
     if dof == 0 {
         return Err(TrajectoryError::NoJoints);

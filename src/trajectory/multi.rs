@@ -1,8 +1,8 @@
 //! Many joints moving together: one profile per joint over one common time interval.
 
 use super::{
-    Cubic, Location, Lspb, MultiProfile, Profile, Quintic, State, TrajectoryError, bang_bang_duration, finite,
-    velocity_limited_duration,
+    Cubic, Location, Lspb, MultiProfile, Profile, Quintic, State, TrajectoryError,
+    bang_bang_duration, finite, velocity_limited_duration,
 };
 
 /// One profile per joint (`N` joints), all starting and ending at the same times.
@@ -54,7 +54,13 @@ impl<P: Profile, const N: usize> Synchronized<P, N> {
         for (joint, profile) in joints.iter().enumerate() {
             let (t0, tf) = (profile.start_time(), profile.end_time());
             if t0 != expected_t0 || tf != expected_tf {
-                return Err(TrajectoryError::MismatchedTimes { joint, t0, tf, expected_t0, expected_tf });
+                return Err(TrajectoryError::MismatchedTimes {
+                    joint,
+                    t0,
+                    tf,
+                    expected_t0,
+                    expected_tf,
+                });
             }
         }
         Ok(Self { joints })
@@ -90,7 +96,12 @@ impl<P: Profile, const N: usize> MultiProfile for Synchronized<P, N> {
 
     fn eval_into(&self, t: f64, out: &mut [State]) -> Result<(), TrajectoryError> {
         if out.len() != N {
-            return Err(TrajectoryError::LengthMismatch { name: "out", expected: N, found: out.len(), at: Location::NONE });
+            return Err(TrajectoryError::LengthMismatch {
+                name: "out",
+                expected: N,
+                found: out.len(),
+                at: Location::NONE,
+            });
         }
         for (state, profile) in out.iter_mut().zip(&self.joints) {
             *state = profile.eval(t);
@@ -116,13 +127,23 @@ impl<const N: usize> Synchronized<Cubic, N> {
 
 impl<const N: usize> Synchronized<Quintic, N> {
     /// One [`Quintic`] per joint on `[t0, tf]`, from `start[j]` to `end[j]`.
-    pub fn quintic(t0: f64, tf: f64, start: &[State; N], end: &[State; N]) -> Result<Self, TrajectoryError> {
+    pub fn quintic(
+        t0: f64,
+        tf: f64,
+        start: &[State; N],
+        end: &[State; N],
+    ) -> Result<Self, TrajectoryError> {
         let joints = try_joints(|j| Quintic::new(t0, tf, start[j], end[j]))?;
         Self::new(joints)
     }
 
     /// One rest-to-rest [`Quintic`] per joint on `[t0, tf]` (Robotics Toolbox's `jtraj`).
-    pub fn quintic_rest_to_rest(t0: f64, tf: f64, q0: &[f64; N], qf: &[f64; N]) -> Result<Self, TrajectoryError> {
+    pub fn quintic_rest_to_rest(
+        t0: f64,
+        tf: f64,
+        q0: &[f64; N],
+        qf: &[f64; N],
+    ) -> Result<Self, TrajectoryError> {
         let joints = try_joints(|j| Quintic::rest_to_rest(t0, tf, q0[j], qf[j]))?;
         Self::new(joints)
     }
@@ -130,7 +151,13 @@ impl<const N: usize> Synchronized<Quintic, N> {
 
 impl<const N: usize> Synchronized<Lspb, N> {
     /// One [`Lspb::with_velocity`] per joint on `[t0, tf]` with cruise velocity `v[j]`.
-    pub fn lspb_velocity(t0: f64, tf: f64, q0: &[f64; N], qf: &[f64; N], v: &[f64; N]) -> Result<Self, TrajectoryError> {
+    pub fn lspb_velocity(
+        t0: f64,
+        tf: f64,
+        q0: &[f64; N],
+        qf: &[f64; N],
+        v: &[f64; N],
+    ) -> Result<Self, TrajectoryError> {
         let joints = try_joints(|j| Lspb::with_velocity(t0, tf, q0[j], qf[j], v[j]))?;
         Self::new(joints)
     }
@@ -153,7 +180,12 @@ impl<const N: usize> Synchronized<Lspb, N> {
     /// Every joint switches at `T/2` and uses the acceleration `4 |qf[j] - q0[j]| / T² ≤ amax[j]`
     /// (the slowest joint uses exactly `amax`), so all joints follow the same normalized time
     /// law: the motion is a straight line in joint space.
-    pub fn bang_bang(t0: f64, q0: &[f64; N], qf: &[f64; N], amax: &[f64; N]) -> Result<Self, TrajectoryError> {
+    pub fn bang_bang(
+        t0: f64,
+        q0: &[f64; N],
+        qf: &[f64; N],
+        amax: &[f64; N],
+    ) -> Result<Self, TrajectoryError> {
         finite("t0", t0)?;
         let durations: [f64; N] = try_joints(|j| bang_bang_duration(q0[j], qf[j], amax[j]))?;
         if N == 0 {
@@ -168,7 +200,13 @@ impl<const N: usize> Synchronized<Lspb, N> {
             } else if q0[j] == qf[j] {
                 Ok(Lspb::stationary(t0, end, duration, q0[j]))
             } else {
-                Ok(Lspb::from_blend_time(t0, duration, q0[j], qf[j], 0.5 * duration))
+                Ok(Lspb::from_blend_time(
+                    t0,
+                    duration,
+                    q0[j],
+                    qf[j],
+                    0.5 * duration,
+                ))
             }
         })?;
         Self::new(joints)
@@ -188,7 +226,8 @@ impl<const N: usize> Synchronized<Lspb, N> {
         amax: &[f64; N],
     ) -> Result<Self, TrajectoryError> {
         finite("t0", t0)?;
-        let durations: [f64; N] = try_joints(|j| velocity_limited_duration(q0[j], qf[j], vmax[j], amax[j]))?;
+        let durations: [f64; N] =
+            try_joints(|j| velocity_limited_duration(q0[j], qf[j], vmax[j], amax[j]))?;
         if N == 0 {
             return Err(TrajectoryError::NoJoints);
         }

@@ -29,7 +29,14 @@ impl Quintic {
         finite("a0", start.qdd)?;
         finite("vf", end.qd)?;
         finite("af", end.qdd)?;
-        Ok(Self { t0, tf, duration, start, end, slope: dq / duration })
+        Ok(Self {
+            t0,
+            tf,
+            duration,
+            start,
+            end,
+            slope: dq / duration,
+        })
     }
 
     /// The quintic from rest at `q0` to rest at `qf` (what Robotics Toolbox's `jtraj` does by default).
@@ -49,7 +56,8 @@ impl Quintic {
             v0,
             a0 / 2.0,
             (20.0 * dq - (12.0 * v0 + 8.0 * v1) * t - (3.0 * a0 - a1) * t2) / (2.0 * t3),
-            (-30.0 * dq + (16.0 * v0 + 14.0 * v1) * t + (3.0 * a0 - 2.0 * a1) * t2) / (2.0 * t3 * t),
+            (-30.0 * dq + (16.0 * v0 + 14.0 * v1) * t + (3.0 * a0 - 2.0 * a1) * t2)
+                / (2.0 * t3 * t),
             (12.0 * dq - 6.0 * (v0 + v1) * t - (a0 - a1) * t2) / (2.0 * t3 * t2),
         ]
     }
@@ -98,7 +106,10 @@ impl Profile for Quintic {
         let dd4 = -12.0 * s * r * (2.0 - 5.0 * s);
         let dd2 = r * (1.0 - 8.0 * s + 10.0 * s2);
         let dd3 = s * (3.0 - 12.0 * s + 10.0 * s2);
-        let q = self.start.q * h0 + self.end.q * h5 + big_t * (v0 * h1 + v1 * h4) + big_t * big_t * (a0 * h2 + a1 * h3);
+        let q = self.start.q * h0
+            + self.end.q * h5
+            + big_t * (v0 * h1 + v1 * h4)
+            + big_t * big_t * (a0 * h2 + a1 * h3);
         let qd = self.slope * d5 + v0 * d1 + v1 * d4 + big_t * (a0 * d2 + a1 * d3);
         let qdd = (self.slope * dd5 + v0 * dd1 + v1 * dd4) / big_t + a0 * dd2 + a1 * dd3;
         State { q, qd, qdd }

@@ -9,7 +9,9 @@ use super::{Location, MultiProfile, Profile, State, TrajectoryError, abs, finite
 /// of one common, non-zero length.
 fn check_points<R: AsRef<[f64]>>(points: &[R]) -> Result<usize, TrajectoryError> {
     if points.len() < 2 {
-        return Err(TrajectoryError::TooFewPoints { found: points.len() });
+        return Err(TrajectoryError::TooFewPoints {
+            found: points.len(),
+        });
     }
     let dof = points[0].as_ref().len();
     if dof == 0 {
@@ -22,12 +24,19 @@ fn check_points<R: AsRef<[f64]>>(points: &[R]) -> Result<usize, TrajectoryError>
                 name: "via point",
                 expected: dof,
                 found: point.len(),
-                at: Location { joint: None, point: Some(i) },
+                at: Location {
+                    joint: None,
+                    point: Some(i),
+                },
             });
         }
         for (j, &q) in point.iter().enumerate() {
             if !q.is_finite() {
-                return Err(TrajectoryError::NonFinite { name: "q", value: q, at: Location::point(i, j) });
+                return Err(TrajectoryError::NonFinite {
+                    name: "q",
+                    value: q,
+                    at: Location::point(i, j),
+                });
             }
         }
     }
@@ -46,12 +55,23 @@ fn check_times(times: &[f64], points: usize) -> Result<(), TrajectoryError> {
     }
     for (i, &t) in times.iter().enumerate() {
         if !t.is_finite() {
-            return Err(TrajectoryError::NonFinite { name: "time", value: t, at: Location { joint: None, point: Some(i) } });
+            return Err(TrajectoryError::NonFinite {
+                name: "time",
+                value: t,
+                at: Location {
+                    joint: None,
+                    point: Some(i),
+                },
+            });
         }
         if i > 0 {
             let previous = times[i - 1];
             if t <= previous {
-                return Err(TrajectoryError::NonIncreasingTimes { index: i, previous, value: t });
+                return Err(TrajectoryError::NonIncreasingTimes {
+                    index: i,
+                    previous,
+                    value: t,
+                });
             }
             finite("time step", t - previous)?;
         }
@@ -62,7 +82,12 @@ fn check_times(times: &[f64], points: usize) -> Result<(), TrajectoryError> {
 /// Checks a per-joint slice of positive limits (`name` is `"vmax"` or `"amax"`).
 fn check_limits(name: &'static str, limits: &[f64], dof: usize) -> Result<(), TrajectoryError> {
     if limits.len() != dof {
-        return Err(TrajectoryError::LengthMismatch { name, expected: dof, found: limits.len(), at: Location::NONE });
+        return Err(TrajectoryError::LengthMismatch {
+            name,
+            expected: dof,
+            found: limits.len(),
+            at: Location::NONE,
+        });
     }
     for (j, &limit) in limits.iter().enumerate() {
         positive(name, limit).map_err(|e| e.at_joint(j))?;
@@ -129,14 +154,23 @@ impl CubicSpline {
     ///
     /// Needs at least two points, strictly increasing finite times, finite positions and, for
     /// [`SplineEnds::Clamped`], one finite velocity per joint at each end.
-    pub fn new<R: AsRef<[f64]>>(times: &[f64], points: &[R], ends: SplineEnds<'_>) -> Result<Self, TrajectoryError> {
+    pub fn new<R: AsRef<[f64]>>(
+        times: &[f64],
+        points: &[R],
+        ends: SplineEnds<'_>,
+    ) -> Result<Self, TrajectoryError> {
         let dof = check_points(points)?;
         let n = points.len();
         check_times(times, n)?;
         if let SplineEnds::Clamped { start, end } = ends {
             for (name, velocities) in [("start velocities", start), ("end velocities", end)] {
                 if velocities.len() != dof {
-                    return Err(TrajectoryError::LengthMismatch { name, expected: dof, found: velocities.len(), at: Location::NONE });
+                    return Err(TrajectoryError::LengthMismatch {
+                        name,
+                        expected: dof,
+                        found: velocities.len(),
+                        at: Location::NONE,
+                    });
                 }
                 for (j, &v) in velocities.iter().enumerate() {
                     finite(name, v).map_err(|e| e.at_joint(j))?;
@@ -144,7 +178,10 @@ impl CubicSpline {
             }
         }
         let clamped = !matches!(ends, SplineEnds::Natural);
-        let values: Vec<f64> = points.iter().flat_map(|p| p.as_ref().iter().copied()).collect();
+        let values: Vec<f64> = points
+            .iter()
+            .flat_map(|p| p.as_ref().iter().copied())
+            .collect();
         let steps: Vec<f64> = times.windows(2).map(|w| w[1] - w[0]).collect();
 
         // Tridiagonal matrix (sub, diag, sup), shared by all joints; the right-hand side is per joint.
@@ -180,8 +217,8 @@ impl CubicSpline {
         for j in 0..dof {
             let y = |i: usize| values[i * dof + j];
             let slope = |k: usize| (y(k + 1) - y(k)) / steps[k];
-            for i in 1..n - 1 {
-                rhs[i] = slope(i) - slope(i - 1);
+            for (i, r) in rhs.iter_mut().enumerate().take(n - 1).skip(1) {
+                *r = slope(i) - slope(i - 1);
             }
             (rhs[0], rhs[n - 1]) = match ends {
                 SplineEnds::Natural => (0.0, 0.0),
@@ -196,10 +233,16 @@ impl CubicSpline {
                 rhs[i] -= sup_reduced[i] * rhs[i + 1];
             }
             for (i, &m) in rhs.iter().enumerate() {
-                accelerations[i * dof + j] = finite("spline knot acceleration", m).map_err(|e| e.at_joint(j))?;
+                accelerations[i * dof + j] =
+                    finite("spline knot acceleration", m).map_err(|e| e.at_joint(j))?;
             }
         }
-        Ok(Self { dof, times: times.to_vec(), values, accelerations })
+        Ok(Self {
+            dof,
+            times: times.to_vec(),
+            values,
+            accelerations,
+        })
     }
 
     /// The via times.
@@ -231,8 +274,14 @@ impl CubicSpline {
         let h = self.times[k + 1] - self.times[k];
         let a = (self.times[k + 1] - t) / h;
         let b = (t - self.times[k]) / h;
-        let (y0, y1) = (self.values[k * dof + joint], self.values[(k + 1) * dof + joint]);
-        let (m0, m1) = (self.accelerations[k * dof + joint], self.accelerations[(k + 1) * dof + joint]);
+        let (y0, y1) = (
+            self.values[k * dof + joint],
+            self.values[(k + 1) * dof + joint],
+        );
+        let (m0, m1) = (
+            self.accelerations[k * dof + joint],
+            self.accelerations[(k + 1) * dof + joint],
+        );
         State {
             q: a * y0 + b * y1 + ((a * a * a - a) * m0 + (b * b * b - b) * m1) * h * h / 6.0,
             qd: (y1 - y0) / h + ((1.0 - 3.0 * a * a) * m0 + (3.0 * b * b - 1.0) * m1) * h / 6.0,
@@ -260,7 +309,12 @@ impl MultiProfile for CubicSpline {
 
     fn eval_into(&self, t: f64, out: &mut [State]) -> Result<(), TrajectoryError> {
         if out.len() != self.dof {
-            return Err(TrajectoryError::LengthMismatch { name: "out", expected: self.dof, found: out.len(), at: Location::NONE });
+            return Err(TrajectoryError::LengthMismatch {
+                name: "out",
+                expected: self.dof,
+                found: out.len(),
+                at: Location::NONE,
+            });
         }
         for (joint, state) in out.iter_mut().enumerate() {
             *state = self.eval_joint(t, joint);
@@ -318,12 +372,16 @@ pub struct BlendedSegments {
 
 impl BlendedSegments {
     /// Linear segments through `points` with blends of duration `blend_time` (`tacc`), where
-    /// `times[0]` is the start time, `times[m]` the end time and `times[k]` (`0 < k < m`) the time
-    /// at which the linear path passes closest to... rather: the corner time of via point `k`.
+    /// `times[0]` is the start time, `times[m]` the end time and `times[k]` (`0 < k < m`) the
+    /// corner time of via point `k` (when the two straight lines meeting there pass through it).
     ///
     /// The blends must not overlap: a segment `k` needs `times[k] - times[k-1] ≥ tacc`, plus
     /// `tacc/2` for each of its ends that is the first or last point.
-    pub fn from_times<R: AsRef<[f64]>>(times: &[f64], points: &[R], blend_time: f64) -> Result<Self, TrajectoryError> {
+    pub fn from_times<R: AsRef<[f64]>>(
+        times: &[f64],
+        points: &[R],
+        blend_time: f64,
+    ) -> Result<Self, TrajectoryError> {
         let dof = check_points(points)?;
         check_times(times, points.len())?;
         positive("tacc", blend_time)?;
@@ -333,14 +391,24 @@ impl BlendedSegments {
             let ends = [k == 1, k == m].iter().filter(|&&end| end).count() as f64;
             let needed = blend_time * (1.0 + 0.5 * ends);
             if available < needed {
-                return Err(TrajectoryError::BlendsOverlap { segment: k, available, needed });
+                return Err(TrajectoryError::BlendsOverlap {
+                    segment: k,
+                    available,
+                    needed,
+                });
             }
         }
         let half = 0.5 * blend_time;
         let mut corners = times.to_vec();
         corners[0] += half;
         corners[m] -= half;
-        Ok(Self::build(dof, times.to_vec(), corners, blend_time, points))
+        Ok(Self::build(
+            dof,
+            times.to_vec(),
+            corners,
+            blend_time,
+            points,
+        ))
     }
 
     /// Linear segments through `points` starting at `t0`, timed by per-joint velocity limits
@@ -352,7 +420,12 @@ impl BlendedSegments {
     /// `tacc` is found by the fixed-point iteration `tacc ← max_k,j |Δv_kj| / amax_j`; if that
     /// does not settle, the always-feasible `max_j 2 vmax_j / amax_j` is used. For a path that
     /// never moves, `tacc = max_j vmax_j / amax_j`.
-    pub fn from_limits<R: AsRef<[f64]>>(t0: f64, points: &[R], vmax: &[f64], amax: &[f64]) -> Result<Self, TrajectoryError> {
+    pub fn from_limits<R: AsRef<[f64]>>(
+        t0: f64,
+        points: &[R],
+        vmax: &[f64],
+        amax: &[f64],
+    ) -> Result<Self, TrajectoryError> {
         finite("t0", t0)?;
         let dof = check_points(points)?;
         check_limits("vmax", vmax, dof)?;
@@ -361,7 +434,11 @@ impl BlendedSegments {
         let point = |i: usize, j: usize| points[i].as_ref()[j];
         // Duration of each segment at full speed of its slowest joint (index k - 1 for segment k).
         let cruise: Vec<f64> = (1..=m)
-            .map(|k| (0..dof).map(|j| abs(point(k, j) - point(k - 1, j)) / vmax[j]).fold(0.0, f64::max))
+            .map(|k| {
+                (0..dof)
+                    .map(|j| abs(point(k, j) - point(k - 1, j)) / vmax[j])
+                    .fold(0.0, f64::max)
+            })
             .collect();
         for &d in &cruise {
             finite("segment duration", d)?;
@@ -374,7 +451,11 @@ impl BlendedSegments {
                     return 0.0;
                 }
                 let d = cruise[k - 1].max(tacc);
-                if d > 0.0 { (point(k, j) - point(k - 1, j)) / d } else { 0.0 }
+                if d > 0.0 {
+                    (point(k, j) - point(k - 1, j)) / d
+                } else {
+                    0.0
+                }
             };
             (0..=m)
                 .flat_map(|k| (0..dof).map(move |j| (k, j)))
@@ -392,7 +473,9 @@ impl BlendedSegments {
             tacc = next;
         }
         if !settled {
-            tacc = (0..dof).map(|j| 2.0 * vmax[j] / amax[j]).fold(0.0, f64::max);
+            tacc = (0..dof)
+                .map(|j| 2.0 * vmax[j] / amax[j])
+                .fold(0.0, f64::max);
         }
         if tacc == 0.0 {
             tacc = (0..dof).map(|j| vmax[j] / amax[j]).fold(0.0, f64::max);
@@ -412,9 +495,18 @@ impl BlendedSegments {
     }
 
     /// Stores the path; inputs already checked.
-    fn build<R: AsRef<[f64]>>(dof: usize, times: Vec<f64>, corners: Vec<f64>, blend_time: f64, points: &[R]) -> Self {
+    fn build<R: AsRef<[f64]>>(
+        dof: usize,
+        times: Vec<f64>,
+        corners: Vec<f64>,
+        blend_time: f64,
+        points: &[R],
+    ) -> Self {
         let n = points.len();
-        let values: Vec<f64> = points.iter().flat_map(|p| p.as_ref().iter().copied()).collect();
+        let values: Vec<f64> = points
+            .iter()
+            .flat_map(|p| p.as_ref().iter().copied())
+            .collect();
         let mut velocities = vec![0.0; (n + 1) * dof];
         for k in 1..n {
             let span = corners[k] - corners[k - 1];
@@ -422,7 +514,14 @@ impl BlendedSegments {
                 velocities[k * dof + j] = (values[k * dof + j] - values[(k - 1) * dof + j]) / span;
             }
         }
-        Self { dof, times, corners, blend_time, values, velocities }
+        Self {
+            dof,
+            times,
+            corners,
+            blend_time,
+            values,
+            velocities,
+        }
     }
 
     /// The via times: start time, interior corner times, end time.
@@ -463,7 +562,10 @@ impl BlendedSegments {
         }
         let half = 0.5 * self.blend_time;
         // The first blend that has not ended at t (the last one at t = tf).
-        let k = self.corners.partition_point(|&corner| corner + half <= t).min(m);
+        let k = self
+            .corners
+            .partition_point(|&corner| corner + half <= t)
+            .min(m);
         let corner = self.corners[k];
         let s = t - corner;
         if k == 0 || s >= -half {
@@ -487,7 +589,11 @@ impl BlendedSegments {
             }
         } else {
             // Linear segment k, through via point k at its corner time.
-            State { q: point(k) + velocity(k) * s, qd: velocity(k), qdd: 0.0 }
+            State {
+                q: point(k) + velocity(k) * s,
+                qd: velocity(k),
+                qdd: 0.0,
+            }
         }
     }
 }
@@ -511,7 +617,12 @@ impl MultiProfile for BlendedSegments {
 
     fn eval_into(&self, t: f64, out: &mut [State]) -> Result<(), TrajectoryError> {
         if out.len() != self.dof {
-            return Err(TrajectoryError::LengthMismatch { name: "out", expected: self.dof, found: out.len(), at: Location::NONE });
+            return Err(TrajectoryError::LengthMismatch {
+                name: "out",
+                expected: self.dof,
+                found: out.len(),
+                at: Location::NONE,
+            });
         }
         for (joint, state) in out.iter_mut().enumerate() {
             *state = self.eval_joint(t, joint);

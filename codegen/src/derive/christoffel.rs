@@ -1,15 +1,15 @@
 //! Christoffel symbols `c_ijk = ½(∂d_kj/∂q_i + ∂d_ki/∂q_j − ∂d_ij/∂q_k)` (k the equation
-//! index) by exact differentiation of D's normal form, and `C_kj = Σ_i c_ijk q̇_i`.
+//! index), by exact differentiation of D's normal form or by dual numbers.
 
-use crate::graph::{E, SharedGraph, Sym};
+use crate::graph::{E, SharedGraph};
 use crate::poly::Poly;
+use super::Derivation;
 use dhgen_model::RobotModel;
 
 /// `c[i][j][k]` in the normal form (motor inertia is constant and drops out).
-pub fn christoffel_polys(model: &RobotModel) -> Vec<Vec<Vec<Poly>>> {
+pub fn christoffel_polys(model: &RobotModel, d: &[Vec<Poly>]) -> Vec<Vec<Vec<Poly>>> {
     let n = model.dof();
     let v = super::vars(model);
-    let d = super::inertia::mass_matrix_polys(model);
     // dd[m][a][b] = ∂d_ab/∂q_m; D is symmetric, so only a <= b is differentiated.
     let dd: Vec<Vec<Vec<Poly>>> = (0..n)
         .map(|m| {
@@ -37,30 +37,34 @@ pub fn christoffel_polys(model: &RobotModel) -> Vec<Vec<Vec<Poly>>> {
         .collect()
 }
 
-/// `c[i][j][k]` as expressions, flattened `(i·n + j)·n + k`.
-pub fn christoffel(model: &RobotModel) -> (SharedGraph, Vec<E>) {
-    let g = SharedGraph::default();
-    let polys: Vec<Poly> = christoffel_polys(model)
-        .into_iter()
-        .flatten()
-        .flatten()
-        .collect();
-    let e = super::polys_to_exprs(&polys, &g, model);
-    (g, e)
+/// `c[i][j][k]` as expressions, flattened `(i·n + j)·n + k`: the normal form
+/// differentiated exactly, or the composite-rigid-body recursion differentiated by dual
+/// numbers, whichever is cheaper.
+pub fn christoffel(dv: &Derivation<'_>) -> (SharedGraph, Vec<E>) {
+    let model = dv.model;
+    let mut candidates = vec![christoffel_dual(model)];
+    if dv.normal_form_is_small() {
+        let g = SharedGraph::default();
+        let polys: Vec<Poly> = dv.christoffel_polys().iter().flatten().flatten().cloned().collect();
+        let e = super::polys_to_exprs(&polys, &g, model);
+        candidates.push((g, e));
+    }
+    super::cheapest(candidates)
 }
 
-/// `C(q, q̇)` row-major: `C_kj = Σ_i c_ijk q̇_i`.
-pub fn coriolis(model: &RobotModel) -> (SharedGraph, Vec<E>) {
+fn christoffel_dual(model: &RobotModel) -> (SharedGraph, Vec<E>) {
     let n = model.dof();
-    let (g, c) = christoffel(model);
-    let qd: Vec<E> = (0..n).map(|i| E::sym(&g, Sym::Qd(i))).collect();
-    let mut out = Vec::with_capacity(n * n);
-    for k in 0..n {
+    let g = SharedGraph::default();
+    let chain = crate::chain::Chain::new(model, &crate::dual::DualSymbols { graph: &g, n });
+    let d = chain.mass_matrix();
+    let dd = |m: usize, a: usize, b: usize| d[a][b].partial(m);
+    let mut out = Vec::with_capacity(n * n * n);
+    for i in 0..n {
         for j in 0..n {
-            let sum = (0..n).fold(E::K(0.0), |acc, i| {
-                acc + c[(i * n + j) * n + k].clone() * qd[i].clone()
-            });
-            out.push(sum);
+            for k in 0..n {
+                let c = (dd(i, k, j) + dd(j, k, i) - dd(k, i, j)) * E::K(0.5);
+                out.push(c);
+            }
         }
     }
     (g, out)

@@ -3,6 +3,7 @@
 
 use crate::graph::{E, SharedGraph};
 use crate::poly::Poly;
+use super::Derivation;
 use dhgen_model::RobotModel;
 
 /// D(q) in the normal form, motor inertia included (row-major).
@@ -25,11 +26,12 @@ pub(crate) fn add_motors<X>(model: &RobotModel, d: &mut [Vec<X>], add: impl Fn(&
 }
 
 /// D(q) as expressions (row-major, n×n), whichever derivation is cheaper.
-pub fn mass_matrix(model: &RobotModel) -> (SharedGraph, Vec<E>) {
+pub fn mass_matrix(dv: &Derivation<'_>) -> (SharedGraph, Vec<E>) {
+    let model = dv.model;
     let n = model.dof();
     let expanded = {
         let g = SharedGraph::default();
-        let polys: Vec<Poly> = mass_matrix_polys(model).into_iter().flatten().collect();
+        let polys: Vec<Poly> = dv.mass_matrix_polys().iter().flatten().cloned().collect();
         let e = super::polys_to_exprs(&polys, &g, model);
         (g, e)
     };

@@ -14,7 +14,54 @@ use crate::chain::{Chain, JointSymbols};
 use crate::graph::{E, SharedGraph, Sym, count};
 use crate::poly::{P, Poly, Var};
 use dhgen_model::{JointKind, RobotModel};
+use std::cell::OnceCell;
 use std::rc::Rc;
+
+/// One robot's derivations, with the expensive normal forms built at most once.
+pub struct Derivation<'m> {
+    /// The robot.
+    pub model: &'m RobotModel,
+    mass_matrix: OnceCell<Vec<Vec<Poly>>>,
+    christoffel: OnceCell<Vec<Vec<Vec<Poly>>>>,
+}
+
+/// Terms in D's normal form above which expanding is not worth trying: arms without
+/// parallel axes and with full inertia tensors (e.g. 7-DOF) expand to many thousands.
+const NORMAL_FORM_TERMS: usize = 4000;
+
+impl<'m> Derivation<'m> {
+    /// Starts the derivations of `model`.
+    pub fn new(model: &'m RobotModel) -> Self {
+        Derivation {
+            model,
+            mass_matrix: OnceCell::new(),
+            christoffel: OnceCell::new(),
+        }
+    }
+
+    /// D(q) in the normal form (motor inertia included), row-major.
+    pub fn mass_matrix_polys(&self) -> &Vec<Vec<Poly>> {
+        self.mass_matrix
+            .get_or_init(|| inertia::mass_matrix_polys(self.model))
+    }
+
+    /// `c[i][j][k]` in the normal form.
+    pub fn christoffel_polys(&self) -> &Vec<Vec<Vec<Poly>>> {
+        self.christoffel
+            .get_or_init(|| christoffel::christoffel_polys(self.model, self.mass_matrix_polys()))
+    }
+
+    /// Whether the normal form is small enough for its candidates to be worth building.
+    pub fn normal_form_is_small(&self) -> bool {
+        let terms: usize = self
+            .mass_matrix_polys()
+            .iter()
+            .flatten()
+            .map(|p| p.terms().len())
+            .sum();
+        terms <= NORMAL_FORM_TERMS
+    }
+}
 
 /// Graph inputs for the joint variables.
 pub struct GraphSymbols<'g>(pub &'g SharedGraph);

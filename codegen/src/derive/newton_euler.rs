@@ -5,6 +5,7 @@
 //! `D q̈ + Σ c_ijk q̇_i q̇_j + g` from the normal forms. The cheaper is kept.
 
 use crate::graph::{E, SharedGraph, Sym};
+use super::Derivation;
 use dhgen_model::RobotModel;
 
 /// Motor inertia and friction terms added to joint i's torque (friction's Coulomb part
@@ -52,32 +53,23 @@ pub fn rnea_exprs(
 }
 
 /// τ without Coulomb friction, whichever derivation is cheaper.
-pub fn inverse_dynamics(model: &RobotModel) -> (SharedGraph, Vec<E>) {
+pub fn inverse_dynamics(dv: &Derivation<'_>) -> (SharedGraph, Vec<E>) {
+    let model = dv.model;
     let n = model.dof();
     let recursive = {
         let g = SharedGraph::default();
         let e = rnea_exprs(model, &g, false, true);
         (g, e)
     };
+    if !dv.normal_form_is_small() {
+        return recursive;
+    }
     let assembled = {
         let g = SharedGraph::default();
-        let d = super::polys_to_exprs(
-            &super::inertia::mass_matrix_polys(model)
-                .into_iter()
-                .flatten()
-                .collect::<Vec<_>>(),
-            &g,
-            model,
-        );
-        let c = super::polys_to_exprs(
-            &super::christoffel::christoffel_polys(model)
-                .into_iter()
-                .flatten()
-                .flatten()
-                .collect::<Vec<_>>(),
-            &g,
-            model,
-        );
+        let flat_d: Vec<_> = dv.mass_matrix_polys().iter().flatten().cloned().collect();
+        let d = super::polys_to_exprs(&flat_d, &g, model);
+        let flat_c: Vec<_> = dv.christoffel_polys().iter().flatten().flatten().cloned().collect();
+        let c = super::polys_to_exprs(&flat_c, &g, model);
         let gr = super::polys_to_exprs(&super::gravity::gravity_polys(model), &g, model);
         let qd: Vec<E> = (0..n).map(|i| E::sym(&g, Sym::Qd(i))).collect();
         let qdd: Vec<E> = (0..n).map(|i| E::sym(&g, Sym::Qdd(i))).collect();

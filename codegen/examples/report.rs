@@ -1,0 +1,43 @@
+//! Prints, per robot description given on the command line, the operation count of every
+//! generated function and the time the generator took.
+//!
+//! `cargo run -p dhgen-codegen --example report -- robots/*.toml`
+
+use dhgen_codegen::{RobotModel, generate};
+use std::time::Instant;
+
+fn main() {
+    for path in std::env::args().skip(1) {
+        let model = match RobotModel::from_toml_file(&path) {
+            Ok(m) => m,
+            Err(e) => {
+                eprintln!("{e}");
+                std::process::exit(1);
+            }
+        };
+        let start = Instant::now();
+        let name = proc_macro2::Ident::new(&model.name, proc_macro2::Span::call_site());
+        let generated = generate(&model, quote::quote!(pub), &name, "");
+        let elapsed = start.elapsed();
+        let lines = generated.tokens.to_string().matches(';').count();
+        println!(
+            "## {} ({} DOF): generated in {:.1} ms, ~{} statements",
+            model.name,
+            model.dof(),
+            elapsed.as_secs_f64() * 1e3,
+            lines
+        );
+        println!("| function | add | mul | div | sqrt | total |");
+        println!("|---|---|---|---|---|---|");
+        for (f, c) in &generated.ops {
+            println!(
+                "| {f} | {} | {} | {} | {} | {} |",
+                c.add,
+                c.mul,
+                c.div,
+                c.sqrt,
+                c.total()
+            );
+        }
+    }
+}
