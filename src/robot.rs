@@ -132,7 +132,7 @@ pub(crate) struct Body {
 ///     theta = 0
 ///     mass = 2.0
 ///     com = [-0.5, 0, 0]
-///     inertia = { zz = 0.1 }
+///     inertia = { yy = 0.1, zz = 0.1 }
 /// "#).unwrap();
 /// let pose = robot.fk(&[std::f64::consts::FRAC_PI_2]);
 /// assert!((pose.translation.vector.y - 1.0).abs() < 1e-12);

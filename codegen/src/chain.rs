@@ -137,8 +137,21 @@ pub struct Chain<R> {
     pub link_in_k: Vec<Frame<R>>,
     /// Each link's mass properties in K_k (when the model has dynamics).
     pub bodies: Vec<Body<R>>,
-    /// Gravity in the base frame.
+    /// Gravity in DH frame 0.
     pub gravity: V3<R>,
+}
+
+/// Gravity is given in the world frame (rotating the base turns the robot, not gravity);
+/// the recursions run in DH frame 0, so it is rotated by the base's inverse.
+fn gravity_in_table_frame(model: &RobotModel) -> [f64; 3] {
+    let g = model.gravity;
+    match model.base_pose() {
+        Some(b) => {
+            let r = b.rotation();
+            core::array::from_fn(|i| r[0][i] * g[0] + r[1][i] * g[1] + r[2][i] * g[2])
+        }
+        None => g,
+    }
 }
 
 /// `Rz(θ) Tz(d)`
@@ -221,7 +234,7 @@ impl<R: Ring> Chain<R> {
             t,
             link_in_k,
             bodies,
-            gravity: model.gravity.map(k),
+            gravity: gravity_in_table_frame(model).map(k),
         }
     }
 

@@ -31,7 +31,11 @@ impl Dual {
             (true, true) => a.clone(),
             (false, true) => a.iter().map(|x| f(x.clone(), E::K(0.0))).collect(),
             (true, false) => b.iter().map(|y| f(E::K(0.0), y.clone())).collect(),
-            (false, false) => a.iter().zip(b.iter()).map(|(x, y)| f(x.clone(), y.clone())).collect(),
+            (false, false) => a
+                .iter()
+                .zip(b.iter())
+                .map(|(x, y)| f(x.clone(), y.clone()))
+                .collect(),
         }
     }
 }
@@ -104,7 +108,9 @@ pub struct DualSymbols<'g> {
 
 impl DualSymbols<'_> {
     fn seeded(&self, v: E, j: usize, dv: E) -> Dual {
-        let d = (0..self.n).map(|m| if m == j { dv.clone() } else { E::K(0.0) }).collect();
+        let d = (0..self.n)
+            .map(|m| if m == j { dv.clone() } else { E::K(0.0) })
+            .collect();
         Dual { v, d }
     }
 }

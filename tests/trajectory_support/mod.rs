@@ -58,17 +58,47 @@ fn rounding(scale: f64) -> f64 {
 /// `bounds.jerk` is given) by comparing the two sides at `t ± eps`: a jump larger than what the
 /// derivative bounds allow over `2 eps` (plus rounding) fails.
 #[track_caller]
-pub fn assert_continuous_at<P: Profile + ?Sized>(p: &P, t: f64, eps: f64, bounds: Bounds, scales: Scales) {
+pub fn assert_continuous_at<P: Profile + ?Sized>(
+    p: &P,
+    t: f64,
+    eps: f64,
+    bounds: Bounds,
+    scales: Scales,
+) {
     let (l, m, r) = (p.eval(t - eps), p.eval(t), p.eval(t + eps));
     let dq_max = 2.0 * eps * bounds.qd + rounding(scales.q + t.abs() * bounds.qd);
     let dv_max = 2.0 * eps * bounds.qdd + rounding(scales.qd);
-    assert!((r.q - l.q).abs() <= dq_max, "position jumps at t = {t}: {} -> {} -> {}", l.q, m.q, r.q);
-    assert!((m.q - l.q).abs() <= dq_max && (r.q - m.q).abs() <= dq_max, "position at t = {t} off its sides");
-    assert!((r.qd - l.qd).abs() <= dv_max, "velocity jumps at t = {t}: {} -> {} -> {}", l.qd, m.qd, r.qd);
-    assert!((m.qd - l.qd).abs() <= dv_max && (r.qd - m.qd).abs() <= dv_max, "velocity at t = {t} off its sides");
+    assert!(
+        (r.q - l.q).abs() <= dq_max,
+        "position jumps at t = {t}: {} -> {} -> {}",
+        l.q,
+        m.q,
+        r.q
+    );
+    assert!(
+        (m.q - l.q).abs() <= dq_max && (r.q - m.q).abs() <= dq_max,
+        "position at t = {t} off its sides"
+    );
+    assert!(
+        (r.qd - l.qd).abs() <= dv_max,
+        "velocity jumps at t = {t}: {} -> {} -> {}",
+        l.qd,
+        m.qd,
+        r.qd
+    );
+    assert!(
+        (m.qd - l.qd).abs() <= dv_max && (r.qd - m.qd).abs() <= dv_max,
+        "velocity at t = {t} off its sides"
+    );
     if let Some(jerk) = bounds.jerk {
         let da_max = 2.0 * eps * jerk + rounding(scales.qdd);
-        assert!((r.qdd - l.qdd).abs() <= da_max, "acceleration jumps at t = {t}: {} -> {} -> {}", l.qdd, m.qdd, r.qdd);
+        assert!(
+            (r.qdd - l.qdd).abs() <= da_max,
+            "acceleration jumps at t = {t}: {} -> {} -> {}",
+            l.qdd,
+            m.qdd,
+            r.qdd
+        );
     }
 }
 
@@ -76,15 +106,29 @@ pub fn assert_continuous_at<P: Profile + ?Sized>(p: &P, t: f64, eps: f64, bounds
 /// by central differences of half-width `h`, within the Taylor bound `h · max|next derivative|/2`
 /// plus rounding. Valid across switching times, so `t` can be anywhere inside `[t0 + h, tf - h]`.
 #[track_caller]
-pub fn assert_derivatives_at<P: Profile + ?Sized>(p: &P, t: f64, h: f64, bounds: Bounds, scales: Scales) {
+pub fn assert_derivatives_at<P: Profile + ?Sized>(
+    p: &P,
+    t: f64,
+    h: f64,
+    bounds: Bounds,
+    scales: Scales,
+) {
     let (l, m, r) = (p.eval(t - h), p.eval(t), p.eval(t + h));
     let slope = (r.q - l.q) / (2.0 * h);
     let tol = 0.5 * h * bounds.qdd + rounding(scales.q + t.abs() * bounds.qd) / h;
-    assert!((slope - m.qd).abs() <= tol, "q̇({t}) = {} but the difference quotient of q is {slope} (tol {tol:e})", m.qd);
+    assert!(
+        (slope - m.qd).abs() <= tol,
+        "q̇({t}) = {} but the difference quotient of q is {slope} (tol {tol:e})",
+        m.qd
+    );
     if let Some(jerk) = bounds.jerk {
         let slope = (r.qd - l.qd) / (2.0 * h);
         let tol = 0.5 * h * jerk + rounding(scales.qd) / h;
-        assert!((slope - m.qdd).abs() <= tol, "q̈({t}) = {} but the difference quotient of q̇ is {slope} (tol {tol:e})", m.qdd);
+        assert!(
+            (slope - m.qdd).abs() <= tol,
+            "q̈({t}) = {} but the difference quotient of q̇ is {slope} (tol {tol:e})",
+            m.qdd
+        );
     }
 }
 
@@ -92,8 +136,16 @@ pub fn assert_derivatives_at<P: Profile + ?Sized>(p: &P, t: f64, h: f64, bounds:
 #[track_caller]
 pub fn assert_within_limits<P: Profile + ?Sized>(p: &P, t: f64, vmax: f64, amax: f64) {
     let s = p.eval(t);
-    assert!(s.qd.abs() <= vmax * (1.0 + LIMIT_SLACK), "|q̇({t})| = {} exceeds vmax = {vmax}", s.qd.abs());
-    assert!(s.qdd.abs() <= amax * (1.0 + LIMIT_SLACK), "|q̈({t})| = {} exceeds amax = {amax}", s.qdd.abs());
+    assert!(
+        s.qd.abs() <= vmax * (1.0 + LIMIT_SLACK),
+        "|q̇({t})| = {} exceeds vmax = {vmax}",
+        s.qd.abs()
+    );
+    assert!(
+        s.qdd.abs() <= amax * (1.0 + LIMIT_SLACK),
+        "|q̈({t})| = {} exceeds amax = {amax}",
+        s.qdd.abs()
+    );
 }
 
 /// `count` interior times spread over `[t0, tf]` (midpoints of equal cells, so never an end).

@@ -1,9 +1,9 @@
 //! Christoffel symbols `c_ijk = ½(∂d_kj/∂q_i + ∂d_ki/∂q_j − ∂d_ij/∂q_k)` (k the equation
 //! index), by exact differentiation of D's normal form or by dual numbers.
 
+use super::Derivation;
 use crate::graph::{E, SharedGraph};
 use crate::poly::Poly;
-use super::Derivation;
 use dhgen_model::RobotModel;
 
 /// `c[i][j][k]` in the normal form (motor inertia is constant and drops out).
@@ -45,7 +45,13 @@ pub fn christoffel(dv: &Derivation<'_>) -> (SharedGraph, Vec<E>) {
     let mut candidates = vec![christoffel_dual(model)];
     if dv.normal_form_is_small() {
         let g = SharedGraph::default();
-        let polys: Vec<Poly> = dv.christoffel_polys().iter().flatten().flatten().cloned().collect();
+        let polys: Vec<Poly> = dv
+            .christoffel_polys()
+            .iter()
+            .flatten()
+            .flatten()
+            .cloned()
+            .collect();
         let e = super::polys_to_exprs(&polys, &g, model);
         candidates.push((g, e));
     }

@@ -1,9 +1,9 @@
 //! The joint-space inertia matrix D(q), by the composite-rigid-body algorithm, either
 //! expanded into the normal form and Horner-factored, or kept as the recursion.
 
+use super::Derivation;
 use crate::graph::{E, SharedGraph};
 use crate::poly::Poly;
-use super::Derivation;
 use dhgen_model::RobotModel;
 
 /// D(q) in the normal form, motor inertia included (row-major).

@@ -4,8 +4,8 @@
 //! (linear in the number of links, shares the frame rotations), and the assembled
 //! `D q̈ + Σ c_ijk q̇_i q̇_j + g` from the normal forms. The cheaper is kept.
 
-use crate::graph::{E, SharedGraph, Sym};
 use super::Derivation;
+use crate::graph::{E, SharedGraph, Sym};
 use dhgen_model::RobotModel;
 
 /// Motor inertia and friction terms added to joint i's torque (friction's Coulomb part
@@ -68,7 +68,13 @@ pub fn inverse_dynamics(dv: &Derivation<'_>) -> (SharedGraph, Vec<E>) {
         let g = SharedGraph::default();
         let flat_d: Vec<_> = dv.mass_matrix_polys().iter().flatten().cloned().collect();
         let d = super::polys_to_exprs(&flat_d, &g, model);
-        let flat_c: Vec<_> = dv.christoffel_polys().iter().flatten().flatten().cloned().collect();
+        let flat_c: Vec<_> = dv
+            .christoffel_polys()
+            .iter()
+            .flatten()
+            .flatten()
+            .cloned()
+            .collect();
         let c = super::polys_to_exprs(&flat_c, &g, model);
         let gr = super::polys_to_exprs(&super::gravity::gravity_polys(model), &g, model);
         let qd: Vec<E> = (0..n).map(|i| E::sym(&g, Sym::Qd(i))).collect();

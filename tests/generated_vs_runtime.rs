@@ -1,0 +1,314 @@
+//! Generated code against the runtime path, on random configurations, for every catalogue
+//! robot and for robots written inline that the reference files do not cover (prismatic
+//! joints, modified DH with base and tool, tilted gravity, motors and friction).
+
+use dhgen::Robot;
+use proptest::prelude::*;
+
+dhgen::robot!(mod planar_elbow = "robots/planar_elbow.toml");
+dhgen::robot!(mod puma560 = "robots/puma560.toml");
+dhgen::robot!(mod stanford = "robots/stanford.toml");
+dhgen::robot!(mod panda = "robots/panda.toml");
+dhgen::robot!(mod scara = "robots/scara.toml");
+dhgen::robot!(mod ur5 = "robots/ur5.toml");
+dhgen::robot!(mod cylindrical = "robots/cylindrical.toml");
+
+// Modified DH, a prismatic joint in the middle, base and tool poses, tilted gravity,
+// products of inertia, a motor and friction: everything at once.
+dhgen::robot! {
+    mod odd {
+        convention: modified,
+        gravity: [1.2, -0.7, -9.6],
+        base: { xyz: [0.1, -0.2, 0.3], rpy: [0.1, 30 deg, -0.4] },
+        tool: { xyz: [0.0, 0.05, 0.12], rpy: [PI / 2, 0.0, 0.2] },
+        links: [
+            { joint: revolute, a: 0.0, alpha: 0.0, d: 0.3, theta: 0.1,
+              mass: 3.0, com: [0.01, 0.02, -0.1], inertia: { xx: 0.05, yy: 0.04, zz: 0.03, xy: 0.001, yz: -0.002, xz: 0.003 },
+              motor: { inertia: 0.0002, gear: 50.0 }, friction: { viscous: 0.3, coulomb: 0.8 } },
+            { joint: revolute, a: 0.1, alpha: -90 deg, d: 0.0, theta: -PI / 2,
+              mass: 2.0, com: [0.2, 0.0, 0.01], inertia: { xx: 0.01, yy: 0.03, zz: 0.03 } },
+            { joint: prismatic, a: 0.35, alpha: 90 deg, d: 0.1, theta: 0.3,
+              mass: 1.5, com: [0.0, 0.0, -0.2], inertia: { xx: 0.02, yy: 0.02, zz: 0.004, xy: 0.0005 },
+              friction: { viscous: 2.0 } },
+            { joint: revolute, a: 0.0, alpha: 0.7, d: 0.12, theta: 0.0,
+              mass: 0.8, com: [0.0, 0.03, 0.02], inertia: { xx: 0.003, yy: 0.002, zz: 0.002 },
+              motor: { inertia: 0.0001, gear: 30.0 } },
+        ]
+    }
+}
+
+// Standard DH, two prismatic joints, exact and inexact angles, tool only.
+dhgen::robot! {
+    mod gantry {
+        convention: standard,
+        gravity: [0.0, 0.0, -9.81],
+        tool: { xyz: [0.0, 0.0, 0.08] },
+        links: [
+            { joint: prismatic, a: 0.0, alpha: -90 deg, d: 0.2, theta: 0.0,
+              mass: 5.0, com: [0.0, 0.1, 0.0], inertia: { xx: 0.1, yy: 0.1, zz: 0.1 } },
+            { joint: prismatic, a: 0.0, alpha: 90 deg, d: 0.0, theta: 90 deg,
+              mass: 3.0, com: [0.0, 0.0, -0.1], inertia: { xx: 0.05, yy: 0.05, zz: 0.02 } },
+            { joint: revolute, a: 0.15, alpha: 0.3, d: 0.05, theta: 0.2,
+              mass: 1.0, com: [-0.07, 0.0, 0.0], inertia: { xx: 0.001, yy: 0.004, zz: 0.004 } },
+        ]
+    }
+}
+
+fn runtime(name: &str) -> Robot {
+    Robot::from_toml_file(format!("{}/robots/{name}.toml", env!("CARGO_MANIFEST_DIR"))).unwrap()
+}
+
+fn close(what: &str, got: f64, want: f64, scale: f64) -> Result<(), TestCaseError> {
+    let err = (got - want).abs() / scale.max(1.0);
+    prop_assert!(
+        err <= 1e-12,
+        "{what}: generated {got}, runtime {want}, relative error {err:e}"
+    );
+    Ok(())
+}
+
+fn max_abs(it: impl IntoIterator<Item = f64>) -> f64 {
+    it.into_iter().fold(0.0, |m, x| m.max(x.abs()))
+}
+
+macro_rules! compare {
+    ($test:ident, $m:ident, $robot:expr) => {
+        compare!($test, $m, $robot, |st, robot, q, qd, qdd| {
+            const N: usize = $m::DOF;
+            dynamics::<N>(robot, q, qd, qdd, &st.mass_matrix(), &st.christoffel(),
+                &st.coriolis(qd), &st.gravity(), &st.inverse_dynamics(qd, qdd))
+        });
+    };
+    ($test:ident, $m:ident, $robot:expr, kinematics) => {
+        compare!($test, $m, $robot, |_st, _robot, _q, _qd, _qdd| Ok(()));
+    };
+    ($test:ident, $m:ident, $robot:expr, $dynamics:expr) => {
+        proptest! {
+            #![proptest_config(ProptestConfig::with_cases(64))]
+            #[test]
+            fn $test(
+                q in proptest::array::uniform::<_, { $m::DOF }>(-3.0f64..3.0),
+                qd in proptest::array::uniform::<_, { $m::DOF }>(-2.0f64..2.0),
+                qdd in proptest::array::uniform::<_, { $m::DOF }>(-2.0f64..2.0),
+            ) {
+                const N: usize = $m::DOF;
+                let robot = $robot;
+                let st = $m::State::new(&q);
+                let t = st.fk().to_homogeneous();
+                let tr = robot.fk(&q).to_homogeneous();
+                for i in 0..16 {
+                    close("T", t[i], tr[i], 1.0)?;
+                }
+                for (f, fr) in st.frames().iter().zip(robot.frames(&q)) {
+                    let (a, b) = (f.to_homogeneous(), fr.to_homogeneous());
+                    for i in 0..16 {
+                        close("frame", a[i], b[i], 1.0)?;
+                    }
+                }
+                let j = st.jacobian();
+                let jr = robot.jacobian(&q);
+                for c in 0..N {
+                    for r in 0..6 {
+                        close("J", j[(r, c)], jr[(r, c)], 1.0)?;
+                    }
+                }
+                let check: fn(&$m::State<f64>, &Robot, &[f64; N], &[f64; N], &[f64; N]) -> Result<(), TestCaseError> = $dynamics;
+                check(&st, &robot, &q, &qd, &qdd)?;
+            }
+        }
+    };
+}
+
+#[allow(clippy::too_many_arguments)]
+fn dynamics<const N: usize>(
+    robot: &Robot,
+    q: &[f64; N],
+    qd: &[f64; N],
+    qdd: &[f64; N],
+    d: &dhgen::nalgebra::SMatrix<f64, N, N>,
+    c: &[[[f64; N]; N]; N],
+    cor: &dhgen::nalgebra::SMatrix<f64, N, N>,
+    g: &dhgen::nalgebra::SVector<f64, N>,
+    tau: &dhgen::nalgebra::SVector<f64, N>,
+) -> Result<(), TestCaseError> {
+    let dr = robot.mass_matrix(q);
+    let s = max_abs(dr.iter().copied());
+    for i in 0..N * N {
+        close("D", d[i], dr[i], s)?;
+    }
+    let cr = robot.christoffel(q);
+    let s = (0..N)
+        .flat_map(|i| (0..N).flat_map(move |j| (0..N).map(move |k| (i, j, k))))
+        .fold(0.0f64, |m, (i, j, k)| m.max(cr[i][j][k].abs()));
+    for i in 0..N {
+        for j in 0..N {
+            for k in 0..N {
+                close("c_ijk", c[i][j][k], cr[i][j][k], s)?;
+            }
+        }
+    }
+    let corr = robot.coriolis(q, qd);
+    let s = max_abs(corr.iter().copied());
+    for i in 0..N * N {
+        close("C", cor[i], corr[i], s)?;
+    }
+    let gr = robot.gravity(q);
+    let s = max_abs(gr.iter().copied());
+    for i in 0..N {
+        close("g", g[i], gr[i], s)?;
+    }
+    let taur = robot.inverse_dynamics(q, qd, qdd);
+    let s = max_abs(taur.iter().copied());
+    for i in 0..N {
+        close("tau", tau[i], taur[i], s)?;
+    }
+    Ok(())
+}
+
+compare!(
+    planar_elbow_generated_equals_runtime,
+    planar_elbow,
+    runtime("planar_elbow")
+);
+compare!(
+    puma560_generated_equals_runtime,
+    puma560,
+    runtime("puma560")
+);
+compare!(
+    stanford_generated_equals_runtime,
+    stanford,
+    runtime("stanford")
+);
+compare!(panda_generated_equals_runtime, panda, runtime("panda"));
+compare!(scara_generated_equals_runtime, scara, runtime("scara"));
+compare!(ur5_generated_equals_runtime, ur5, runtime("ur5"));
+compare!(
+    cylindrical_generated_equals_runtime,
+    cylindrical,
+    runtime("cylindrical"),
+    kinematics
+);
+compare!(
+    odd_generated_equals_runtime,
+    odd,
+    Robot::from_toml_str(ODD).unwrap()
+);
+compare!(
+    gantry_generated_equals_runtime,
+    gantry,
+    Robot::from_toml_str(GANTRY).unwrap()
+);
+
+/// The inline `odd` robot, written again as TOML for the runtime path.
+const ODD: &str = r#"
+name = "odd"
+convention = "modified"
+gravity = [1.2, -0.7, -9.6]
+base = { xyz = [0.1, -0.2, 0.3], rpy = [0.1, "30deg", -0.4] }
+tool = { xyz = [0.0, 0.05, 0.12], rpy = ["pi/2", 0.0, 0.2] }
+[[links]]
+joint = "revolute"
+a = 0.0
+alpha = 0.0
+d = 0.3
+theta = 0.1
+mass = 3.0
+com = [0.01, 0.02, -0.1]
+inertia = { xx = 0.05, yy = 0.04, zz = 0.03, xy = 0.001, yz = -0.002, xz = 0.003 }
+motor = { inertia = 0.0002, gear = 50.0 }
+friction = { viscous = 0.3, coulomb = 0.8 }
+[[links]]
+joint = "revolute"
+a = 0.1
+alpha = "-90deg"
+d = 0.0
+theta = "-pi/2"
+mass = 2.0
+com = [0.2, 0.0, 0.01]
+inertia = { xx = 0.01, yy = 0.03, zz = 0.03 }
+[[links]]
+joint = "prismatic"
+a = 0.35
+alpha = "90deg"
+d = 0.1
+theta = 0.3
+mass = 1.5
+com = [0.0, 0.0, -0.2]
+inertia = { xx = 0.02, yy = 0.02, zz = 0.004, xy = 0.0005 }
+friction = { viscous = 2.0 }
+[[links]]
+joint = "revolute"
+a = 0.0
+alpha = 0.7
+d = 0.12
+theta = 0.0
+mass = 0.8
+com = [0.0, 0.03, 0.02]
+inertia = { xx = 0.003, yy = 0.002, zz = 0.002 }
+motor = { inertia = 0.0001, gear = 30.0 }
+"#;
+
+const GANTRY: &str = r#"
+name = "gantry"
+convention = "standard"
+tool = { xyz = [0.0, 0.0, 0.08] }
+[[links]]
+joint = "prismatic"
+a = 0.0
+alpha = "-90deg"
+d = 0.2
+theta = 0.0
+mass = 5.0
+com = [0.0, 0.1, 0.0]
+inertia = { xx = 0.1, yy = 0.1, zz = 0.1 }
+[[links]]
+joint = "prismatic"
+a = 0.0
+alpha = "90deg"
+d = 0.0
+theta = "90deg"
+mass = 3.0
+com = [0.0, 0.0, -0.1]
+inertia = { xx = 0.05, yy = 0.05, zz = 0.02 }
+[[links]]
+joint = "revolute"
+a = 0.15
+alpha = 0.3
+d = 0.05
+theta = 0.2
+mass = 1.0
+com = [-0.07, 0.0, 0.0]
+inertia = { xx = 0.001, yy = 0.004, zz = 0.004 }
+"#;
+
+/// f32 instantiation of the same generated code agrees with f64 to f32 precision.
+#[test]
+fn f32_matches_f64() {
+    let q = [0.3, -1.1, 0.7, 2.0, -0.4, 1.3, 0.2];
+    let qd = [0.5, -0.2, 0.1, 0.9, -1.0, 0.3, 0.7];
+    let qdd = [1.0, 0.4, -0.6, 0.2, 0.8, -0.3, 0.1];
+    let f = |a: [f64; 7]| a.map(|x| x as f32);
+    let d64 = panda::mass_matrix(&q);
+    let d32 = panda::mass_matrix(&f(q));
+    let t64 = panda::inverse_dynamics(&q, &qd, &qdd);
+    let t32 = panda::inverse_dynamics(&f(q), &f(qd), &f(qdd));
+    let p64 = panda::fk(&q).translation.vector;
+    let p32 = panda::fk(&f(q)).translation.vector;
+    let tol = 1e-5;
+    for i in 0..49 {
+        assert!(
+            (f64::from(d32[i]) - d64[i]).abs() <= tol * d64.amax(),
+            "D[{i}]"
+        );
+    }
+    for i in 0..7 {
+        assert!(
+            (f64::from(t32[i]) - t64[i]).abs() <= tol * t64.amax(),
+            "tau[{i}]"
+        );
+    }
+    for i in 0..3 {
+        assert!((f64::from(p32[i]) - p64[i]).abs() <= tol, "p[{i}]");
+    }
+}
