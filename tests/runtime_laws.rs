@@ -689,3 +689,36 @@ fn coriolis_rejects_wrong_qd() {
 fn forward_dynamics_rejects_wrong_tau() {
     reference("planar_elbow").forward_dynamics(&[0.0; 2], &[0.0; 2], &[]);
 }
+
+#[test]
+fn forward_dynamics_is_none_for_a_singular_mass_matrix() {
+    // The second joint moves a body with no mass and no inertia: D is singular.
+    let text = r#"
+name = "weightless_wrist"
+convention = "standard"
+[[links]]
+joint = "revolute"
+a = 0.5
+alpha = 0
+d = 0
+theta = 0
+mass = 1.0
+com = [-0.25, 0, 0]
+inertia = { yy = 0.02, zz = 0.02 }
+[[links]]
+joint = "revolute"
+a = 0.0
+alpha = 0
+d = 0
+theta = 0
+mass = 0.0
+com = [0, 0, 0]
+inertia = { xx = 0.0 }
+"#;
+    let robot = Robot::from_toml_str(text).unwrap();
+    assert_eq!(robot.mass_matrix(&[0.3, 0.1])[(1, 1)], 0.0);
+    assert_eq!(
+        robot.forward_dynamics(&[0.3, 0.1], &[0.0; 2], &[1.0, 0.0]),
+        None
+    );
+}

@@ -212,6 +212,34 @@ impl Poly {
         Poly::collect(acc)
     }
 
+    /// Rewrites slot `k` from `θ_k` to the cumulative angle `φ = φ_{k−1} + θ_k`, where slot
+    /// `k − 1` holds `φ_{k−1}`: `cos θ_k = cos φ cos φ_{k−1} + sin φ sin φ_{k−1}`,
+    /// `sin θ_k = sin φ cos φ_{k−1} − cos φ sin φ_{k−1}`.
+    pub fn to_cumulative(&self, k: usize, vars: &[Var]) -> Poly {
+        let (pc, ps) = (Poly::cos(k - 1), Poly::sin(k - 1));
+        let (u, v) = (Poly::cos(k), Poly::sin(k));
+        let cos_k = u.mul_with(&pc, vars).add(&v.mul_with(&ps, vars));
+        let sin_k = v.mul_with(&pc, vars).sub(&u.mul_with(&ps, vars));
+        let mut out = Poly::zero();
+        for (m, c) in &self.terms {
+            let (a, b) = (m[2 * k], m[2 * k + 1]);
+            let mut rest = *m;
+            rest[2 * k] = 0;
+            rest[2 * k + 1] = 0;
+            let mut t = Poly {
+                terms: vec![(rest, *c)],
+            };
+            for _ in 0..a {
+                t = t.mul_with(&cos_k, vars);
+            }
+            for _ in 0..b {
+                t = t.mul_with(&sin_k, vars);
+            }
+            out = out.add(&t);
+        }
+        out
+    }
+
     /// The largest coefficient magnitude (0 for the zero polynomial).
     pub fn max_abs(&self) -> f64 {
         self.terms.iter().fold(0.0, |m, (_, c)| m.max(c.abs()))
@@ -353,20 +381,57 @@ impl Ring for P {
 /// variable present in the most terms is factored out, recursively. Monomials are built
 /// in a fixed variable order so that equal products in different outputs are shared.
 pub fn to_expr(p: &Poly, g: &SharedGraph, vars: &[Var]) -> E {
-    let terms: Vec<(Mono, f64)> = p.terms.clone();
-    horner(terms, g, vars)
+    to_expr_in(p, g, vars, &Basis::joint_angles(vars.len()))
 }
 
-fn sym_of(v: usize, vars: &[Var]) -> Sym {
-    let j = v / 2;
-    match (vars[j], v % 2) {
-        (Var::Length, _) => Sym::Len(j),
-        (Var::Angle, 0) => Sym::Cos(j),
-        (Var::Angle, _) => Sym::Sin(j),
+/// What each angle slot of a polynomial stands for: joint j's own angle, or the
+/// cumulative angle `θ_start + … + θ_j` of a run of parallel axes.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Basis {
+    /// `start[j]`: the first joint of the sum held in slot j (`j` itself for a plain angle).
+    pub start: Vec<usize>,
+}
+
+impl Basis {
+    /// Every slot is its joint's own angle.
+    pub fn joint_angles(n: usize) -> Basis {
+        Basis {
+            start: (0..n).collect(),
+        }
     }
 }
 
-fn horner(terms: Vec<(Mono, f64)>, g: &SharedGraph, vars: &[Var]) -> E {
+/// Like [`to_expr`], for a polynomial whose slots mean what `basis` says.
+pub fn to_expr_in(p: &Poly, g: &SharedGraph, vars: &[Var], basis: &Basis) -> E {
+    horner(p.terms.clone(), g, vars, basis)
+}
+
+/// The expression of slot `v`: an input, or for a cumulative angle the addition formula
+/// applied to the shorter sum (built once and shared through the graph).
+fn slot_expr(v: usize, g: &SharedGraph, vars: &[Var], basis: &Basis) -> E {
+    let j = v / 2;
+    if vars[j] == Var::Length {
+        return E::sym(g, Sym::Len(j));
+    }
+    let start = basis.start[j];
+    if start == j {
+        return E::sym(g, if v % 2 == 0 { Sym::Cos(j) } else { Sym::Sin(j) });
+    }
+    let mut shorter = basis.clone();
+    shorter.start[j - 1] = start;
+    let (pc, ps) = (
+        slot_expr(2 * (j - 1), g, vars, &shorter),
+        slot_expr(2 * (j - 1) + 1, g, vars, &shorter),
+    );
+    let (c, s) = (E::sym(g, Sym::Cos(j)), E::sym(g, Sym::Sin(j)));
+    if v % 2 == 0 {
+        pc * c - ps * s
+    } else {
+        ps * c + pc * s
+    }
+}
+
+fn horner(terms: Vec<(Mono, f64)>, g: &SharedGraph, vars: &[Var], basis: &Basis) -> E {
     if terms.is_empty() {
         return E::K(0.0);
     }
@@ -390,20 +455,20 @@ fn horner(terms: Vec<(Mono, f64)>, g: &SharedGraph, vars: &[Var]) -> E {
                     (m, c)
                 })
                 .collect();
-            let x = E::sym(g, sym_of(v, vars));
+            let x = slot_expr(v, g, vars, basis);
             // Pull out a common coefficient so that `k*(a + b)` is not `k*a + k*b`.
-            let inner = factor_out_constant(reduced, g, vars);
-            let rest = horner(without, g, vars);
+            let inner = factor_out_constant(reduced, g, vars, basis);
+            let rest = horner(without, g, vars, basis);
             x * inner + rest
         }
         _ => terms
             .into_iter()
-            .map(|(m, c)| monomial(&m, c, g, vars))
+            .map(|(m, c)| monomial(&m, c, g, vars, basis))
             .fold(E::K(0.0), |a, b| a + b),
     }
 }
 
-fn factor_out_constant(terms: Vec<(Mono, f64)>, g: &SharedGraph, vars: &[Var]) -> E {
+fn factor_out_constant(terms: Vec<(Mono, f64)>, g: &SharedGraph, vars: &[Var], basis: &Basis) -> E {
     if terms.len() >= 2 {
         let k = terms[0].1;
         if terms
@@ -414,17 +479,17 @@ fn factor_out_constant(terms: Vec<(Mono, f64)>, g: &SharedGraph, vars: &[Var]) -
                 .into_iter()
                 .map(|(m, c)| (m, (c / k).round()))
                 .collect();
-            return E::K(k) * horner(normalised, g, vars);
+            return E::K(k) * horner(normalised, g, vars, basis);
         }
     }
-    horner(terms, g, vars)
+    horner(terms, g, vars, basis)
 }
 
-fn monomial(m: &Mono, c: f64, g: &SharedGraph, vars: &[Var]) -> E {
+fn monomial(m: &Mono, c: f64, g: &SharedGraph, vars: &[Var], basis: &Basis) -> E {
     let mut e = E::K(1.0);
     for (v, exp) in m.iter().enumerate() {
         for _ in 0..*exp {
-            e = e * E::sym(g, sym_of(v, vars));
+            e = e * slot_expr(v, g, vars, basis);
         }
     }
     E::K(c) * e

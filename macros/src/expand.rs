@@ -2,7 +2,7 @@
 //! the description file.
 
 use crate::parse::{Body, RobotInput};
-use dhgen_model::{LoadErrorKind, RobotModel, validate};
+use dhgen_model::{RobotModel, validate};
 use quote::{ToTokens, quote};
 use std::path::PathBuf;
 
@@ -13,20 +13,20 @@ pub fn expand(input: RobotInput) -> syn::Result<proc_macro2::TokenStream> {
             let dir = std::env::var("CARGO_MANIFEST_DIR").unwrap_or_else(|_| ".".into());
             let path = PathBuf::from(dir).join(lit.value());
             let shown = lit.value();
+            // The message names the path as written, not as resolved: the absolute path
+            // would differ between machines, and the rule it follows is stated instead.
             let text = std::fs::read_to_string(&path).map_err(|e| {
                 syn::Error::new(
                     lit.span(),
                     format!(
-                        "cannot read robot description {shown:?} ({}): {e}",
-                        path.display()
+                        "{shown}: cannot read file: {e}; the path is relative to the directory \
+                         of the invoking crate's Cargo.toml"
                     ),
                 )
             })?;
-            let model = RobotModel::from_toml_named(&text, &shown).map_err(|e| match e.kind {
-                LoadErrorKind::Io(_) | LoadErrorKind::Syntax(_) | LoadErrorKind::Invalid(_) => {
-                    syn::Error::new(lit.span(), e.to_string())
-                }
-            })?;
+            // `file:line:column: link N, field F: ...`, at the path literal.
+            let model = RobotModel::from_toml_named(&text, &shown)
+                .map_err(|e| syn::Error::new(lit.span(), e))?;
             let abs = path.to_string_lossy().into_owned();
             // Editing the file must rebuild the crate.
             (
@@ -37,8 +37,8 @@ pub fn expand(input: RobotInput) -> syn::Result<proc_macro2::TokenStream> {
             )
         }
         Body::Inline(table) => {
-            let model = validate::validate(&table, Some(&name.to_string()))
-                .map_err(|e| syn::Error::new(e.loc, e.to_string()))?;
+            let model =
+                validate::validate(&table, Some(&name.to_string())).map_err(|e| e.loc.error(&e))?;
             (model, quote!())
         }
     };

@@ -6,7 +6,8 @@
 //!   `90 deg` or `PI / 2` (any tokens up to the next comma are read as an angle string).
 
 use dhgen_model::raw::{Table, Value};
-use proc_macro2::{Delimiter, Span, TokenStream, TokenTree};
+use proc_macro2::{Delimiter, Punct, Spacing, Span, TokenStream, TokenTree};
+use quote::ToTokens;
 use syn::parse::{Parse, ParseStream};
 use syn::{Ident, LitStr, Token, Visibility};
 
@@ -22,7 +23,55 @@ pub enum Body {
     /// A TOML file, relative to the invoking crate's manifest directory.
     File(LitStr),
     /// Inline fields.
-    Inline(Table<Span>),
+    Inline(Table<Loc>),
+}
+
+/// Where a value of the inline form was written: its first and last token.
+///
+/// A value such as `-2.0` or `90 deg` is several tokens, and joining their spans into one
+/// (`Span::join`) is not available on stable Rust. Keeping both ends lets an error underline
+/// the whole value rather than its minus sign or its first word.
+#[derive(Clone, Copy, Debug)]
+pub struct Loc {
+    first: Span,
+    last: Span,
+}
+
+impl Loc {
+    /// A location that is one token or one delimited group.
+    fn of(span: Span) -> Loc {
+        Loc {
+            first: span,
+            last: span,
+        }
+    }
+
+    /// The tokens `tokens[0] ..= tokens[last]`; `tokens` is not empty.
+    fn range(tokens: &[TokenTree]) -> Loc {
+        Loc {
+            first: tokens[0].span(),
+            last: tokens[tokens.len() - 1].span(),
+        }
+    }
+
+    /// A compile error covering this location.
+    pub fn error(self, message: impl core::fmt::Display) -> syn::Error {
+        // `new_spanned` spans from its argument's first token to its last one: exactly
+        // the range, and the only way to report one on stable Rust.
+        syn::Error::new_spanned(self, message)
+    }
+}
+
+impl ToTokens for Loc {
+    /// Two placeholder tokens carrying the two ends, for [`Loc::error`]; never emitted as
+    /// code.
+    fn to_tokens(&self, tokens: &mut TokenStream) {
+        for span in [self.first, self.last] {
+            let mut end = Punct::new('.', Spacing::Alone);
+            end.set_span(span);
+            tokens.extend([TokenTree::Punct(end)]);
+        }
+    }
 }
 
 impl Parse for RobotInput {
@@ -41,7 +90,7 @@ impl Parse for RobotInput {
             let content;
             let brace = syn::braced!(content in input);
             let tokens: TokenStream = content.parse()?;
-            Body::Inline(table(tokens, brace.span.join())?)
+            Body::Inline(table(tokens, Loc::of(brace.span.join()))?)
         };
         if !input.is_empty() {
             return Err(input.error("unexpected tokens after the robot description"));
@@ -51,7 +100,7 @@ impl Parse for RobotInput {
 }
 
 /// `key: value, key: value, ...`
-fn table(tokens: TokenStream, span: Span) -> syn::Result<Table<Span>> {
+fn table(tokens: TokenStream, loc: Loc) -> syn::Result<Table<Loc>> {
     let mut entries = Vec::new();
     for item in split_commas(tokens) {
         let mut it = item.into_iter();
@@ -82,9 +131,9 @@ fn table(tokens: TokenStream, span: Span) -> syn::Result<Table<Span>> {
                 format!("field `{key}` has no value"),
             ));
         }
-        entries.push((key.to_string(), key.span(), value(rest)?));
+        entries.push((key.to_string(), Loc::of(key.span()), value(rest)?));
     }
-    Ok(Table { entries, loc: span })
+    Ok(Table { entries, loc })
 }
 
 fn split_commas(tokens: TokenStream) -> Vec<Vec<TokenTree>> {
@@ -109,34 +158,35 @@ fn number(lit: &proc_macro2::Literal) -> Option<f64> {
     text.parse().ok()
 }
 
-fn value(tokens: Vec<TokenTree>) -> syn::Result<Value<Span>> {
-    let first = tokens[0].span();
+/// The tokens of one value; `tokens` is not empty.
+fn value(tokens: Vec<TokenTree>) -> syn::Result<Value<Loc>> {
+    let loc = Loc::range(&tokens);
     if tokens.len() == 1 {
         match &tokens[0] {
             TokenTree::Literal(lit) => {
                 if let Ok(s) = syn::parse2::<LitStr>(TokenTree::Literal(lit.clone()).into()) {
-                    return Ok(Value::Str(s.value(), first));
+                    return Ok(Value::Str(s.value(), loc));
                 }
                 if let Some(x) = number(lit) {
-                    return Ok(Value::Number(x, first));
+                    return Ok(Value::Number(x, loc));
                 }
-                return Err(syn::Error::new(first, "expected a number or a string"));
+                return Err(loc.error("expected a number or a string"));
             }
             TokenTree::Ident(i) if i == "true" || i == "false" => {
-                return Ok(Value::Bool(i == "true", first));
+                return Ok(Value::Bool(i == "true", loc));
             }
             TokenTree::Ident(i) if !i.to_string().eq_ignore_ascii_case("pi") => {
-                return Ok(Value::Word(i.to_string(), first));
+                return Ok(Value::Word(i.to_string(), loc));
             }
             TokenTree::Group(g) if g.delimiter() == Delimiter::Bracket => {
                 let items = split_commas(g.stream())
                     .into_iter()
                     .map(value)
                     .collect::<syn::Result<Vec<_>>>()?;
-                return Ok(Value::Array(items, g.span()));
+                return Ok(Value::Array(items, loc));
             }
             TokenTree::Group(g) if g.delimiter() == Delimiter::Brace => {
-                return Ok(Value::Table(table(g.stream(), g.span())?));
+                return Ok(Value::Table(table(g.stream(), loc)?));
             }
             _ => {}
         }
@@ -144,12 +194,17 @@ fn value(tokens: Vec<TokenTree>) -> syn::Result<Value<Span>> {
     if let [TokenTree::Punct(p), TokenTree::Literal(lit)] = tokens.as_slice() {
         if p.as_char() == '-' {
             if let Some(x) = number(lit) {
-                return Ok(Value::Number(-x, first));
+                return Ok(Value::Number(-x, loc));
             }
         }
     }
     // Anything else (`90 deg`, `PI / 2`, `-3 * PI / 4`) is an angle expression, read by
-    // the same parser as the TOML strings.
-    let text: String = tokens.iter().map(ToString::to_string).collect();
-    Ok(Value::Str(text, first))
+    // the same parser as the TOML strings, which ignores spaces. The tokens are joined
+    // with spaces so that an error quotes them much as they were written.
+    let text = tokens
+        .iter()
+        .map(ToString::to_string)
+        .collect::<Vec<_>>()
+        .join(" ");
+    Ok(Value::Str(text, loc))
 }

@@ -227,27 +227,28 @@ impl Profile for Lspb {
         if t > self.tf {
             return State::rest(self.qf);
         }
+        // Time since the start and time to go, each measured from its own end so that both
+        // boundary states are exact even when tf = t0 + T was rounded.
         let tau = t - self.t0;
-        let (alpha, tb, big_t) = (self.acceleration, self.blend_time, self.duration);
+        let to_go = self.tf - t;
+        let (alpha, tb) = (self.acceleration, self.blend_time);
         if tau <= tb {
             State {
                 q: self.q0 + 0.5 * alpha * tau * tau,
                 qd: alpha * tau,
                 qdd: alpha,
             }
-        } else if tau < big_t - tb {
-            let q = 0.5 * (self.q0 + self.qf - self.velocity * big_t) + self.velocity * tau;
+        } else if to_go > tb {
+            let q = 0.5 * (self.q0 + self.qf - self.velocity * self.duration) + self.velocity * tau;
             State {
                 q,
                 qd: self.velocity,
                 qdd: 0.0,
             }
         } else {
-            // Anchored at qf so that q(tf) = qf exactly.
-            let left = (big_t - tau).max(0.0);
             State {
-                q: self.qf - 0.5 * alpha * left * left,
-                qd: alpha * left,
+                q: self.qf - 0.5 * alpha * to_go * to_go,
+                qd: alpha * to_go,
                 qdd: -alpha,
             }
         }

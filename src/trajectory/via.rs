@@ -390,7 +390,9 @@ impl BlendedSegments {
             let available = times[k] - times[k - 1];
             let ends = [k == 1, k == m].iter().filter(|&&end| end).count() as f64;
             let needed = blend_time * (1.0 + 0.5 * ends);
-            if available < needed {
+            // Times computed as t[k-1] + needed may come out a rounding error short.
+            let rounding = 4.0 * f64::EPSILON * (needed + abs(times[k]));
+            if available < needed - rounding {
                 return Err(TrajectoryError::BlendsOverlap {
                     segment: k,
                     available,
@@ -573,14 +575,24 @@ impl BlendedSegments {
             // that the end points (at rest) are reproduced exactly.
             let acceleration = (velocity(k + 1) - velocity(k)) / self.blend_time;
             if s <= 0.0 {
-                let since = (s + half).max(0.0);
+                // The first blend is measured from t0 itself, so that q̇(t0) = 0 exactly.
+                let since = if k == 0 {
+                    t - self.times[0]
+                } else {
+                    (s + half).max(0.0)
+                };
                 State {
                     q: point(k) + velocity(k) * s + 0.5 * acceleration * since * since,
                     qd: velocity(k) + acceleration * since,
                     qdd: acceleration,
                 }
             } else {
-                let until = (half - s).max(0.0);
+                // The last blend is measured to tf itself, so that q̇(tf) = 0 exactly.
+                let until = if k == m {
+                    self.times[m] - t
+                } else {
+                    (half - s).max(0.0)
+                };
                 State {
                     q: point(k) + velocity(k + 1) * s + 0.5 * acceleration * until * until,
                     qd: velocity(k + 1) - acceleration * until,

@@ -50,6 +50,8 @@ pub struct Bounds {
 }
 
 /// Rounding error of one evaluation at magnitude `scale`, with headroom for a few operations.
+/// Callers include `|t| · rate` in `scale`: a time is only known to its own rounding, so a
+/// derivative `rate` turns it into that much error in the quantity.
 fn rounding(scale: f64) -> f64 {
     64.0 * f64::EPSILON * scale
 }
@@ -65,9 +67,12 @@ pub fn assert_continuous_at<P: Profile + ?Sized>(
     bounds: Bounds,
     scales: Scales,
 ) {
-    let (l, m, r) = (p.eval(t - eps), p.eval(t), p.eval(t + eps));
-    let dq_max = 2.0 * eps * bounds.qd + rounding(scales.q + t.abs() * bounds.qd);
-    let dv_max = 2.0 * eps * bounds.qdd + rounding(scales.qd);
+    // The actual distance between the probes: t ± eps is rounded to the grid of t.
+    let (tl, tr) = (t - eps, t + eps);
+    let span = tr - tl;
+    let (l, m, r) = (p.eval(tl), p.eval(t), p.eval(tr));
+    let dq_max = span * bounds.qd + rounding(scales.q + t.abs() * bounds.qd);
+    let dv_max = span * bounds.qdd + rounding(scales.qd + t.abs() * bounds.qdd);
     assert!(
         (r.q - l.q).abs() <= dq_max,
         "position jumps at t = {t}: {} -> {} -> {}",
@@ -91,7 +96,7 @@ pub fn assert_continuous_at<P: Profile + ?Sized>(
         "velocity at t = {t} off its sides"
     );
     if let Some(jerk) = bounds.jerk {
-        let da_max = 2.0 * eps * jerk + rounding(scales.qdd);
+        let da_max = span * jerk + rounding(scales.qdd + t.abs() * jerk);
         assert!(
             (r.qdd - l.qdd).abs() <= da_max,
             "acceleration jumps at t = {t}: {} -> {} -> {}",
@@ -113,17 +118,20 @@ pub fn assert_derivatives_at<P: Profile + ?Sized>(
     bounds: Bounds,
     scales: Scales,
 ) {
-    let (l, m, r) = (p.eval(t - h), p.eval(t), p.eval(t + h));
-    let slope = (r.q - l.q) / (2.0 * h);
-    let tol = 0.5 * h * bounds.qdd + rounding(scales.q + t.abs() * bounds.qd) / h;
+    // The actual probe times (t ± h rounded): the quotient and its Taylor bound use them.
+    let (tl, tr) = (t - h, t + h);
+    let (span, reach) = (tr - tl, (tr - t).max(t - tl));
+    let (l, m, r) = (p.eval(tl), p.eval(t), p.eval(tr));
+    let slope = (r.q - l.q) / span;
+    let tol = 0.5 * reach * bounds.qdd + 2.0 * rounding(scales.q + t.abs() * bounds.qd) / span;
     assert!(
         (slope - m.qd).abs() <= tol,
         "q̇({t}) = {} but the difference quotient of q is {slope} (tol {tol:e})",
         m.qd
     );
     if let Some(jerk) = bounds.jerk {
-        let slope = (r.qd - l.qd) / (2.0 * h);
-        let tol = 0.5 * h * jerk + rounding(scales.qd) / h;
+        let slope = (r.qd - l.qd) / span;
+        let tol = 0.5 * reach * jerk + 2.0 * rounding(scales.qd + t.abs() * bounds.qdd) / span;
         assert!(
             (slope - m.qdd).abs() <= tol,
             "q̈({t}) = {} but the difference quotient of q̇ is {slope} (tol {tol:e})",

@@ -12,7 +12,7 @@ pub mod newton_euler;
 
 use crate::chain::{Chain, JointSymbols};
 use crate::graph::{E, SharedGraph, Sym, count};
-use crate::poly::{P, Poly, Var};
+use crate::poly::{Basis, P, Poly, Var};
 use dhgen_model::{JointKind, RobotModel};
 use std::cell::OnceCell;
 use std::rc::Rc;
@@ -121,11 +121,50 @@ pub fn cheapest(candidates: Vec<(SharedGraph, Vec<E>)>) -> (SharedGraph, Vec<E>)
         .expect("at least one candidate")
 }
 
-/// Polynomials as expressions in `g`, Horner-factored.
+/// Runs of consecutive revolute joints with parallel axes (no constant rotation between
+/// them): their angles add up, and `cos(θ2 + θ3)` is one variable instead of four terms.
+pub fn parallel_runs(model: &RobotModel) -> Basis {
+    let n = model.dof();
+    let mut start: Vec<usize> = (0..n).collect();
+    for k in 1..n {
+        let both_revolute = model.links[k - 1].joint == JointKind::Revolute
+            && model.links[k].joint == JointKind::Revolute;
+        // The constant rotation between joint k-1's and joint k's frames is Rx(α) of row
+        // k-1 (standard) or row k (modified).
+        let alpha = match model.convention {
+            dhgen_model::Convention::Standard => model.links[k - 1].alpha,
+            dhgen_model::Convention::Modified => model.links[k].alpha,
+        };
+        if both_revolute && alpha.quarter_turn() == Some((1, 0)) {
+            start[k] = start[k - 1];
+        }
+    }
+    Basis { start }
+}
+
+/// Polynomials as expressions in `g`, Horner-factored; each polynomial is written in
+/// cumulative angles of parallel axes when that gives fewer terms.
 pub fn polys_to_exprs(polys: &[Poly], g: &SharedGraph, model: &RobotModel) -> Vec<E> {
     let v = vars(model);
+    let runs = parallel_runs(model);
+    let plain = Basis::joint_angles(model.dof());
     polys
         .iter()
-        .map(|p| crate::poly::to_expr(p, g, &v))
+        .map(|p| {
+            if runs == plain {
+                return crate::poly::to_expr(p, g, &v);
+            }
+            let mut q = p.clone();
+            for k in 1..model.dof() {
+                if runs.start[k] != k {
+                    q = q.to_cumulative(k, &v);
+                }
+            }
+            if q.terms().len() < p.terms().len() {
+                crate::poly::to_expr_in(&q, g, &v, &runs)
+            } else {
+                crate::poly::to_expr(p, g, &v)
+            }
+        })
         .collect()
 }

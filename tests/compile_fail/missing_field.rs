@@ -1,0 +1,11 @@
+// A link without its required `alpha`: the error points at that link's table.
+dhgen::robot! {
+    pub mod arm {
+        convention: standard,
+        links: [
+            { joint: revolute, a: 1.0, d: 0.0, theta: 0.0 },
+        ],
+    }
+}
+
+fn main() {}
