@@ -12,6 +12,9 @@ pub use dhgen_macros::robot;
 // Lets generated code name `::dhgen` inside this crate's own tests and docs too.
 extern crate self as dhgen;
 
+mod arm;
+pub use arm::{Arm, ArmAllocator, ArmDynamics, JointVector};
+
 #[cfg(feature = "std")]
 mod dynamics;
 #[cfg(feature = "std")]

@@ -364,6 +364,34 @@ pub fn generate(model: &RobotModel, vis: TokenStream, name: &Ident, doc: &str) -
         quote!()
     };
     let robot_name = &model.name;
+    let limits = model.links.iter().map(|l| match l.limits {
+        Some([lo, hi]) => quote!(Some([#lo, #hi])),
+        None => quote!(None),
+    });
+    let prismatic = model.links.iter().map(|l| l.joint == JointKind::Prismatic);
+    let arm_dynamics = if dynamics {
+        quote! {
+            impl ::dhgen::ArmDynamics for Model {
+                fn mass_matrix(&self, q: &na::SVector<f64, DOF>) -> na::SMatrix<f64, DOF, DOF> {
+                    State::new(&(*q).into()).mass_matrix()
+                }
+                fn coriolis(&self, q: &na::SVector<f64, DOF>, qd: &na::SVector<f64, DOF>) -> na::SMatrix<f64, DOF, DOF> {
+                    State::new(&(*q).into()).coriolis(&(*qd).into())
+                }
+                fn gravity(&self, q: &na::SVector<f64, DOF>) -> na::SVector<f64, DOF> {
+                    State::new(&(*q).into()).gravity()
+                }
+                fn inverse_dynamics(&self, q: &na::SVector<f64, DOF>, qd: &na::SVector<f64, DOF>, qdd: &na::SVector<f64, DOF>) -> na::SVector<f64, DOF> {
+                    State::new(&(*q).into()).inverse_dynamics(&(*qd).into(), &(*qdd).into())
+                }
+                fn forward_dynamics(&self, q: &na::SVector<f64, DOF>, qd: &na::SVector<f64, DOF>, tau: &na::SVector<f64, DOF>) -> Option<na::SVector<f64, DOF>> {
+                    State::new(&(*q).into()).forward_dynamics(&(*qd).into(), &(*tau).into())
+                }
+            }
+        }
+    } else {
+        quote!()
+    };
     let tokens = quote! {
         #[doc = #doc]
         #[allow(clippy::all, clippy::pedantic, clippy::nursery, non_snake_case, unused_parens)]
@@ -431,6 +459,44 @@ pub fn generate(model: &RobotModel, vis: TokenStream, name: &Ident, doc: &str) -
                 State::new(q).jacobian()
             }
             #dyn_free
+
+            /// The robot as a value implementing [`::dhgen::Arm`] (f64), for algorithms written
+            /// once for every robot (inverse kinematics, planners, controllers).
+            #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+            pub struct Model;
+
+            /// Joint limits `[lower, upper]` per joint, where the description gives them.
+            pub const LIMITS: [Option<[f64; 2]>; DOF] = [#(#limits),*];
+            /// Whether each joint is prismatic.
+            pub const PRISMATIC: [bool; DOF] = [#(#prismatic),*];
+
+            impl ::dhgen::Arm for Model {
+                type Dof = na::Const<DOF>;
+                fn dof(&self) -> usize {
+                    DOF
+                }
+                fn dim(&self) -> na::Const<DOF> {
+                    na::Const
+                }
+                fn limits(&self, j: usize) -> Option<[f64; 2]> {
+                    LIMITS.get(j).copied().flatten()
+                }
+                fn is_prismatic(&self, j: usize) -> bool {
+                    PRISMATIC.get(j).copied().unwrap_or(false)
+                }
+                fn fk(&self, q: &na::SVector<f64, DOF>) -> na::Isometry3<f64> {
+                    State::new(&(*q).into()).fk()
+                }
+                fn frames_into(&self, q: &na::SVector<f64, DOF>, out: &mut [na::Isometry3<f64>]) {
+                    for (o, f) in out.iter_mut().zip(State::new(&(*q).into()).frames()) {
+                        *o = f;
+                    }
+                }
+                fn jacobian(&self, q: &na::SVector<f64, DOF>) -> na::SMatrix<f64, 6, DOF> {
+                    State::new(&(*q).into()).jacobian()
+                }
+            }
+            #arm_dynamics
 
             fn isometry<T: na::RealField + Copy>(m: &na::Matrix4<T>) -> na::Isometry3<T> {
                 let r = na::Rotation3::from_matrix_unchecked(m.fixed_view::<3, 3>(0, 0).into_owned());

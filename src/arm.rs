@@ -1,0 +1,177 @@
+//! One interface to every robot: a generated module's `Model` and the runtime
+//! [`Robot`](crate::Robot) both implement [`Arm`] (and [`ArmDynamics`] when the description
+//! has mass properties), so inverse kinematics, planners and controllers are written once.
+//!
+//! Joint vectors are nalgebra vectors of dimension [`Arm::Dof`]: `Const<N>` for generated
+//! robots, so algorithms generic over the trait allocate nothing there, and `Dyn` for the
+//! runtime path.
+//!
+//! ```
+//! use dhgen::Arm;
+//! dhgen::robot!(mod planar = "robots/planar_elbow.toml");
+//!
+//! fn reach<A: Arm>(arm: &A, q: &dhgen::nalgebra::OVector<f64, A::Dof>) -> f64
+//! where
+//!     dhgen::nalgebra::DefaultAllocator: dhgen::ArmAllocator<A::Dof>,
+//! {
+//!     arm.fk(q).translation.vector.norm()
+//! }
+//!
+//! let q = dhgen::nalgebra::SVector::<f64, 2>::new(0.0, 0.0);
+//! assert!((reach(&planar::Model, &q) - 1.8).abs() < 1e-12);
+//! ```
+
+use nalgebra::allocator::Allocator;
+use nalgebra::{DefaultAllocator, Dim, Isometry3, OMatrix, OVector, U6};
+
+/// The allocator bounds every [`Arm`] needs: joint vectors, the 6×n Jacobian and n×n
+/// matrices. Repeat `DefaultAllocator: ArmAllocator<A::Dof>` in generic code.
+pub trait ArmAllocator<D: Dim>: Allocator<D> + Allocator<U6, D> + Allocator<D, D> {}
+
+impl<D: Dim, A> ArmAllocator<D> for A where A: Allocator<D> + Allocator<U6, D> + Allocator<D, D> {}
+
+/// A joint vector of an arm.
+pub type JointVector<A> = OVector<f64, <A as Arm>::Dof>;
+
+/// Kinematics of a serial arm.
+pub trait Arm
+where
+    DefaultAllocator: ArmAllocator<Self::Dof>,
+{
+    /// The dimension of joint vectors: `Const<N>` (generated) or `Dyn` (runtime).
+    type Dof: Dim;
+
+    /// Number of joints.
+    fn dof(&self) -> usize;
+
+    /// The joint dimension as a value, to build vectors with `OVector::zeros_generic`.
+    fn dim(&self) -> Self::Dof;
+
+    /// Joint limits `[lower, upper]` of joint `j` (0-based), if the description gives them.
+    fn limits(&self, j: usize) -> Option<[f64; 2]>;
+
+    /// Whether joint `j` is prismatic.
+    fn is_prismatic(&self, j: usize) -> bool;
+
+    /// Pose of the tool frame in the world frame: base · A1 ⋯ An · tool.
+    fn fk(&self, q: &OVector<f64, Self::Dof>) -> Isometry3<f64>;
+
+    /// Writes the link frames (world frame, tool not applied) into `out`, as many as fit.
+    fn frames_into(&self, q: &OVector<f64, Self::Dof>, out: &mut [Isometry3<f64>]);
+
+    /// Geometric Jacobian of the tool frame origin, world axes, rows `[v; ω]`.
+    fn jacobian(&self, q: &OVector<f64, Self::Dof>) -> OMatrix<f64, U6, Self::Dof>;
+}
+
+/// Rigid-body dynamics of a serial arm (`τ = D q̈ + C q̇ + g`, plus motor inertia and
+/// friction when described).
+pub trait ArmDynamics: Arm
+where
+    DefaultAllocator: ArmAllocator<Self::Dof>,
+{
+    /// Joint-space inertia matrix D(q).
+    fn mass_matrix(&self, q: &OVector<f64, Self::Dof>) -> OMatrix<f64, Self::Dof, Self::Dof>;
+
+    /// Coriolis matrix C(q, q̇), `C_kj = Σ_i c_ijk q̇_i`.
+    fn coriolis(
+        &self,
+        q: &OVector<f64, Self::Dof>,
+        qd: &OVector<f64, Self::Dof>,
+    ) -> OMatrix<f64, Self::Dof, Self::Dof>;
+
+    /// Gravity torques g(q).
+    fn gravity(&self, q: &OVector<f64, Self::Dof>) -> OVector<f64, Self::Dof>;
+
+    /// Inverse dynamics τ(q, q̇, q̈).
+    fn inverse_dynamics(
+        &self,
+        q: &OVector<f64, Self::Dof>,
+        qd: &OVector<f64, Self::Dof>,
+        qdd: &OVector<f64, Self::Dof>,
+    ) -> OVector<f64, Self::Dof>;
+
+    /// Forward dynamics q̈(q, q̇, τ); `None` where D(q) is not positive definite.
+    fn forward_dynamics(
+        &self,
+        q: &OVector<f64, Self::Dof>,
+        qd: &OVector<f64, Self::Dof>,
+        tau: &OVector<f64, Self::Dof>,
+    ) -> Option<OVector<f64, Self::Dof>>;
+}
+
+#[cfg(feature = "std")]
+mod runtime {
+    use super::{Arm, ArmDynamics};
+    use crate::{JointKind, Robot};
+    use nalgebra::{DMatrix, DVector, Dyn, Isometry3, OMatrix, U6};
+
+    impl Arm for Robot {
+        type Dof = Dyn;
+
+        fn dof(&self) -> usize {
+            Robot::dof(self)
+        }
+
+        fn dim(&self) -> Dyn {
+            Dyn(Robot::dof(self))
+        }
+
+        fn limits(&self, j: usize) -> Option<[f64; 2]> {
+            self.model().links.get(j)?.limits
+        }
+
+        fn is_prismatic(&self, j: usize) -> bool {
+            self.model()
+                .links
+                .get(j)
+                .is_some_and(|l| l.joint == JointKind::Prismatic)
+        }
+
+        fn fk(&self, q: &DVector<f64>) -> Isometry3<f64> {
+            Robot::fk(self, q.as_slice())
+        }
+
+        fn frames_into(&self, q: &DVector<f64>, out: &mut [Isometry3<f64>]) {
+            for (o, f) in out.iter_mut().zip(Robot::frames(self, q.as_slice())) {
+                *o = f;
+            }
+        }
+
+        fn jacobian(&self, q: &DVector<f64>) -> OMatrix<f64, U6, Dyn> {
+            let j = Robot::jacobian(self, q.as_slice());
+            OMatrix::<f64, U6, Dyn>::from_fn_generic(U6, Dyn(j.ncols()), |r, c| j[(r, c)])
+        }
+    }
+
+    impl ArmDynamics for Robot {
+        fn mass_matrix(&self, q: &DVector<f64>) -> DMatrix<f64> {
+            Robot::mass_matrix(self, q.as_slice())
+        }
+
+        fn coriolis(&self, q: &DVector<f64>, qd: &DVector<f64>) -> DMatrix<f64> {
+            Robot::coriolis(self, q.as_slice(), qd.as_slice())
+        }
+
+        fn gravity(&self, q: &DVector<f64>) -> DVector<f64> {
+            Robot::gravity(self, q.as_slice())
+        }
+
+        fn inverse_dynamics(
+            &self,
+            q: &DVector<f64>,
+            qd: &DVector<f64>,
+            qdd: &DVector<f64>,
+        ) -> DVector<f64> {
+            Robot::inverse_dynamics(self, q.as_slice(), qd.as_slice(), qdd.as_slice())
+        }
+
+        fn forward_dynamics(
+            &self,
+            q: &DVector<f64>,
+            qd: &DVector<f64>,
+            tau: &DVector<f64>,
+        ) -> Option<DVector<f64>> {
+            Robot::forward_dynamics(self, q.as_slice(), qd.as_slice(), tau.as_slice())
+        }
+    }
+}
