@@ -336,11 +336,10 @@ proptest! {
 
     /// From limits: every joint within its vmax and amax, segments timed by their slowest joint.
     #[test]
-    fn blends_from_limits((times, points) in via_points(), t0 in -10.0..10.0f64,
+    fn blends_from_limits((_, points) in via_points(), t0 in -10.0..10.0f64,
                           vmax in prop::collection::vec((-1.0..2.0f64).prop_map(|e| 10f64.powf(e)), 3),
                           amax in prop::collection::vec((-1.0..3.0f64).prop_map(|e| 10f64.powf(e)), 3),
                           repeat in any::<bool>()) {
-        let _ = times;
         let dof = points[0].len();
         let mut points = points;
         if repeat {
@@ -363,6 +362,31 @@ proptest! {
             let cruise = (0..dof).map(|j| (points[k][j] - points[k - 1][j]).abs() / vmax[j]).fold(0.0, f64::max);
             let want = cruise.max(tacc);
             assert_close(&format!("segment {k} duration"), corners[k] - corners[k - 1], want, want + t0.abs());
+        }
+        // tacc is the smallest blend time whose blends all stay within amax: at tacc some blend
+        // uses its joint's full amax, and every sampled shorter blend time overloads some joint.
+        let worst = |tacc: f64| {
+            let velocity = |k: usize, j: usize| {
+                if k == 0 || k > m {
+                    return 0.0;
+                }
+                let cruise = (0..dof).map(|i| (points[k][i] - points[k - 1][i]).abs() / vmax[i]).fold(0.0, f64::max);
+                let d = cruise.max(tacc);
+                if d > 0.0 { (points[k][j] - points[k - 1][j]) / d } else { 0.0 }
+            };
+            (0..=m)
+                .flat_map(|k| (0..dof).map(move |j| (k, j)))
+                .map(|(k, j)| (velocity(k + 1, j) - velocity(k, j)).abs() / (amax[j] * tacc))
+                .fold(0.0, f64::max)
+        };
+        let moves = points.windows(2).any(|w| w[0] != w[1]);
+        if moves {
+            let at_tacc = worst(tacc);
+            prop_assert!((at_tacc - 1.0).abs() <= 1e-9, "at tacc = {} the largest blend uses {} of amax", tacc, at_tacc);
+            for fraction in [0.25, 0.5, 0.75, 0.9, 0.99, 0.999] {
+                let shorter = worst(fraction * tacc);
+                prop_assert!(shorter > 1.0, "tacc * {} = {} would also do ({} of amax)", fraction, fraction * tacc, shorter);
+            }
         }
         for j in 0..dof {
             check_blend_joint(&path, &points, j);

@@ -292,6 +292,82 @@ impl<R: Ring> Chain<R> {
         d
     }
 
+    /// `∂D_ij/∂q_k` for all k, i, j (`[k][i][j]`), analytically from the recursion.
+    ///
+    /// With motion subspaces S, composite inertias Ic and `F_j = Ic_j S_j`, for `i ≤ j`:
+    /// the derivative is 0 for `k ≤ i`; `(S_i × S_k)·F_j` for `i < k ≤ j`; and
+    /// `(S_i × S_k)·(Ic_k S_j) − (S_k × S_j)·(Ic_k S_i)` for `j < k`. Everything is expressed
+    /// in the joint frame K_k: F_j is carried down from K_j as in [`Chain::mass_matrix`], the
+    /// S_i are carried up from K_i, and `S_k × ·` of the local axis is a component swap.
+    pub fn mass_matrix_derivatives(&self) -> Vec<Vec<Vec<R>>> {
+        let n = self.dof();
+        let z = || k::<R>(0.0);
+        let ic = self.composites();
+        // F_j expressed in K_k for k <= j: fw[j][k].
+        let mut fw: Vec<Vec<Option<Spatial<R>>>> = vec![vec![None; n]; n];
+        for j in 0..n {
+            let mut w = inertia_times(&ic[j], &self.axis(j));
+            fw[j][j] = Some(w.clone());
+            for kk in (0..j).rev() {
+                w = wrench_down(&self.t[kk + 1], &w);
+                fw[j][kk] = Some(w.clone());
+            }
+        }
+        // S_i expressed in K_k for k >= i: sv[i][k].
+        let mut sv: Vec<Vec<Option<Spatial<R>>>> = vec![vec![None; n]; n];
+        for i in 0..n {
+            let mut s = self.axis(i);
+            sv[i][i] = Some(s.clone());
+            for kk in i + 1..n {
+                s = motion_up(&self.t[kk], &s);
+                sv[i][kk] = Some(s.clone());
+            }
+        }
+        let mut dd = vec![vec![vec![z(); n]; n]; n];
+        for kk in 0..n {
+            let sk = self.axis(kk);
+            let b: Vec<Option<Spatial<R>>> = (0..n)
+                .map(|i| (i < kk).then(|| motion_cross(&sk, sv[i][kk].as_ref().expect("i < k"))))
+                .collect();
+            let w: Vec<Spatial<R>> = (0..n)
+                .map(|j| match &fw[j][kk] {
+                    Some(f) if j >= kk => f.clone(),
+                    _ => inertia_times(&ic[kk], sv[j][kk].as_ref().expect("j < k")),
+                })
+                .collect();
+            for i in 0..n {
+                for j in i..n {
+                    if i >= kk {
+                        continue;
+                    }
+                    let bi = b[i].as_ref().expect("i < k");
+                    let mut v = -pair(bi, &w[j]);
+                    if let Some(bj) = &b[j] {
+                        v = v - pair(bj, &w[i]);
+                    }
+                    dd[kk][j][i] = v.clone();
+                    dd[kk][i][j] = v;
+                }
+            }
+        }
+        dd
+    }
+
+    /// Joint j's motion subspace in K_j: rotation about, or translation along, z.
+    fn axis(&self, j: usize) -> Spatial<R> {
+        let (o, i) = (k::<R>(0.0), k::<R>(1.0));
+        match self.kinds[j] {
+            JointKind::Revolute => Spatial {
+                a: [o.clone(), o.clone(), i],
+                b: [o.clone(), o.clone(), o],
+            },
+            JointKind::Prismatic => Spatial {
+                a: [o.clone(), o.clone(), o.clone()],
+                b: [o.clone(), o, i],
+            },
+        }
+    }
+
     fn component(&self, i: usize, n: &V3<R>, f: &V3<R>) -> R {
         match self.kinds[i] {
             JointKind::Revolute => n[2].clone(),
@@ -415,6 +491,56 @@ impl<R: Ring> Chain<R> {
             })
             .collect()
     }
+}
+
+/// A spatial vector: motion `(ω, v)` or force `(n, f)`, both at the frame origin.
+#[derive(Clone, Debug)]
+pub struct Spatial<R> {
+    /// ω or n.
+    pub a: V3<R>,
+    /// v or f.
+    pub b: V3<R>,
+}
+
+/// `Ic · (ω, v)` = `(Ī ω + h × v, m v − h × ω)`.
+fn inertia_times<R: Ring>(body: &Body<R>, m: &Spatial<R>) -> Spatial<R> {
+    Spatial {
+        a: add3(&mat_vec(&body.i, &m.a), &cross(&body.h, &m.b)),
+        b: core::array::from_fn(|i| {
+            body.m.clone() * m.b[i].clone() - cross(&body.h, &m.a)[i].clone()
+        }),
+    }
+}
+
+/// A force in the child frame of `t`, expressed in its parent.
+fn wrench_down<R: Ring>(t: &Frame<R>, w: &Spatial<R>) -> Spatial<R> {
+    let f = rot(t, &w.b);
+    Spatial {
+        a: add3(&rot(t, &w.a), &cross(&t.p, &f)),
+        b: f,
+    }
+}
+
+/// A motion in the parent frame of `t`, expressed in the child.
+fn motion_up<R: Ring>(t: &Frame<R>, m: &Spatial<R>) -> Spatial<R> {
+    let v = core::array::from_fn(|i| m.b[i].clone() - cross(&t.p, &m.a)[i].clone());
+    Spatial {
+        a: rot_t(t, &m.a),
+        b: rot_t(t, &v),
+    }
+}
+
+/// Motion cross product `(ω1, v1) × (ω2, v2) = (ω1 × ω2, ω1 × v2 + v1 × ω2)`.
+fn motion_cross<R: Ring>(x: &Spatial<R>, y: &Spatial<R>) -> Spatial<R> {
+    Spatial {
+        a: cross(&x.a, &y.a),
+        b: add3(&cross(&x.a, &y.b), &cross(&x.b, &y.a)),
+    }
+}
+
+/// The power of a motion against a force: `ω·n + v·f`.
+fn pair<R: Ring>(m: &Spatial<R>, f: &Spatial<R>) -> R {
+    dot(&m.a, &f.a) + dot(&m.b, &f.b)
 }
 
 fn mat_vec<R: Ring>(m: &[[R; 3]; 3], v: &V3<R>) -> V3<R> {

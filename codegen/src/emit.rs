@@ -5,7 +5,7 @@
 //! of one quantity are split into parts of at most [`MAX_STATEMENTS`] statements, each
 //! its own function writing into the caller's output.
 
-use crate::graph::{E, Graph, Id, Node, OpCount, SharedGraph, Sym, count, reachable};
+use crate::graph::{E, Id, Node, OpCount, SharedGraph, Sym, count, reachable};
 use proc_macro2::{Ident, Literal, Span, TokenStream};
 use quote::quote;
 use std::collections::HashMap;
@@ -25,8 +25,10 @@ pub struct Output {
 pub struct Emitted {
     /// Statement lists, each at most [`MAX_STATEMENTS`] long.
     pub parts: Vec<Vec<TokenStream>>,
-    /// Operations in the emitted code (summed over parts).
+    /// Operations in the emitted code.
     pub ops: OpCount,
+    /// Values passed between parts.
+    pub scratch: usize,
 }
 
 fn ident(s: &str) -> Ident {
@@ -53,6 +55,10 @@ pub fn constant(x: f64) -> TokenStream {
 }
 
 /// Emits the outputs; constants that are outputs are stored directly.
+///
+/// The nodes are cut, in dependency order, into parts of at most [`MAX_STATEMENTS`]
+/// statements. A value that a later part needs is passed through a scratch array
+/// (`w[slot]`), so every node is computed exactly once however the function is split.
 pub fn emit(g: &SharedGraph, outputs: Vec<Output>) -> Emitted {
     let graph = g.borrow();
     let ids: Vec<Option<Id>> = outputs
@@ -62,94 +68,150 @@ pub fn emit(g: &SharedGraph, outputs: Vec<Output>) -> Emitted {
             E::N(_, id) => Some(*id),
         })
         .collect();
-    // Group outputs into parts under the statement limit.
-    let mut groups: Vec<Vec<usize>> = vec![Vec::new()];
+    let order = reachable(&graph, ids.iter().flatten().copied());
+    let ops = count(&graph, ids.iter().flatten().copied());
+    let is_op = |id: Id| !matches!(graph.node(id), Node::Sym(_) | Node::Const(_));
+    // The outputs stored by the part that computes their node; constant outputs go first.
+    let mut stored_at: HashMap<Id, Vec<usize>> = HashMap::new();
     for (i, id) in ids.iter().enumerate() {
-        let current = groups.last_mut().expect("non-empty");
-        current.push(i);
-        let size = part_size(&graph, current, &ids);
-        if size > MAX_STATEMENTS && current.len() > 1 {
-            current.pop();
-            groups.push(vec![i]);
+        if let Some(id) = id {
+            stored_at.entry(*id).or_default().push(i);
         }
-        let _ = id;
     }
-    let mut ops = OpCount::default();
-    let parts = groups
-        .into_iter()
-        .filter(|grp| !grp.is_empty())
-        .map(|grp| {
-            let roots: Vec<Id> = grp.iter().filter_map(|&i| ids[i]).collect();
-            ops += count(&graph, roots.iter().copied());
-            let mut stmts = Vec::new();
-            let mut names: HashMap<Id, TokenStream> = HashMap::new();
-            let mut temp = 0usize;
-            for id in reachable(&graph, roots) {
-                let name = match graph.node(id) {
-                    Node::Sym(s) => {
-                        let (n, load) = sym_load(s);
-                        stmts.push(quote!(let #n: T = #load;));
-                        quote!(#n)
-                    }
-                    Node::Const(bits) => {
-                        let n = ident(&format!("k{temp}"));
-                        temp += 1;
-                        let c = constant(f64::from_bits(bits));
-                        stmts.push(quote!(let #n: T = #c;));
-                        quote!(#n)
-                    }
-                    node => {
-                        let n = ident(&format!("t{temp}"));
-                        temp += 1;
-                        let v = |x: Id| names[&x].clone();
-                        let rhs = match node {
-                            Node::Add(a, b) => {
-                                let (a, b) = (v(a), v(b));
-                                quote!(#a + #b)
-                            }
-                            Node::Sub(a, b) => {
-                                let (a, b) = (v(a), v(b));
-                                quote!(#a - #b)
-                            }
-                            Node::Mul(a, b) => {
-                                let (a, b) = (v(a), v(b));
-                                quote!(#a * #b)
-                            }
-                            Node::Div(a, b) => {
-                                let (a, b) = (v(a), v(b));
-                                quote!(#a / #b)
-                            }
-                            Node::Neg(a) => {
-                                let a = v(a);
-                                quote!(-#a)
-                            }
-                            Node::Sqrt(a) => {
-                                let a = v(a);
-                                quote!(#a.sqrt())
-                            }
-                            Node::Sym(_) | Node::Const(_) => unreachable!("handled above"),
-                        };
-                        stmts.push(quote!(let #n: T = #rhs;));
-                        quote!(#n)
-                    }
-                };
-                names.insert(id, name);
+    // Cut the operation nodes into parts by statement budget (operations + stores +
+    // values read from earlier parts, estimated generously by the operands).
+    let mut part_of: HashMap<Id, usize> = HashMap::new();
+    let mut parts_nodes: Vec<Vec<Id>> = vec![Vec::new()];
+    let mut budget = 0usize;
+    for &id in &order {
+        if !is_op(id) {
+            continue;
+        }
+        let cost = 1 + stored_at.get(&id).map_or(0, Vec::len) + 2;
+        if budget + cost > MAX_STATEMENTS && !parts_nodes.last().expect("non-empty").is_empty() {
+            parts_nodes.push(Vec::new());
+            budget = 0;
+        }
+        budget += cost;
+        part_of.insert(id, parts_nodes.len() - 1);
+        parts_nodes.last_mut().expect("non-empty").push(id);
+    }
+    // Values crossing parts get scratch slots.
+    let mut slot: HashMap<Id, usize> = HashMap::new();
+    for &id in &order {
+        if !is_op(id) {
+            continue;
+        }
+        for child in children(graph.node(id)) {
+            if is_op(child) && part_of[&child] != part_of[&id] && !slot.contains_key(&child) {
+                let n = slot.len();
+                slot.insert(child, n);
             }
-            for &i in &grp {
+        }
+    }
+    let mut parts = Vec::new();
+    for (p, nodes) in parts_nodes.iter().enumerate() {
+        let mut stmts = Vec::new();
+        let mut names: HashMap<Id, TokenStream> = HashMap::new();
+        let mut temp = 0usize;
+        // Inputs of this part: symbols, constants and values of earlier parts.
+        let mut needed: Vec<Id> = nodes
+            .iter()
+            .flat_map(|&id| children(graph.node(id)))
+            .filter(|c| !is_op(*c) || part_of[c] != p)
+            .collect();
+        if p == 0 {
+            // Constant-valued... none here; symbol or constant outputs are stored by part 0.
+            needed.extend(ids.iter().flatten().copied().filter(|id| !is_op(*id)));
+        }
+        needed.sort_unstable();
+        needed.dedup();
+        for id in needed {
+            let (n, load) = match graph.node(id) {
+                Node::Sym(s) => sym_load(s),
+                Node::Const(bits) => {
+                    let n = ident(&format!("k{temp}"));
+                    temp += 1;
+                    (n, constant(f64::from_bits(bits)))
+                }
+                _ => {
+                    let n = ident(&format!("t{id}"));
+                    let k = slot[&id];
+                    (n, quote!(w[#k]))
+                }
+            };
+            stmts.push(quote!(let #n: T = #load;));
+            names.insert(id, quote!(#n));
+        }
+        for &id in nodes {
+            let n = ident(&format!("t{id}"));
+            let v = |x: Id| names[&x].clone();
+            let rhs = match graph.node(id) {
+                Node::Add(a, b) => {
+                    let (a, b) = (v(a), v(b));
+                    quote!(#a + #b)
+                }
+                Node::Sub(a, b) => {
+                    let (a, b) = (v(a), v(b));
+                    quote!(#a - #b)
+                }
+                Node::Mul(a, b) => {
+                    let (a, b) = (v(a), v(b));
+                    quote!(#a * #b)
+                }
+                Node::Div(a, b) => {
+                    let (a, b) = (v(a), v(b));
+                    quote!(#a / #b)
+                }
+                Node::Neg(a) => {
+                    let a = v(a);
+                    quote!(-#a)
+                }
+                Node::Sqrt(a) => {
+                    let a = v(a);
+                    quote!(#a.sqrt())
+                }
+                Node::Sym(_) | Node::Const(_) => unreachable!("operations only"),
+            };
+            stmts.push(quote!(let #n: T = #rhs;));
+            names.insert(id, quote!(#n));
+            if let Some(&k) = slot.get(&id) {
+                stmts.push(quote!(w[#k] = #n;));
+            }
+            for &i in stored_at.get(&id).map_or(&[][..], Vec::as_slice) {
                 let target = &outputs[i].target;
-                let value = match (&outputs[i].value, ids[i]) {
-                    (_, Some(id)) => names[&id].clone(),
-                    (E::K(x), None) => constant(*x),
-                    (E::N(..), None) => unreachable!("nodes have ids"),
-                };
-                stmts.push(quote!(#target = #value;));
+                stmts.push(quote!(#target = #n;));
             }
-            stmts
-        })
-        .collect();
-    Emitted { parts, ops }
+        }
+        if p == 0 {
+            for (i, o) in outputs.iter().enumerate() {
+                let target = &o.target;
+                match (&o.value, ids[i]) {
+                    (E::K(x), _) => {
+                        let c = constant(*x);
+                        stmts.push(quote!(#target = #c;));
+                    }
+                    (_, Some(id)) if !is_op(id) => {
+                        let value = names[&id].clone();
+                        stmts.push(quote!(#target = #value;));
+                    }
+                    _ => {}
+                }
+            }
+        }
+        parts.push(stmts);
+    }
+    Emitted {
+        parts,
+        ops,
+        scratch: slot.len(),
+    }
 }
 
-fn part_size(graph: &Graph, group: &[usize], ids: &[Option<Id>]) -> usize {
-    reachable(graph, group.iter().filter_map(|&i| ids[i])).len() + group.len()
+fn children(node: Node) -> Vec<Id> {
+    match node {
+        Node::Add(a, b) | Node::Sub(a, b) | Node::Mul(a, b) | Node::Div(a, b) => vec![a, b],
+        Node::Neg(a) | Node::Sqrt(a) => vec![a],
+        Node::Const(_) | Node::Sym(_) => vec![],
+    }
 }

@@ -41,16 +41,17 @@ fn quantity(
         let stmts = &emitted.parts[0];
         quote!(#(#stmts)*)
     } else {
-        let mut calls = Vec::new();
+        let w = emitted.scratch.max(1);
+        let mut calls = vec![quote!(let mut w = [T::zero(); #w];)];
         for (i, stmts) in emitted.parts.iter().enumerate() {
             let part = format_ident!("{}_part{}", name, i);
             parts.push(quote! {
                 #[inline(never)]
-                fn #part(&self, #params out: &mut #out_ty) {
+                fn #part(&self, #params w: &mut [T; #w], out: &mut #out_ty) {
                     #(#stmts)*
                 }
             });
-            calls.push(quote!(self.#part(#args &mut out);));
+            calls.push(quote!(self.#part(#args &mut w, &mut out);));
         }
         quote!(#(#calls)*)
     };

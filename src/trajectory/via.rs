@@ -3,7 +3,7 @@
 //!
 //! Both store their knots on the heap, so they need the `std` feature.
 
-use super::{Location, MultiProfile, Profile, State, TrajectoryError, abs, finite, positive};
+use super::{Location, MultiProfile, Profile, State, TrajectoryError, abs, finite, positive, sqrt};
 
 /// Checks the via points and returns the number of joints: at least two points, all finite and
 /// of one common, non-zero length.
@@ -100,6 +100,92 @@ fn check_limits(name: &'static str, limits: &[f64], dof: usize) -> Result<(), Tr
 fn segment_index(times: &[f64], t: f64) -> usize {
     let after = times.partition_point(|&knot| knot <= t);
     after.saturating_sub(1).min(times.len() - 2)
+}
+
+/// The positive real roots of `a x² + b x + c` (`a > 0`), computed without cancellation.
+fn positive_roots(a: f64, b: f64, c: f64) -> [Option<f64>; 2] {
+    let disc = b * b - 4.0 * a * c;
+    if disc.is_nan() || disc < 0.0 {
+        return [None, None];
+    }
+    let q = -0.5 * (b + if b >= 0.0 { sqrt(disc) } else { -sqrt(disc) });
+    let first = q / a;
+    let second = if q != 0.0 { c / q } else { 0.0 };
+    [first, second].map(|x| (x > 0.0 && x.is_finite()).then_some(x))
+}
+
+/// The smallest blend time `tacc > 0` such that, with segment `k` lasting `max(cruise[k], tacc)`,
+/// every blend changes every joint's velocity by at most `amax[j] · tacc`; `None` if nothing moves.
+///
+/// `moves` holds `cruise.len()` rows of per-joint displacements. The condition is not monotone in
+/// `tacc` (stretching one segment can enlarge a velocity change), so instead of iterating it is
+/// solved piecewise: between consecutive cruise durations every segment velocity is either
+/// constant or `Δq / tacc`, so each blend's velocity change is `α + β / tacc` and its constraint
+/// `|α tacc + β| ≤ amax tacc²` switches only at roots of two quadratics. The smallest feasible
+/// `tacc` is therefore a piece's left end or one of those roots: the candidates are checked in
+/// increasing order.
+fn minimal_blend_time(cruise: &[f64], moves: &[f64], amax: &[f64]) -> Option<f64> {
+    let (m, dof) = (cruise.len(), amax.len());
+    // Velocity of segment k (1..=m; 0 and m + 1 are the rests before and after) at blend time tacc.
+    let velocity = |k: usize, j: usize, tacc: f64| {
+        if k == 0 || k > m {
+            return 0.0;
+        }
+        let d = cruise[k - 1].max(tacc);
+        if d > 0.0 {
+            moves[(k - 1) * dof + j] / d
+        } else {
+            0.0
+        }
+    };
+    // Relative slack so that a root, where one constraint holds with equality, is accepted.
+    let feasible = |tacc: f64| {
+        (0..=m).all(|k| {
+            (0..dof).all(|j| {
+                abs(velocity(k + 1, j, tacc) - velocity(k, j, tacc))
+                    <= amax[j] * tacc * (1.0 + 1e-12)
+            })
+        })
+    };
+    let mut breaks: Vec<f64> = cruise.iter().copied().filter(|&c| c > 0.0).collect();
+    breaks.sort_by(f64::total_cmp);
+    breaks.dedup();
+    let mut lower = 0.0;
+    for piece in 0..=breaks.len() {
+        let upper = breaks.get(piece).copied().unwrap_or(f64::INFINITY);
+        // Segment k's velocity on this piece: (constant part, coefficient of 1/tacc).
+        let parts = |k: usize, j: usize| {
+            if k == 0 || k > m {
+                (0.0, 0.0)
+            } else if cruise[k - 1] >= upper {
+                (moves[(k - 1) * dof + j] / cruise[k - 1], 0.0)
+            } else {
+                (0.0, moves[(k - 1) * dof + j])
+            }
+        };
+        let mut candidates: Vec<f64> = Vec::new();
+        if lower > 0.0 {
+            candidates.push(lower);
+        }
+        for k in 0..=m {
+            for (j, &a) in amax.iter().enumerate() {
+                let ((c1, i1), (c0, i0)) = (parts(k + 1, j), parts(k, j));
+                let (alpha, beta) = (c1 - c0, i1 - i0);
+                for root in positive_roots(a, -alpha, -beta)
+                    .into_iter()
+                    .chain(positive_roots(a, alpha, beta))
+                {
+                    candidates.extend(root.filter(|&r| r >= lower && r < upper));
+                }
+            }
+        }
+        candidates.sort_by(f64::total_cmp);
+        if let Some(tacc) = candidates.into_iter().find(|&t| feasible(t)) {
+            return Some(tacc);
+        }
+        lower = upper;
+    }
+    None
 }
 
 /// A borrowed view of one joint of a multi-joint via-point trajectory, usable as a [`Profile`].
@@ -414,14 +500,12 @@ impl BlendedSegments {
     }
 
     /// Linear segments through `points` starting at `t0`, timed by per-joint velocity limits
-    /// `vmax` and acceleration limits `amax` (all positive): every segment lasts as long as its
-    /// slowest joint needs at `vmax` (so all joints arrive together), and the blend time `tacc` is
-    /// the smallest one found whose blends keep every joint within `amax` (segments shorter than
-    /// `tacc` are stretched to `tacc`).
+    /// `vmax` and acceleration limits `amax` (all positive).
     ///
-    /// `tacc` is found by the fixed-point iteration `tacc ← max_k,j |Δv_kj| / amax_j`; if that
-    /// does not settle, the always-feasible `max_j 2 vmax_j / amax_j` is used. For a path that
-    /// never moves, `tacc = max_j vmax_j / amax_j`.
+    /// Every segment lasts as long as its slowest joint needs at `vmax` (so all joints move on a
+    /// straight line and arrive together), but at least `tacc`; `tacc` is the smallest blend time
+    /// for which every blend keeps every joint within `amax` (found exactly, see
+    /// `minimal_blend_time`). For a path that never moves, `tacc = max_j vmax_j / amax_j`.
     pub fn from_limits<R: AsRef<[f64]>>(
         t0: f64,
         points: &[R],
@@ -433,55 +517,26 @@ impl BlendedSegments {
         check_limits("vmax", vmax, dof)?;
         check_limits("amax", amax, dof)?;
         let m = points.len() - 1;
-        let point = |i: usize, j: usize| points[i].as_ref()[j];
-        // Duration of each segment at full speed of its slowest joint (index k - 1 for segment k).
-        let cruise: Vec<f64> = (1..=m)
+        // Row k - 1 holds segment k's displacement.
+        let moves: Vec<f64> = (1..=m)
+            .flat_map(|k| (0..dof).map(move |j| points[k].as_ref()[j] - points[k - 1].as_ref()[j]))
+            .collect();
+        for &d in &moves {
+            finite("via point difference", d)?;
+        }
+        // Duration of each segment at full speed of its slowest joint.
+        let cruise: Vec<f64> = (0..m)
             .map(|k| {
                 (0..dof)
-                    .map(|j| abs(point(k, j) - point(k - 1, j)) / vmax[j])
+                    .map(|j| abs(moves[k * dof + j]) / vmax[j])
                     .fold(0.0, f64::max)
             })
             .collect();
         for &d in &cruise {
             finite("segment duration", d)?;
         }
-        // The largest acceleration ratio |Δv| / amax over all blends when segments last
-        // max(cruise, tacc); velocities of empty segments are 0.
-        let needed_blend = |tacc: f64| {
-            let velocity = |k: usize, j: usize| {
-                if k == 0 || k > m {
-                    return 0.0;
-                }
-                let d = cruise[k - 1].max(tacc);
-                if d > 0.0 {
-                    (point(k, j) - point(k - 1, j)) / d
-                } else {
-                    0.0
-                }
-            };
-            (0..=m)
-                .flat_map(|k| (0..dof).map(move |j| (k, j)))
-                .map(|(k, j)| abs(velocity(k + 1, j) - velocity(k, j)) / amax[j])
-                .fold(0.0, f64::max)
-        };
-        let mut tacc = needed_blend(0.0);
-        let mut settled = false;
-        for _ in 0..200 {
-            let next = needed_blend(tacc);
-            if next <= tacc {
-                settled = true;
-                break;
-            }
-            tacc = next;
-        }
-        if !settled {
-            tacc = (0..dof)
-                .map(|j| 2.0 * vmax[j] / amax[j])
-                .fold(0.0, f64::max);
-        }
-        if tacc == 0.0 {
-            tacc = (0..dof).map(|j| vmax[j] / amax[j]).fold(0.0, f64::max);
-        }
+        let tacc = minimal_blend_time(&cruise, &moves, amax)
+            .unwrap_or_else(|| (0..dof).map(|j| vmax[j] / amax[j]).fold(0.0, f64::max));
         finite("tacc", tacc)?;
         let half = 0.5 * tacc;
         let mut corners = Vec::with_capacity(m + 1);

@@ -42,7 +42,10 @@ pub fn christoffel_polys(model: &RobotModel, d: &[Vec<Poly>]) -> Vec<Vec<Vec<Pol
 /// numbers, whichever is cheaper.
 pub fn christoffel(dv: &Derivation<'_>) -> (SharedGraph, Vec<E>) {
     let model = dv.model;
-    let mut candidates = vec![christoffel_dual(model)];
+    let mut candidates = vec![christoffel_analytic(model)];
+    if model.dof() <= 6 {
+        candidates.push(christoffel_dual(model));
+    }
     if dv.normal_form_is_small() {
         let g = SharedGraph::default();
         let polys: Vec<Poly> = dv
@@ -56,6 +59,24 @@ pub fn christoffel(dv: &Derivation<'_>) -> (SharedGraph, Vec<E>) {
         candidates.push((g, e));
     }
     super::cheapest(candidates)
+}
+
+/// From the analytic derivative of the composite-rigid-body recursion.
+fn christoffel_analytic(model: &RobotModel) -> (SharedGraph, Vec<E>) {
+    let n = model.dof();
+    let g = SharedGraph::default();
+    let dd = super::graph_chain(model, &g).mass_matrix_derivatives();
+    let mut out = Vec::with_capacity(n * n * n);
+    for i in 0..n {
+        for j in 0..n {
+            for k in 0..n {
+                out.push(
+                    (dd[i][k][j].clone() + dd[j][k][i].clone() - dd[k][i][j].clone()) * E::K(0.5),
+                );
+            }
+        }
+    }
+    (g, out)
 }
 
 fn christoffel_dual(model: &RobotModel) -> (SharedGraph, Vec<E>) {
