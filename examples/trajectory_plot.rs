@@ -200,10 +200,10 @@ fn plot(dir: &Path, figure: &Figure<'_>, profile: &dyn MultiProfile) -> Result<(
             .draw()?;
         // The zero line, as in the text's figures.
         chart.draw_series(LineSeries::new([(t0, 0.0), (tf, 0.0)], BLACK.mix(0.4)))?;
-        for joint in 0..samples.dof {
+        for (joint, color) in COLORS.iter().enumerate().take(samples.dof) {
             chart.draw_series(LineSeries::new(
                 samples.joint(joint).map(|(t, s)| (t, value(s))),
-                COLORS[joint].stroke_width(2),
+                color.stroke_width(2),
             ))?;
         }
         if panel_index == 0 {

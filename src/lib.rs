@@ -15,6 +15,9 @@ extern crate self as dhgen;
 mod arm;
 pub use arm::{Arm, ArmAllocator, ArmDynamics, JointVector};
 
+/// Rotations (section 3.5): ZYZ Euler angles, roll-pitch-yaw, axis-angle; what nalgebra lacks.
+pub mod rotation;
+
 #[cfg(feature = "std")]
 mod dynamics;
 #[cfg(feature = "std")]

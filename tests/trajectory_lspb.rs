@@ -31,9 +31,17 @@ fn text_lspb(tau: f64, big_t: f64, q0: f64, qf: f64, v: f64, alpha: f64, tb: f64
     }
 }
 
-/// Everything an LSPB must satisfy, given its expected cruise velocity, acceleration and blend
-/// time (signed as the move).
-fn check_lspb(p: &Lspb, t0: f64, tf: f64, q0: f64, qf: f64, v: f64, alpha: f64, tb: f64) {
+/// The expected cruise velocity, blend acceleration (both signed as the move) and blend time.
+#[derive(Clone, Copy, Debug)]
+struct Blend {
+    v: f64,
+    alpha: f64,
+    tb: f64,
+}
+
+/// Everything an LSPB on `[t0, tf]` from `q0` to `qf` must satisfy, given its expected blend.
+fn check_lspb(p: &Lspb, (t0, tf): (f64, f64), (q0, qf): (f64, f64), blend: Blend) {
+    let Blend { v, alpha, tb } = blend;
     let big_t = tf - t0;
     let scales = Scales {
         q: q0.abs().max(qf.abs()).max(v.abs() * big_t),
@@ -90,7 +98,7 @@ fn check_lspb(p: &Lspb, t0: f64, tf: f64, q0: f64, qf: f64, v: f64, alpha: f64, 
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(10_000))]
+    #![proptest_config(ProptestConfig::with_cases(200_000))]
 
     /// V anywhere in ((qf - q0)/T, 2 (qf - q0)/T], including the bang-bang end; any sign of move.
     #[test]
@@ -103,7 +111,7 @@ proptest! {
         // The text's closed forms: tb = (q0 - qf + V T)/V, α = V/tb.
         let tb = ((q0 - qf + v * big_t) / v).min(0.5 * big_t);
         prop_assert_eq!(p.velocity(), v);
-        check_lspb(&p, t0, tf, q0, qf, v, v / tb, tb);
+        check_lspb(&p, (t0, tf), (q0, qf), Blend { v, alpha: v / tb, tb });
         prop_assert_eq!(p.duration(), big_t);
     }
 
@@ -128,7 +136,7 @@ proptest! {
             assert_close("blend time (closed form)", tb, text_tb, big_t);
         }
         let v = dq.signum() * alpha * tb;
-        check_lspb(&p, t0, tf, q0, qf, v, dq.signum() * alpha, tb);
+        check_lspb(&p, (t0, tf), (q0, qf), Blend { v, alpha: dq.signum() * alpha, tb });
     }
 
     /// Negative moves are exact mirror images of positive ones.

@@ -4,8 +4,8 @@ use std::alloc::{GlobalAlloc, Layout, System};
 use std::cell::Cell;
 
 use dhgen::trajectory::{
-    BlendedSegments, CubicSpline, Location, Lspb, MultiProfile, Profile, Quintic, SplineEnds,
-    State, Synchronized, TrajectoryError, sample, sample_into, sample_multi, sample_multi_into,
+    BlendedSegments, CubicSpline, Location, Lspb, Profile, Quintic, SplineEnds, State,
+    Synchronized, TrajectoryError, sample, sample_into, sample_multi, sample_multi_into,
     sample_times_into, uniform_time,
 };
 

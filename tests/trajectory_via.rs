@@ -149,11 +149,11 @@ fn check_blend_joint(path: &BlendedSegments, points: &[Vec<f64>], j: usize) {
         qd: v_max,
         qdd: a_max,
     };
-    for k in 1..=m {
+    for (k, &v_k) in v.iter().enumerate().take(m + 1).skip(1) {
         assert_close(
             &format!("segment {k} velocity"),
             path.segment_velocity(k).unwrap()[j],
-            v[k],
+            v_k,
             v_max,
         );
     }
@@ -251,7 +251,7 @@ fn check_blend_joint(path: &BlendedSegments, points: &[Vec<f64>], j: usize) {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(10_000))]
+    #![proptest_config(ProptestConfig::with_cases(200_000))]
 
     #[test]
     fn spline_interpolates_with_continuous_acceleration((times, points) in via_points(), kind in 0u8..3,

@@ -314,15 +314,21 @@ impl<R: Ring> Chain<R> {
             }
         }
         // S_i expressed in K_k for k >= i: sv[i][k].
-        let mut sv: Vec<Vec<Option<Spatial<R>>>> = vec![vec![None; n]; n];
-        for i in 0..n {
-            let mut s = self.axis(i);
-            sv[i][i] = Some(s.clone());
-            for kk in i + 1..n {
-                s = motion_up(&self.t[kk], &s);
-                sv[i][kk] = Some(s.clone());
-            }
-        }
+        let sv: Vec<Vec<Option<Spatial<R>>>> = (0..n)
+            .map(|i| {
+                let mut s = self.axis(i);
+                (0..n)
+                    .map(|kk| match kk.cmp(&i) {
+                        core::cmp::Ordering::Less => None,
+                        core::cmp::Ordering::Equal => Some(s.clone()),
+                        core::cmp::Ordering::Greater => {
+                            s = motion_up(&self.t[kk], &s);
+                            Some(s.clone())
+                        }
+                    })
+                    .collect()
+            })
+            .collect();
         let mut dd = vec![vec![vec![z(); n]; n]; n];
         for kk in 0..n {
             let sk = self.axis(kk);

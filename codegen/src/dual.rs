@@ -60,6 +60,8 @@ impl core::ops::Sub for Dual {
     }
 }
 
+// The product rule adds inside a multiplication.
+#[allow(clippy::suspicious_arithmetic_impl)]
 impl core::ops::Mul for Dual {
     type Output = Dual;
     fn mul(self, o: Dual) -> Dual {

@@ -55,6 +55,12 @@ pub enum Node {
     Sqrt(Id),
 }
 
+/// Exact comparison with a structural constant (0, 1 or −1), written as a function so the
+/// intent (an exact identity, not a tolerance) is explicit.
+fn is(x: f64, k: f64) -> bool {
+    x == k
+}
+
 /// The node arena with its hash-consing index.
 #[derive(Default, Debug)]
 pub struct Graph {
@@ -126,8 +132,8 @@ impl Graph {
     pub fn add(&mut self, a: Id, b: Id) -> Id {
         match (self.constant(a), self.constant(b)) {
             (Some(x), Some(y)) => return self.konst(x + y),
-            (Some(x), _) if x == 0.0 => return b,
-            (_, Some(y)) if y == 0.0 => return a,
+            (Some(x), _) if is(x, 0.0) => return b,
+            (_, Some(y)) if is(y, 0.0) => return a,
             _ => {}
         }
         match (self.negated(a), self.negated(b)) {
@@ -148,8 +154,8 @@ impl Graph {
         }
         match (self.constant(a), self.constant(b)) {
             (Some(x), Some(y)) => return self.konst(x - y),
-            (Some(x), _) if x == 0.0 => return self.neg(b),
-            (_, Some(y)) if y == 0.0 => return a,
+            (Some(x), _) if is(x, 0.0) => return self.neg(b),
+            (_, Some(y)) if is(y, 0.0) => return a,
             _ => {}
         }
         match (self.negated(a), self.negated(b)) {
@@ -166,11 +172,11 @@ impl Graph {
     pub fn mul(&mut self, a: Id, b: Id) -> Id {
         match (self.constant(a), self.constant(b)) {
             (Some(x), Some(y)) => return self.konst(x * y),
-            (Some(k), _) | (_, Some(k)) if k == 0.0 => return self.konst(0.0),
-            (Some(k), _) if k == 1.0 => return b,
-            (_, Some(k)) if k == 1.0 => return a,
-            (Some(k), _) if k == -1.0 => return self.neg(b),
-            (_, Some(k)) if k == -1.0 => return self.neg(a),
+            (Some(k), _) | (_, Some(k)) if is(k, 0.0) => return self.konst(0.0),
+            (Some(k), _) if is(k, 1.0) => return b,
+            (_, Some(k)) if is(k, 1.0) => return a,
+            (Some(k), _) if is(k, -1.0) => return self.neg(b),
+            (_, Some(k)) if is(k, -1.0) => return self.neg(a),
             (Some(k), _) if k < 0.0 => {
                 let pk = self.konst(-k);
                 let m = self.mul(pk, b);
@@ -201,8 +207,8 @@ impl Graph {
     pub fn div(&mut self, a: Id, b: Id) -> Id {
         match (self.constant(a), self.constant(b)) {
             (Some(x), Some(y)) => return self.konst(x / y),
-            (Some(x), _) if x == 0.0 => return self.konst(0.0),
-            (_, Some(y)) if y == 1.0 => return a,
+            (Some(x), _) if is(x, 0.0) => return self.konst(0.0),
+            (_, Some(y)) if is(y, 1.0) => return a,
             _ => {}
         }
         self.intern(Node::Div(a, b))

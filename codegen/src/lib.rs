@@ -9,16 +9,18 @@
 //!   construction, constants folded, signs pushed outward);
 //! - [`derive`]: each quantity (T, J, D, c_ijk, C, g, τ), choosing the cheaper derivation;
 //! - [`emit`]: tokens, one `let` per node, functions split under a statement limit;
-//! - [`module`]: the generated module around them.
+//! - [`module`]: the generated module around them;
+//! - [`latex`]: the normal forms of D(q), c_ijk and g(q) as LaTeX equations (`dhgen latex`).
 
 pub mod chain;
 pub mod derive;
 pub mod dual;
 pub mod emit;
 pub mod graph;
+pub mod latex;
 pub mod module;
 pub mod poly;
 
 pub use dhgen_model::RobotModel;
 pub use graph::OpCount;
-pub use module::{Generated, generate};
+pub use module::{Generated, generate, op_counts};

@@ -16,167 +16,172 @@ pub struct Generated {
     pub ops: Vec<(String, OpCount)>,
 }
 
-struct Quantity {
-    method: TokenStream,
-    parts: Vec<TokenStream>,
-}
-
-/// Emits `outputs` as the body of a `State` method: inline when small, otherwise as
-/// private part methods called in turn.
-fn quantity(
-    name: &str,
+/// The signature of one generated `State` method.
+struct Method {
+    name: &'static str,
+    /// `Some(doc)` for a public method.
+    doc: Option<&'static str>,
+    /// Extra parameters, each followed by a comma (`qd: &[T; DOF],`).
     params: TokenStream,
+    /// The same parameters as call arguments (`qd,`).
     args: TokenStream,
     out_ty: TokenStream,
     out_init: TokenStream,
-    g: &SharedGraph,
-    outputs: Vec<Output>,
-    ops: &mut Vec<(String, OpCount)>,
-) -> (TokenStream, Quantity) {
-    let emitted = emit::emit(g, outputs);
-    ops.push((name.to_string(), emitted.ops));
-    let fname = Ident::new(name, Span::call_site());
-    let mut parts = Vec::new();
-    let body = if emitted.parts.len() == 1 {
-        let stmts = &emitted.parts[0];
-        quote!(#(#stmts)*)
-    } else {
-        let w = emitted.scratch.max(1);
-        let mut calls = vec![quote!(let mut w = [T::zero(); #w];)];
-        for (i, stmts) in emitted.parts.iter().enumerate() {
-            let part = format_ident!("{}_part{}", name, i);
-            parts.push(quote! {
-                #[inline(never)]
-                fn #part(&self, #params w: &mut [T; #w], out: &mut #out_ty) {
-                    #(#stmts)*
-                }
-            });
-            calls.push(quote!(self.#part(#args &mut w, &mut out);));
+}
+
+impl Method {
+    /// A method of the configuration only, returning `out_ty`.
+    fn of_q(
+        name: &'static str,
+        doc: &'static str,
+        out_ty: TokenStream,
+        out_init: TokenStream,
+    ) -> Method {
+        Method {
+            name,
+            doc: Some(doc),
+            params: TokenStream::new(),
+            args: TokenStream::new(),
+            out_ty,
+            out_init,
         }
-        quote!(#(#calls)*)
-    };
-    let inner = quote! {
-        fn #fname(&self, #params) -> #out_ty {
-            let mut out: #out_ty = #out_init;
-            #body
-            out
+    }
+}
+
+/// Collects the generated methods, their part functions and their operation counts.
+#[derive(Default)]
+struct Builder {
+    methods: Vec<TokenStream>,
+    parts: Vec<TokenStream>,
+    ops: Vec<(String, OpCount)>,
+}
+
+impl Builder {
+    /// Emits `outputs` as the body of a `State` method: inline when small, otherwise as
+    /// private part methods called in turn, sharing values through a scratch array.
+    fn add(&mut self, m: Method, g: &SharedGraph, outputs: Vec<Output>) {
+        let Method {
+            name,
+            doc,
+            params,
+            args,
+            out_ty,
+            out_init,
+        } = m;
+        let emitted = emit::emit(g, outputs);
+        self.ops.push((name.to_string(), emitted.ops));
+        let fname = Ident::new(name, Span::call_site());
+        let body = if emitted.parts.len() == 1 {
+            let stmts = &emitted.parts[0];
+            quote!(#(#stmts)*)
+        } else {
+            let w = emitted.scratch.max(1);
+            let mut calls = vec![quote!(let mut w = [T::zero(); #w];)];
+            for (i, stmts) in emitted.parts.iter().enumerate() {
+                let part = format_ident!("{}_part{}", name, i);
+                self.parts.push(quote! {
+                    #[inline(never)]
+                    fn #part(&self, #params w: &mut [T; #w], out: &mut #out_ty) {
+                        #(#stmts)*
+                    }
+                });
+                calls.push(quote!(self.#part(#args &mut w, &mut out);));
+            }
+            quote!(#(#calls)*)
+        };
+        let method = quote! {
+            fn #fname(&self, #params) -> #out_ty {
+                let mut out: #out_ty = #out_init;
+                #body
+                out
+            }
+        };
+        match doc {
+            Some(doc) => self
+                .methods
+                .push(quote!(#[doc = #doc] #[must_use] pub #method)),
+            None => self.parts.push(method),
         }
-    };
-    (
-        inner,
-        Quantity {
-            method: TokenStream::new(),
-            parts,
-        },
-    )
+    }
+}
+
+/// Operation counts of every function generated for `model`.
+pub fn op_counts(model: &RobotModel) -> Vec<(String, OpCount)> {
+    let name = Ident::new("robot", Span::call_site());
+    generate(model, TokenStream::new(), &name, "").ops
 }
 
 /// Generates the module `vis mod name { ... }` for `model`.
 pub fn generate(model: &RobotModel, vis: TokenStream, name: &Ident, doc: &str) -> Generated {
     let n = model.dof();
-    let mut ops = Vec::new();
-    let mut methods = Vec::new();
-    let mut parts = Vec::new();
-    let mut add = |inner: TokenStream, q: Quantity, doc: &str| {
-        methods.push(quote!(#[doc = #doc] #[must_use] pub #inner));
-        parts.extend(q.parts);
-        let _ = q.method;
-    };
+    let mut b = Builder::default();
 
     // Forward kinematics: the 4×4 homogeneous matrix and the link frames.
-    {
-        let g = SharedGraph::default();
-        let f = kinematics::fk(model, &g);
-        let outs = frame_outputs(&f, quote!(out));
-        let (inner, q) = quantity(
+    let g = SharedGraph::default();
+    let f = kinematics::fk(model, &g);
+    b.add(
+        Method::of_q(
             "fk_matrix",
-            quote!(),
-            quote!(),
+            "Pose of the tool frame in the world frame as a homogeneous matrix: base · A1 ⋯ An · tool.",
             quote!(na::Matrix4<T>),
             quote!(na::Matrix4::identity()),
-            &g,
-            outs,
-            &mut ops,
-        );
-        add(
-            inner,
-            q,
-            "Pose of the tool frame in the world frame as a homogeneous matrix: base · A1 ⋯ An · tool.",
-        );
-    }
-    {
-        let g = SharedGraph::default();
-        let frames = kinematics::frames(model, &g);
-        let outs = frames
-            .iter()
-            .enumerate()
-            .flat_map(|(i, f)| frame_outputs(f, quote!(out[#i])))
-            .collect();
-        let (inner, q) = quantity(
+        ),
+        &g,
+        frame_outputs(&f, quote!(out)),
+    );
+
+    let g = SharedGraph::default();
+    let outs = kinematics::frames(model, &g)
+        .iter()
+        .enumerate()
+        .flat_map(|(i, f)| frame_outputs(f, quote!(out[#i])))
+        .collect();
+    b.add(
+        Method::of_q(
             "frames_matrix",
-            quote!(),
-            quote!(),
+            "The link frames in the world frame (base applied, tool not) as homogeneous matrices.",
             quote!([na::Matrix4<T>; DOF]),
             quote!([na::Matrix4::identity(); DOF]),
-            &g,
-            outs,
-            &mut ops,
-        );
-        add(
-            inner,
-            q,
-            "The link frames in the world frame (base applied, tool not) as homogeneous matrices.",
-        );
-    }
-    {
-        let g = SharedGraph::default();
-        let cols = kinematics::jacobian(model, &g);
-        let outs = cols
-            .iter()
-            .enumerate()
-            .flat_map(|(c, col)| {
-                col.iter().enumerate().map(move |(r, e)| Output {
-                    target: quote!(out[(#r, #c)]),
-                    value: e.clone(),
-                })
+        ),
+        &g,
+        outs,
+    );
+
+    let g = SharedGraph::default();
+    let outs = kinematics::jacobian(model, &g)
+        .iter()
+        .enumerate()
+        .flat_map(|(c, col)| {
+            col.iter().enumerate().map(move |(r, e)| Output {
+                target: quote!(out[(#r, #c)]),
+                value: e.clone(),
             })
-            .collect();
-        let (inner, q) = quantity(
+        })
+        .collect();
+    b.add(
+        Method::of_q(
             "jacobian",
-            quote!(),
-            quote!(),
+            "Geometric Jacobian of the tool frame origin, world axes, rows [v; ω].",
             quote!(na::SMatrix<T, 6, DOF>),
             quote!(na::SMatrix::zeros()),
-            &g,
-            outs,
-            &mut ops,
-        );
-        add(
-            inner,
-            q,
-            "Geometric Jacobian of the tool frame origin, world axes, rows [v; ω].",
-        );
-    }
+        ),
+        &g,
+        outs,
+    );
 
     let dynamics = model.has_dynamics();
     if dynamics {
         let dv = Derivation::new(model);
         let (g, d) = inertia::mass_matrix(&dv);
-        let outs = matrix_outputs(&d, n);
-        let (inner, q) = quantity(
-            "mass_matrix",
-            quote!(),
-            quote!(),
-            quote!(na::SMatrix<T, DOF, DOF>),
-            quote!(na::SMatrix::zeros()),
+        b.add(
+            Method::of_q(
+                "mass_matrix",
+                "Joint-space inertia matrix D(q) (motor inertia included).",
+                quote!(na::SMatrix<T, DOF, DOF>),
+                quote!(na::SMatrix::zeros()),
+            ),
             &g,
-            outs,
-            &mut ops,
-        );
-        add(
-            inner,
-            q,
-            "Joint-space inertia matrix D(q) (motor inertia included).",
+            matrix_outputs(&d, n),
         );
 
         let (g, c) = christoffel::christoffel(&dv);
@@ -187,72 +192,58 @@ pub fn generate(model: &RobotModel, vis: TokenStream, name: &Ident, doc: &str) -
                 value: c[(i * n + j) * n + k].clone(),
             })
             .collect();
-        let (inner, q) = quantity(
-            "christoffel",
-            quote!(),
-            quote!(),
-            quote!([[[T; DOF]; DOF]; DOF]),
-            quote!([[[T::zero(); DOF]; DOF]; DOF]),
+        b.add(
+            Method::of_q(
+                "christoffel",
+                "Christoffel symbols: `[i][j][k]` = c_ijk = ½(∂d_kj/∂q_i + ∂d_ki/∂q_j − ∂d_ij/∂q_k), k the equation index.",
+                quote!([[[T; DOF]; DOF]; DOF]),
+                quote!([[[T::zero(); DOF]; DOF]; DOF]),
+            ),
             &g,
             outs,
-            &mut ops,
-        );
-        add(
-            inner,
-            q,
-            "Christoffel symbols: `[i][j][k]` = c_ijk = ½(∂d_kj/∂q_i + ∂d_ki/∂q_j − ∂d_ij/∂q_k), k the equation index.",
         );
 
         let (g, gr) = gravity::gravity(model);
-        let outs = vector_outputs(&gr);
-        let (inner, q) = quantity(
-            "gravity",
-            quote!(),
-            quote!(),
-            quote!(na::SVector<T, DOF>),
-            quote!(na::SVector::zeros()),
+        b.add(
+            Method::of_q(
+                "gravity",
+                "Gravity torques g(q): the torques that hold the arm still.",
+                quote!(na::SVector<T, DOF>),
+                quote!(na::SVector::zeros()),
+            ),
             &g,
-            outs,
-            &mut ops,
-        );
-        add(
-            inner,
-            q,
-            "Gravity torques g(q): the torques that hold the arm still.",
+            vector_outputs(&gr),
         );
 
         let (g, tau) = newton_euler::inverse_dynamics(&dv);
-        let outs = vector_outputs(&tau);
-        let (inner, q) = quantity(
-            "inverse_dynamics_smooth",
-            quote!(qd: &[T; DOF], qdd: &[T; DOF],),
-            quote!(qd, qdd,),
-            quote!(na::SVector<T, DOF>),
-            quote!(na::SVector::zeros()),
+        b.add(
+            Method {
+                name: "inverse_dynamics_smooth",
+                doc: None,
+                params: quote!(qd: &[T; DOF], qdd: &[T; DOF],),
+                args: quote!(qd, qdd,),
+                out_ty: quote!(na::SVector<T, DOF>),
+                out_init: quote!(na::SVector::zeros()),
+            },
             &g,
-            outs,
-            &mut ops,
+            vector_outputs(&tau),
         );
-        parts.push(quote!(#inner));
-        parts.extend(q.parts);
 
         let g = SharedGraph::default();
         let bias = newton_euler::rnea_exprs(model, &g, true, true);
-        let outs = vector_outputs(&bias);
-        let (inner, q) = quantity(
-            "bias_smooth",
-            quote!(qd: &[T; DOF],),
-            quote!(qd,),
-            quote!(na::SVector<T, DOF>),
-            quote!(na::SVector::zeros()),
+        b.add(
+            Method {
+                name: "bias_smooth",
+                doc: None,
+                params: quote!(qd: &[T; DOF],),
+                args: quote!(qd,),
+                out_ty: quote!(na::SVector<T, DOF>),
+                out_init: quote!(na::SVector::zeros()),
+            },
             &g,
-            outs,
-            &mut ops,
+            vector_outputs(&bias),
         );
-        parts.push(quote!(#inner));
-        parts.extend(q.parts);
     }
-
     let state_new = state_new(model);
     let coulomb = coulomb(model);
     let dyn_items = if dynamics {
@@ -364,6 +355,7 @@ pub fn generate(model: &RobotModel, vis: TokenStream, name: &Ident, doc: &str) -
     } else {
         quote!()
     };
+    let (methods, parts) = (&b.methods, &b.parts);
     let robot_name = &model.name;
     let limits = model.links.iter().map(|l| match l.limits {
         Some([lo, hi]) => quote!(Some([#lo, #hi])),
@@ -519,7 +511,7 @@ pub fn generate(model: &RobotModel, vis: TokenStream, name: &Ident, doc: &str) -
             }
         }
     };
-    Generated { tokens, ops }
+    Generated { tokens, ops: b.ops }
 }
 
 fn frame_outputs(f: &dhgen_model::Frame<E>, out: TokenStream) -> Vec<Output> {

@@ -100,7 +100,7 @@ impl Poly {
             .filter(|(_, (v, mag))| v.abs() > CANCEL * mag)
             .map(|(m, (v, _))| (m, v))
             .collect();
-        terms.sort_unstable_by(|a, b| a.0.cmp(&b.0));
+        terms.sort_unstable_by_key(|t| t.0);
         Poly { terms }
     }
 

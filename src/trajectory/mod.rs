@@ -13,8 +13,8 @@
 //! Many joints: [`Synchronized`] holds one profile per joint, all sharing the same start and end
 //! time (for the limit-based profiles, the slowest joint's minimum duration).
 //!
-//! Via points (needs the `std` feature): [`CubicSpline`] (continuous velocity and acceleration,
-//! natural or clamped ends) and [`BlendedSegments`] (linear segments with parabolic blends, like
+//! Via points (needs the `std` feature): `CubicSpline` (continuous velocity and acceleration,
+//! natural or clamped ends) and `BlendedSegments` (linear segments with parabolic blends, like
 //! Robotics Toolbox's `mstraj`), from given times or from velocity and acceleration limits.
 //!
 //! # Time outside the trajectory
@@ -34,6 +34,17 @@
 //! All of the point-to-point code is `no_std`: it uses only `core` and `f64` arithmetic (square
 //! roots through nalgebra's `ComplexField`, which is backed by `libm` without `std`), and sampling
 //! into caller-provided buffers never allocates.
+//!
+//! [`Cubic`]: crate::trajectory::Cubic
+//! [`Quintic`]: crate::trajectory::Quintic
+//! [`Lspb`]: crate::trajectory::Lspb
+//! [`Lspb::with_velocity`]: crate::trajectory::Lspb::with_velocity
+//! [`Lspb::with_acceleration`]: crate::trajectory::Lspb::with_acceleration
+//! [`Lspb::bang_bang`]: crate::trajectory::Lspb::bang_bang
+//! [`Lspb::velocity_limited`]: crate::trajectory::Lspb::velocity_limited
+//! [`bang_bang_duration`]: crate::trajectory::bang_bang_duration
+//! [`velocity_limited_duration`]: crate::trajectory::velocity_limited_duration
+//! [`Synchronized`]: crate::trajectory::Synchronized
 
 mod cubic;
 mod lspb;

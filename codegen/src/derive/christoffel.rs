@@ -66,16 +66,12 @@ fn christoffel_analytic(model: &RobotModel) -> (SharedGraph, Vec<E>) {
     let n = model.dof();
     let g = SharedGraph::default();
     let dd = super::graph_chain(model, &g).mass_matrix_derivatives();
-    let mut out = Vec::with_capacity(n * n * n);
-    for i in 0..n {
-        for j in 0..n {
-            for k in 0..n {
-                out.push(
-                    (dd[i][k][j].clone() + dd[j][k][i].clone() - dd[k][i][j].clone()) * E::K(0.5),
-                );
-            }
-        }
-    }
+    let out = (0..n)
+        .flat_map(|i| (0..n).flat_map(move |j| (0..n).map(move |k| (i, j, k))))
+        .map(|(i, j, k)| {
+            (dd[i][k][j].clone() + dd[j][k][i].clone() - dd[k][i][j].clone()) * E::K(0.5)
+        })
+        .collect();
     (g, out)
 }
 

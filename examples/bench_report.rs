@@ -1,0 +1,99 @@
+//! Reads criterion's saved estimates of the `generated` bench and prints one Markdown table:
+//! robot × quantity → median ns of generated f64, generated f32 and runtime, the speed-up,
+//! and the operation count of the generated function.
+//!
+//! `cargo bench --bench generated && cargo run --release --example bench_report`
+
+use dhgen::RobotModel;
+use std::path::{Path, PathBuf};
+
+const ROBOTS: [&str; 6] = [
+    "puma560",
+    "panda",
+    "planar_elbow",
+    "stanford",
+    "scara",
+    "ur5",
+];
+const QUANTITIES: [&str; 10] = [
+    "fk",
+    "frames",
+    "jacobian",
+    "mass_matrix",
+    "christoffel",
+    "coriolis",
+    "gravity",
+    "inverse_dynamics",
+    "forward_dynamics",
+    "all_terms",
+];
+
+fn median_ns(dir: &Path) -> Option<f64> {
+    let text = std::fs::read_to_string(dir.join("new/estimates.json")).ok()?;
+    let v: serde_json::Value = serde_json::from_str(&text).ok()?;
+    v["median"]["point_estimate"].as_f64()
+}
+
+fn fmt(x: Option<f64>) -> String {
+    x.map_or_else(|| "–".into(), |v| format!("{v:.0}"))
+}
+
+fn main() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let target =
+        std::env::var_os("CARGO_TARGET_DIR").map_or_else(|| root.join("target"), PathBuf::from);
+    let criterion = target.join("criterion");
+    if !criterion.exists() {
+        eprintln!(
+            "no criterion results in {}: run `cargo bench --bench generated` first",
+            criterion.display()
+        );
+        std::process::exit(1);
+    }
+    println!(
+        "| robot | quantity | generated f64 (ns) | generated f32 (ns) | runtime (ns) | runtime / generated f64 | ops (generated) |"
+    );
+    println!("|---|---|---:|---:|---:|---:|---:|");
+    for robot in ROBOTS {
+        let model = match RobotModel::from_toml_file(root.join(format!("robots/{robot}.toml"))) {
+            Ok(m) => m,
+            Err(e) => {
+                eprintln!("{e}");
+                std::process::exit(1);
+            }
+        };
+        let ops = dhgen_codegen::op_counts(&model);
+        let op = |name: &str| ops.iter().find(|(n, _)| n == name).map(|(_, c)| c.total());
+        for q in QUANTITIES {
+            let dir = criterion.join(robot).join(q);
+            let g64 = median_ns(&dir.join("generated_f64"));
+            let g32 = median_ns(&dir.join("generated_f32"));
+            let rt = median_ns(&dir.join("runtime"));
+            if g64.is_none() && rt.is_none() {
+                continue;
+            }
+            let ratio = match (rt, g64) {
+                (Some(r), Some(g)) => format!("{:.1}×", r / g),
+                _ => "–".into(),
+            };
+            let count = match q {
+                "fk" => op("fk_matrix"),
+                "frames" => op("frames_matrix"),
+                "inverse_dynamics" => op("inverse_dynamics_smooth"),
+                "coriolis" => op("christoffel").map(|c| c + 2 * model.dof().pow(3)),
+                "forward_dynamics" => op("mass_matrix").zip(op("bias_smooth")).map(|(a, b)| a + b),
+                other => op(other),
+            };
+            println!(
+                "| {robot} | {q} | {} | {} | {} | {ratio} | {} |",
+                fmt(g64),
+                fmt(g32),
+                fmt(rt),
+                count.map_or_else(|| "–".into(), |c| c.to_string())
+            );
+        }
+        if let Some(sep) = median_ns(&criterion.join(robot).join("all_terms/separate_f64")) {
+            println!("| {robot} | all_terms (separate calls) | {sep:.0} | | | | |");
+        }
+    }
+}
