@@ -29,6 +29,8 @@ pub struct Emitted {
     pub ops: OpCount,
     /// Values passed between parts.
     pub scratch: usize,
+    /// Which joints' variables (cos/sin or displacement) the code reads.
+    pub joints: Vec<usize>,
 }
 
 fn ident(s: &str) -> Ident {
@@ -201,10 +203,21 @@ pub fn emit(g: &SharedGraph, outputs: Vec<Output>) -> Emitted {
         }
         parts.push(stmts);
     }
+    let mut joints: Vec<usize> = order
+        .iter()
+        .filter_map(|&id| match graph.node(id) {
+            Node::Sym(Sym::Cos(j) | Sym::Sin(j) | Sym::Len(j)) => Some(j),
+            _ => None,
+        })
+        .collect();
+    joints.dedup();
+    joints.sort_unstable();
+    joints.dedup();
     Emitted {
         parts,
         ops,
         scratch: slot.len(),
+        joints,
     }
 }
 

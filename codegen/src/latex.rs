@@ -371,7 +371,10 @@ mod tests {
             .lines()
             .find(|l| l.trim_start().starts_with("d_{12}"))
             .unwrap();
-        assert!(d12.contains("c_2") && !d12.contains("s_2") && !d12.contains("c_1"), "{d12}");
+        assert!(
+            d12.contains("c_2") && !d12.contains("s_2") && !d12.contains("c_1"),
+            "{d12}"
+        );
         // Spong's h = -m2 a1 lc2 s2 with m2 = 1.5, a1 = 1, lc2 = 0.8 - 0.4: c_121 = c_221 = h,
         // c_112 = -h, c_111 = c_122 = c_222 = 0.
         assert!(text.contains("c_{112} &= 0.6\\,s_2 \\\\\n"), "{text}");

@@ -54,6 +54,22 @@ struct Builder {
     methods: Vec<TokenStream>,
     parts: Vec<TokenStream>,
     ops: Vec<(String, OpCount)>,
+    /// The joints each method reads, so a free function prepares only those.
+    joints: Vec<(&'static str, Vec<usize>)>,
+}
+
+impl Builder {
+    fn joints_of(&self, names: &[&str]) -> Vec<usize> {
+        let mut js: Vec<usize> = self
+            .joints
+            .iter()
+            .filter(|(n, _)| names.contains(n))
+            .flat_map(|(_, j)| j.iter().copied())
+            .collect();
+        js.sort_unstable();
+        js.dedup();
+        js
+    }
 }
 
 impl Builder {
@@ -70,6 +86,7 @@ impl Builder {
         } = m;
         let emitted = emit::emit(g, outputs);
         self.ops.push((name.to_string(), emitted.ops));
+        self.joints.push((name, emitted.joints.clone()));
         let fname = Ident::new(name, Span::call_site());
         let body = if emitted.parts.len() == 1 {
             let stmts = &emitted.parts[0];
@@ -244,7 +261,32 @@ pub fn generate(model: &RobotModel, vis: TokenStream, name: &Ident, doc: &str) -
             vector_outputs(&bias),
         );
     }
-    let state_new = state_new(model);
+    let state_all = state_new(model, None);
+    // Free functions prepare only the joints their quantity reads (D(q) never needs q1).
+    let uses: &[(&str, &[&str])] = &[
+        ("fk", &["fk_matrix"]),
+        ("frames", &["frames_matrix"]),
+        ("jacobian", &["jacobian"]),
+        ("mass_matrix", &["mass_matrix"]),
+        ("christoffel", &["christoffel"]),
+        ("coriolis", &["christoffel"]),
+        ("gravity", &["gravity"]),
+        ("inverse_dynamics", &["inverse_dynamics_smooth"]),
+        ("forward_dynamics", &["mass_matrix", "bias_smooth"]),
+    ];
+    let preparers = uses
+        .iter()
+        .filter(|(q, _)| dynamics || matches!(*q, "fk" | "frames" | "jacobian"))
+        .map(|(q, names)| {
+            let f = format_ident!("for_{}", q);
+            let body = state_new(model, Some(&b.joints_of(names)));
+            quote! {
+                #[inline]
+                fn #f(q: &[T; DOF]) -> Self {
+                    #body
+                }
+            }
+        });
     let coulomb = coulomb(model);
     let dyn_items = if dynamics {
         let chol = cholesky_solve(n);
@@ -312,32 +354,32 @@ pub fn generate(model: &RobotModel, vis: TokenStream, name: &Ident, doc: &str) -
             /// Joint-space inertia matrix D(q).
             #[must_use]
             pub fn mass_matrix<T: na::RealField + Copy>(q: &[T; DOF]) -> na::SMatrix<T, DOF, DOF> {
-                State::new(q).mass_matrix()
+                State::for_mass_matrix(q).mass_matrix()
             }
             /// Christoffel symbols, `[i][j][k]` = c_ijk with k the equation index.
             #[must_use]
             pub fn christoffel<T: na::RealField + Copy>(q: &[T; DOF]) -> [[[T; DOF]; DOF]; DOF] {
-                State::new(q).christoffel()
+                State::for_christoffel(q).christoffel()
             }
             /// Coriolis matrix C(q, q̇), C_kj = Σ_i c_ijk q̇_i.
             #[must_use]
             pub fn coriolis<T: na::RealField + Copy>(q: &[T; DOF], qd: &[T; DOF]) -> na::SMatrix<T, DOF, DOF> {
-                State::new(q).coriolis(qd)
+                State::for_coriolis(q).coriolis(qd)
             }
             /// Gravity torques g(q).
             #[must_use]
             pub fn gravity<T: na::RealField + Copy>(q: &[T; DOF]) -> na::SVector<T, DOF> {
-                State::new(q).gravity()
+                State::for_gravity(q).gravity()
             }
             /// Inverse dynamics τ(q, q̇, q̈).
             #[must_use]
             pub fn inverse_dynamics<T: na::RealField + Copy>(q: &[T; DOF], qd: &[T; DOF], qdd: &[T; DOF]) -> na::SVector<T, DOF> {
-                State::new(q).inverse_dynamics(qd, qdd)
+                State::for_inverse_dynamics(q).inverse_dynamics(qd, qdd)
             }
             /// Forward dynamics q̈(q, q̇, τ); `None` where D(q) is not positive definite.
             #[must_use]
             pub fn forward_dynamics<T: na::RealField + Copy>(q: &[T; DOF], qd: &[T; DOF], tau: &[T; DOF]) -> Option<na::SVector<T, DOF>> {
-                State::new(q).forward_dynamics(qd, tau)
+                State::for_forward_dynamics(q).forward_dynamics(qd, tau)
             }
             /// D, C, g and J at one configuration, as a controller needs them.
             #[derive(Clone, Copy, Debug, PartialEq)]
@@ -366,19 +408,19 @@ pub fn generate(model: &RobotModel, vis: TokenStream, name: &Ident, doc: &str) -
         quote! {
             impl ::dhgen::ArmDynamics for Model {
                 fn mass_matrix(&self, q: &na::SVector<f64, DOF>) -> na::SMatrix<f64, DOF, DOF> {
-                    State::new(&(*q).into()).mass_matrix()
+                    State::for_mass_matrix(&(*q).into()).mass_matrix()
                 }
                 fn coriolis(&self, q: &na::SVector<f64, DOF>, qd: &na::SVector<f64, DOF>) -> na::SMatrix<f64, DOF, DOF> {
-                    State::new(&(*q).into()).coriolis(&(*qd).into())
+                    State::for_coriolis(&(*q).into()).coriolis(&(*qd).into())
                 }
                 fn gravity(&self, q: &na::SVector<f64, DOF>) -> na::SVector<f64, DOF> {
-                    State::new(&(*q).into()).gravity()
+                    State::for_gravity(&(*q).into()).gravity()
                 }
                 fn inverse_dynamics(&self, q: &na::SVector<f64, DOF>, qd: &na::SVector<f64, DOF>, qdd: &na::SVector<f64, DOF>) -> na::SVector<f64, DOF> {
-                    State::new(&(*q).into()).inverse_dynamics(&(*qd).into(), &(*qdd).into())
+                    State::for_inverse_dynamics(&(*q).into()).inverse_dynamics(&(*qd).into(), &(*qdd).into())
                 }
                 fn forward_dynamics(&self, q: &na::SVector<f64, DOF>, qd: &na::SVector<f64, DOF>, tau: &na::SVector<f64, DOF>) -> Option<na::SVector<f64, DOF>> {
-                    State::new(&(*q).into()).forward_dynamics(&(*qd).into(), &(*tau).into())
+                    State::for_forward_dynamics(&(*q).into()).forward_dynamics(&(*qd).into(), &(*tau).into())
                 }
             }
         }
@@ -415,7 +457,7 @@ pub fn generate(model: &RobotModel, vis: TokenStream, name: &Ident, doc: &str) -
                 /// Prepares configuration `q`.
                 #[must_use]
                 pub fn new(q: &[T; DOF]) -> Self {
-                    #state_new
+                    #state_all
                 }
 
                 /// Pose of the tool frame in the world frame: base · A1 ⋯ An · tool.
@@ -434,22 +476,23 @@ pub fn generate(model: &RobotModel, vis: TokenStream, name: &Ident, doc: &str) -
                 #(#methods)*
                 #dyn_items
                 #(#parts)*
+                #(#preparers)*
             }
 
             /// Pose of the tool frame in the world frame.
             #[must_use]
             pub fn fk<T: na::RealField + Copy>(q: &[T; DOF]) -> na::Isometry3<T> {
-                State::new(q).fk()
+                State::for_fk(q).fk()
             }
             /// The link frames in the world frame (tool not applied).
             #[must_use]
             pub fn frames<T: na::RealField + Copy>(q: &[T; DOF]) -> [na::Isometry3<T>; DOF] {
-                State::new(q).frames()
+                State::for_frames(q).frames()
             }
             /// Geometric Jacobian of the tool frame origin, world axes, rows [v; ω].
             #[must_use]
             pub fn jacobian<T: na::RealField + Copy>(q: &[T; DOF]) -> na::SMatrix<T, 6, DOF> {
-                State::new(q).jacobian()
+                State::for_jacobian(q).jacobian()
             }
             #dyn_free
 
@@ -478,15 +521,15 @@ pub fn generate(model: &RobotModel, vis: TokenStream, name: &Ident, doc: &str) -
                     PRISMATIC.get(j).copied().unwrap_or(false)
                 }
                 fn fk(&self, q: &na::SVector<f64, DOF>) -> na::Isometry3<f64> {
-                    State::new(&(*q).into()).fk()
+                    State::for_fk(&(*q).into()).fk()
                 }
                 fn frames_into(&self, q: &na::SVector<f64, DOF>, out: &mut [na::Isometry3<f64>]) {
-                    for (o, f) in out.iter_mut().zip(State::new(&(*q).into()).frames()) {
+                    for (o, f) in out.iter_mut().zip(State::for_frames(&(*q).into()).frames()) {
                         *o = f;
                     }
                 }
                 fn jacobian(&self, q: &na::SVector<f64, DOF>) -> na::SMatrix<f64, 6, DOF> {
-                    State::new(&(*q).into()).jacobian()
+                    State::for_jacobian(&(*q).into()).jacobian()
                 }
             }
             #arm_dynamics
@@ -553,27 +596,54 @@ fn vector_outputs(v: &[E]) -> Vec<Output> {
         .collect()
 }
 
-fn state_new(model: &RobotModel) -> TokenStream {
-    let lines = model.links.iter().enumerate().map(|(j, l)| match l.joint {
-        JointKind::Revolute => {
-            let theta = l.theta.radians();
-            let angle = if theta == 0.0 {
-                quote!(q[#j])
-            } else {
-                let k = constant(theta);
-                quote!(q[#j] + #k)
-            };
-            quote!(let (sj, cj) = (#angle).sin_cos(); s[#j] = sj; c[#j] = cj;)
-        }
-        JointKind::Prismatic => {
-            let k = constant(l.d);
-            quote!(d[#j] = q[#j] + #k;)
-        }
-    });
+/// The body of a `State` constructor preparing the given joints (all when `None`).
+fn state_new(model: &RobotModel, joints: Option<&[usize]>) -> TokenStream {
+    let used = |j: &usize| joints.is_none_or(|js| js.contains(j));
+    let lines = model
+        .links
+        .iter()
+        .enumerate()
+        .filter(|(j, _)| used(j))
+        .map(|(j, l)| match l.joint {
+            JointKind::Revolute => {
+                let theta = l.theta.radians();
+                let angle = if theta == 0.0 {
+                    quote!(q[#j])
+                } else {
+                    let k = constant(theta);
+                    quote!(q[#j] + #k)
+                };
+                quote!(let (sj, cj) = (#angle).sin_cos(); s[#j] = sj; c[#j] = cj;)
+            }
+            JointKind::Prismatic => {
+                let k = constant(l.d);
+                quote!(d[#j] = q[#j] + #k;)
+            }
+        });
+    // Only arrays that some line fills are declared `mut` (no warnings in user crates).
+    let revolute = model
+        .links
+        .iter()
+        .enumerate()
+        .any(|(j, l)| used(&j) && l.joint == JointKind::Revolute);
+    let prismatic = model
+        .links
+        .iter()
+        .enumerate()
+        .any(|(j, l)| used(&j) && l.joint == JointKind::Prismatic);
+    let trig = if revolute {
+        quote!(let mut c = [T::zero(); DOF]; let mut s = [T::zero(); DOF];)
+    } else {
+        quote!(let c = [T::zero(); DOF]; let s = [T::zero(); DOF];)
+    };
+    let lengths = if prismatic {
+        quote!(let mut d = [T::zero(); DOF];)
+    } else {
+        quote!(let d = [T::zero(); DOF];)
+    };
     quote! {
-        let mut c = [T::zero(); DOF];
-        let mut s = [T::zero(); DOF];
-        let mut d = [T::zero(); DOF];
+        #trig
+        #lengths
         #(#lines)*
         State { c, s, d }
     }
