@@ -80,7 +80,10 @@ fn main() {
                 "fk" => op("fk_matrix"),
                 "frames" => op("frames_matrix"),
                 "inverse_dynamics" => op("inverse_dynamics_smooth"),
-                "coriolis" => op("christoffel").map(|c| c + 2 * model.dof().pow(3)),
+                // Emitted directly when cheaper, else contracted from c_ijk at run time.
+                "coriolis" => {
+                    op("coriolis").or_else(|| op("christoffel").map(|c| c + 2 * model.dof().pow(3)))
+                }
                 "forward_dynamics" => op("mass_matrix").zip(op("bias_smooth")).map(|(a, b)| a + b),
                 other => op(other),
             };

@@ -187,6 +187,7 @@ pub fn generate(model: &RobotModel, vis: TokenStream, name: &Ident, doc: &str) -
     );
 
     let dynamics = model.has_dynamics();
+    let mut coriolis_direct = false;
     if dynamics {
         let dv = Derivation::new(model);
         let (g, d) = inertia::mass_matrix(&dv);
@@ -219,6 +220,28 @@ pub fn generate(model: &RobotModel, vis: TokenStream, name: &Ident, doc: &str) -
             &g,
             outs,
         );
+
+        // C straight from the symbols (zero symbols fold away) when that beats contracting
+        // the whole n³ array at run time.
+        let cor = christoffel::coriolis_from(model, &g, &c);
+        let roots: Vec<_> = cor.iter().map(|e| e.id_in(&g)).collect();
+        let direct = crate::graph::count(&g.borrow(), roots).total();
+        let symbols = b.ops.last().map_or(0, |(_, c)| c.total());
+        if direct < symbols + 2 * n * n * n {
+            b.add(
+                Method {
+                    name: "coriolis",
+                    doc: Some("Coriolis and centrifugal matrix: C_kj = Σ_i c_ijk q̇_i (so Ḋ − 2C is skew-symmetric)."),
+                    params: quote!(qd: &[T; DOF],),
+                    args: quote!(qd,),
+                    out_ty: quote!(na::SMatrix<T, DOF, DOF>),
+                    out_init: quote!(na::SMatrix::zeros()),
+                },
+                &g,
+                matrix_outputs(&cor, n),
+            );
+        }
+        coriolis_direct = direct < symbols + 2 * n * n * n;
 
         let (g, gr) = gravity::gravity(model);
         b.add(
@@ -262,6 +285,29 @@ pub fn generate(model: &RobotModel, vis: TokenStream, name: &Ident, doc: &str) -
         );
     }
     let state_all = state_new(model, None);
+    let coriolis_loop = if dynamics && !coriolis_direct {
+        quote! {
+            /// Coriolis and centrifugal matrix: C_kj = Σ_i c_ijk q̇_i (so Ḋ − 2C is
+            /// skew-symmetric), contracted from the generated Christoffel symbols.
+            #[must_use]
+            pub fn coriolis(&self, qd: &[T; DOF]) -> na::SMatrix<T, DOF, DOF> {
+                let c = self.christoffel();
+                let mut out = na::SMatrix::<T, DOF, DOF>::zeros();
+                for k in 0..DOF {
+                    for j in 0..DOF {
+                        let mut sum = T::zero();
+                        for i in 0..DOF {
+                            sum += c[i][j][k] * qd[i];
+                        }
+                        out[(k, j)] = sum;
+                    }
+                }
+                out
+            }
+        }
+    } else {
+        quote!()
+    };
     // Free functions prepare only the joints their quantity reads (D(q) never needs q1).
     let uses: &[(&str, &[&str])] = &[
         ("fk", &["fk_matrix"]),
@@ -317,23 +363,7 @@ pub fn generate(model: &RobotModel, vis: TokenStream, name: &Ident, doc: &str) -
                 #chol
             }
 
-            /// Coriolis and centrifugal matrix: C_kj = Σ_i c_ijk q̇_i (so Ḋ − 2C is
-            /// skew-symmetric), contracted from the generated Christoffel symbols.
-            #[must_use]
-            pub fn coriolis(&self, qd: &[T; DOF]) -> na::SMatrix<T, DOF, DOF> {
-                let c = self.christoffel();
-                let mut out = na::SMatrix::<T, DOF, DOF>::zeros();
-                for k in 0..DOF {
-                    for j in 0..DOF {
-                        let mut sum = T::zero();
-                        for i in 0..DOF {
-                            sum += c[i][j][k] * qd[i];
-                        }
-                        out[(k, j)] = sum;
-                    }
-                }
-                out
-            }
+            #coriolis_loop
 
             /// D, C, g and J at once, sharing this state's sines and cosines.
             #[must_use]

@@ -92,3 +92,19 @@ fn christoffel_dual(model: &RobotModel) -> (SharedGraph, Vec<E>) {
     }
     (g, out)
 }
+
+/// `C(q, q̇)` row-major, `C_kj = Σ_i c_ijk q̇_i`, over the given Christoffel expressions.
+pub fn coriolis_from(model: &RobotModel, g: &SharedGraph, c: &[E]) -> Vec<E> {
+    let n = model.dof();
+    let qd: Vec<E> = (0..n)
+        .map(|i| E::sym(g, crate::graph::Sym::Qd(i)))
+        .collect();
+    (0..n * n)
+        .map(|idx| {
+            let (k, j) = (idx / n, idx % n);
+            (0..n).fold(E::K(0.0), |acc, i| {
+                acc + c[(i * n + j) * n + k].clone() * qd[i].clone()
+            })
+        })
+        .collect()
+}
