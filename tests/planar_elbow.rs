@@ -1,8 +1,11 @@
 //! The planar elbow arm (robots/planar_elbow.toml) against the closed forms of the textbook,
 //! section 7.4.1, as corrected by ERRATA.md: l1 = 1, l2 = 0.8, lc_i = l_i / 2, m1 = 2,
 //! m2 = 1.5, I_i the links' zz inertia, gravity 9.81 along −y of the base frame.
+//! Both paths are checked: the runtime `Robot` and the code `robot!` generates.
 
 use dhgen::Robot;
+
+dhgen::robot!(mod generated = "robots/planar_elbow.toml");
 
 const L1: f64 = 1.0;
 const LC1: f64 = 0.5;
@@ -63,15 +66,18 @@ fn mass_matrix_matches_closed_form() {
     let robot = robot();
     let (i1, i2) = inertias(&robot);
     for q in configurations() {
-        let d = robot.mass_matrix(&q);
+        let runtime = robot.mass_matrix(&q);
+        let symbolic = generated::mass_matrix(&q);
         let c2 = q[1].cos();
         let d11 = M1 * LC1 * LC1 + M2 * (L1 * L1 + LC2 * LC2 + 2.0 * L1 * LC2 * c2) + i1 + i2;
         let d12 = M2 * (LC2 * LC2 + L1 * LC2 * c2) + i2;
         let d22 = M2 * LC2 * LC2 + i2;
-        assert_close("d11", &q, d[(0, 0)], d11);
-        assert_close("d12", &q, d[(0, 1)], d12);
-        assert_close("d21", &q, d[(1, 0)], d12);
-        assert_close("d22", &q, d[(1, 1)], d22);
+        for d in [runtime.fixed_view::<2, 2>(0, 0).into_owned(), symbolic] {
+            assert_close("d11", &q, d[(0, 0)], d11);
+            assert_close("d12", &q, d[(0, 1)], d12);
+            assert_close("d21", &q, d[(1, 0)], d12);
+            assert_close("d22", &q, d[(1, 1)], d22);
+        }
     }
 }
 
@@ -80,6 +86,7 @@ fn christoffel_symbols_match_closed_form() {
     let robot = robot();
     for q in configurations() {
         let c = robot.christoffel(&q);
+        let symbolic = generated::christoffel(&q);
         let h = -M2 * L1 * LC2 * q[1].sin();
         // Textbook indices are 1-based: c_121 is c[0][1][0].
         let mut expected = [[[0.0; 2]; 2]; 2];
@@ -92,6 +99,7 @@ fn christoffel_symbols_match_closed_form() {
                 for (k, value) in row.iter().enumerate() {
                     let name = format!("c{}{}{}", i + 1, j + 1, k + 1);
                     assert_close(&name, &q, c[i][j][k], *value);
+                    assert_close(&name, &q, symbolic[i][j][k], *value);
                 }
             }
         }
@@ -103,12 +111,17 @@ fn coriolis_matrix_matches_closed_form() {
     let robot = robot();
     for q in configurations() {
         let qd = [0.8 - q[0] * 0.3, 1.1 + q[1] * 0.5];
-        let c = robot.coriolis(&q, &qd);
         let h = -M2 * L1 * LC2 * q[1].sin();
-        assert_close("C11", &q, c[(0, 0)], h * qd[1]);
-        assert_close("C12", &q, c[(0, 1)], h * (qd[0] + qd[1]));
-        assert_close("C21", &q, c[(1, 0)], -h * qd[0]);
-        assert_close("C22", &q, c[(1, 1)], 0.0);
+        let runtime = robot
+            .coriolis(&q, &qd)
+            .fixed_view::<2, 2>(0, 0)
+            .into_owned();
+        for c in [runtime, generated::coriolis(&q, &qd)] {
+            assert_close("C11", &q, c[(0, 0)], h * qd[1]);
+            assert_close("C12", &q, c[(0, 1)], h * (qd[0] + qd[1]));
+            assert_close("C21", &q, c[(1, 0)], -h * qd[0]);
+            assert_close("C22", &q, c[(1, 1)], 0.0);
+        }
     }
 }
 
@@ -116,12 +129,15 @@ fn coriolis_matrix_matches_closed_form() {
 fn gravity_matches_closed_form() {
     let robot = robot();
     for q in configurations() {
-        let g = robot.gravity(&q);
+        let runtime = robot.gravity(&q);
+        let symbolic = generated::gravity(&q);
         let c1 = q[0].cos();
         let c12 = (q[0] + q[1]).cos();
         let phi1 = (M1 * LC1 + M2 * L1) * G * c1 + M2 * LC2 * G * c12;
         let phi2 = M2 * LC2 * G * c12;
-        assert_close("phi1", &q, g[0], phi1);
-        assert_close("phi2", &q, g[1], phi2);
+        for g in [[runtime[0], runtime[1]], [symbolic[0], symbolic[1]]] {
+            assert_close("phi1", &q, g[0], phi1);
+            assert_close("phi2", &q, g[1], phi2);
+        }
     }
 }
