@@ -98,7 +98,7 @@ fn check_lspb(p: &Lspb, (t0, tf): (f64, f64), (q0, qf): (f64, f64), blend: Blend
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(200_000))]
+    #![proptest_config(ProptestConfig::with_cases(10_000))]
 
     /// V anywhere in ((qf - q0)/T, 2 (qf - q0)/T], including the bang-bang end; any sign of move.
     #[test]
@@ -314,4 +314,40 @@ fn non_finite_inputs_are_named() {
         );
         assert!(e.to_string().contains("is not finite"), "{e}");
     }
+}
+
+#[test]
+fn blends_below_float_resolution_are_rejected() {
+    // V one ulp above (qf - q0)/T = 1/3: V T - Δ rounds to 0, so tb would be 0 and α infinite.
+    let average = 1.0f64 / 3.0;
+    let v = f64::from_bits(average.to_bits() + 1);
+    assert!(
+        v > average && v * 3.0 - 1.0 <= 0.0,
+        "the case must round tb to zero"
+    );
+    let e = Lspb::with_velocity(0.0, 3.0, 0.0, 1.0, v).unwrap_err();
+    assert!(
+        matches!(
+            e,
+            TrajectoryError::OutOfFloatRange {
+                name: "LSPB blend time tb",
+                ..
+            }
+        ),
+        "{e:?}"
+    );
+    assert!(
+        e.to_string().contains("cannot be represented in f64"),
+        "{e}"
+    );
+    // α so large that α T² overflows: the blends would be shorter than f64 resolves.
+    let e = Lspb::with_acceleration(0.0, 2.0, 0.0, 1e-300, 1e308).unwrap_err();
+    assert!(
+        matches!(e, TrajectoryError::OutOfFloatRange { .. }),
+        "{e:?}"
+    );
+    // Large but representable: still a valid profile that ends at rest at qf.
+    let p = Lspb::with_acceleration(0.0, 2.0, 0.0, 1.0, 1e300).unwrap();
+    assert!(p.blend_time() > 0.0 && p.acceleration().is_finite());
+    assert_eq!(p.eval(2.0), State::new(1.0, 0.0, -1e300));
 }

@@ -66,7 +66,7 @@ fn check_min_time(p: &Lspb, t0: f64, q0: f64, qf: f64, peak: f64, amax: f64) {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(200_000))]
+    #![proptest_config(ProptestConfig::with_cases(10_000))]
 
     #[test]
     fn bang_bang_is_minimum_time(t0 in start_time(), q0 in -100.0..100.0f64, dq in displacement(), amax in limit()) {

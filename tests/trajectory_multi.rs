@@ -57,7 +57,7 @@ fn check_same_as_joints<P: Profile + PartialEq + core::fmt::Debug>(
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(200_000))]
+    #![proptest_config(ProptestConfig::with_cases(10_000))]
 
     /// Cubic, quintic and both LSPB forms: one given interval for all joints.
     #[test]

@@ -150,7 +150,7 @@ fn check_polynomial<P: Profile>(p: &P, c: &[f64], t0: f64, big_t: f64, start: St
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(200_000))]
+    #![proptest_config(ProptestConfig::with_cases(10_000))]
 
     #[test]
     fn cubic_matches_equation_15(t0 in start_time(), big_t in duration(), q0 in position(), qf in position(),

@@ -27,17 +27,11 @@ fn main() {
             elapsed.as_secs_f64() * 1e3,
             lines
         );
-        println!("| function | add | mul | div | sqrt | total |");
-        println!("|---|---|---|---|---|---|");
+        println!("| function | add | mul | div | sqrt | sin/cos | total arithmetic |");
+        println!("|---|---:|---:|---:|---:|---:|---:|");
         for (f, c) in &generated.ops {
-            println!(
-                "| {f} | {} | {} | {} | {} | {} |",
-                c.add,
-                c.mul,
-                c.div,
-                c.sqrt,
-                c.total()
-            );
+            let row = [c.add, c.mul, c.div, c.sqrt, c.sincos, c.total()].map(|x| x.to_string());
+            println!("| {f} | {} |", row.join(" | "));
         }
     }
 }

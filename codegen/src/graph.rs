@@ -345,10 +345,12 @@ pub struct OpCount {
     pub div: usize,
     /// Square roots.
     pub sqrt: usize,
+    /// `sin_cos` evaluations (one per revolute joint read), done once per configuration.
+    pub sincos: usize,
 }
 
 impl OpCount {
-    /// All arithmetic operations.
+    /// All arithmetic operations (`sin_cos` not included).
     pub fn total(&self) -> usize {
         self.add + self.mul + self.div + self.sqrt
     }
@@ -360,6 +362,7 @@ impl core::ops::AddAssign for OpCount {
         self.mul += o.mul;
         self.div += o.div;
         self.sqrt += o.sqrt;
+        self.sincos += o.sincos;
     }
 }
 

@@ -56,6 +56,8 @@ struct Builder {
     ops: Vec<(String, OpCount)>,
     /// The joints each method reads, so a free function prepares only those.
     joints: Vec<(&'static str, Vec<usize>)>,
+    /// Which joints are revolute (need a `sin_cos`).
+    revolute: Vec<bool>,
 }
 
 impl Builder {
@@ -85,7 +87,13 @@ impl Builder {
             out_init,
         } = m;
         let emitted = emit::emit(g, outputs);
-        self.ops.push((name.to_string(), emitted.ops));
+        let mut ops = emitted.ops;
+        ops.sincos = emitted
+            .joints
+            .iter()
+            .filter(|&&j| self.revolute.get(j).copied().unwrap_or(false))
+            .count();
+        self.ops.push((name.to_string(), ops));
         self.joints.push((name, emitted.joints.clone()));
         let fname = Ident::new(name, Span::call_site());
         let body = if emitted.parts.len() == 1 {
@@ -131,7 +139,14 @@ pub fn op_counts(model: &RobotModel) -> Vec<(String, OpCount)> {
 /// Generates the module `vis mod name { ... }` for `model`.
 pub fn generate(model: &RobotModel, vis: TokenStream, name: &Ident, doc: &str) -> Generated {
     let n = model.dof();
-    let mut b = Builder::default();
+    let mut b = Builder {
+        revolute: model
+            .links
+            .iter()
+            .map(|l| l.joint == JointKind::Revolute)
+            .collect(),
+        ..Builder::default()
+    };
 
     // Forward kinematics: the 4×4 homogeneous matrix and the link frames.
     let g = SharedGraph::default();

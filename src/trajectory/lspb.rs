@@ -74,6 +74,11 @@ impl Lspb {
         }
         // tb = (V T - Δ)/V; rounding may push it a hair past T/2 at V = 2Δ/T.
         let blend_time = ((v * duration - dq) / v).min(0.5 * duration);
+        let acceleration = v / blend_time;
+        if !(blend_time > 0.0 && acceleration.is_finite()) {
+            // V lies within rounding of the excluded bound (qf - q0)/T.
+            return Err(out_of_float_range(blend_time));
+        }
         Ok(Self {
             t0,
             tf,
@@ -81,7 +86,7 @@ impl Lspb {
             q0,
             qf,
             velocity: v,
-            acceleration: v / blend_time,
+            acceleration,
             blend_time,
         })
     }
@@ -116,9 +121,13 @@ impl Lspb {
         }
         let slack = (alpha * duration * duration - 4.0 * distance).max(0.0);
         // tb = T/2 - sqrt(α(αT² - 4|Δ|))/(2α), rationalized so that a large α (short blends) does
-        // not lose tb to cancellation.
+        // not lose tb to cancellation; sqrt(α) sqrt(slack) cannot overflow where α · slack could.
         let blend_time =
-            (2.0 * distance / (alpha * duration + sqrt(alpha * slack))).min(0.5 * duration);
+            (2.0 * distance / (alpha * duration + sqrt(alpha) * sqrt(slack))).min(0.5 * duration);
+        if blend_time <= 0.0 {
+            // α is so large, or the move so small, that the blends are shorter than f64 resolves.
+            return Err(out_of_float_range(blend_time));
+        }
         let sign = if dq > 0.0 { 1.0 } else { -1.0 };
         Ok(Self {
             t0,
@@ -252,5 +261,14 @@ impl Profile for Lspb {
                 qdd: -alpha,
             }
         }
+    }
+}
+
+/// The error for a blend time that rounds to zero although the move is not zero.
+fn out_of_float_range(blend_time: f64) -> TrajectoryError {
+    TrajectoryError::OutOfFloatRange {
+        name: "LSPB blend time tb",
+        value: blend_time,
+        at: Location::NONE,
     }
 }

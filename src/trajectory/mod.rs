@@ -216,6 +216,16 @@ pub enum TrajectoryError {
         /// Which joint.
         at: Location,
     },
+    /// Valid inputs so extreme that a derived quantity cannot be represented in `f64`, e.g. an
+    /// LSPB cruise velocity within rounding of `(qf - q0)/T`, whose blend time rounds to zero.
+    OutOfFloatRange {
+        /// The derived quantity, e.g. `"LSPB blend time tb"`.
+        name: &'static str,
+        /// Its computed value.
+        value: f64,
+        /// Which joint.
+        at: Location,
+    },
     /// A limit or blend time that must be positive is zero or negative.
     NonPositiveLimit {
         /// The limit's name, e.g. `"amax"`.
@@ -324,6 +334,11 @@ impl TrajectoryError {
                 value,
                 at: place(at),
             },
+            Self::OutOfFloatRange { name, value, at } => Self::OutOfFloatRange {
+                name,
+                value,
+                at: place(at),
+            },
             other => other,
         }
     }
@@ -373,6 +388,11 @@ impl fmt::Display for TrajectoryError {
             Self::NonPositiveLimit { name, value, at } => {
                 write!(f, "{name} = {value} must be positive{at}")
             }
+            Self::OutOfFloatRange { name, value, at } => write!(
+                f,
+                "{name} = {value} cannot be represented in f64: the inputs are too extreme \
+                 relative to each other{at}"
+            ),
             Self::NonIncreasingTimes {
                 index,
                 previous,

@@ -490,13 +490,7 @@ impl BlendedSegments {
         let mut corners = times.to_vec();
         corners[0] += half;
         corners[m] -= half;
-        Ok(Self::build(
-            dof,
-            times.to_vec(),
-            corners,
-            blend_time,
-            points,
-        ))
+        Self::build(dof, times.to_vec(), corners, blend_time, points)
     }
 
     /// Linear segments through `points` starting at `t0`, timed by per-joint velocity limits
@@ -548,17 +542,19 @@ impl BlendedSegments {
         times[0] = t0;
         times[m] = corners[m] + half;
         finite("tf", times[m])?;
-        Ok(Self::build(dof, times, corners, tacc, points))
+        Self::build(dof, times, corners, tacc, points)
     }
 
-    /// Stores the path; inputs already checked.
+    /// Stores the path (inputs already checked), after making sure that its velocities and
+    /// accelerations are representable: absurdly short blends or segments (e.g. a 1e-300 s
+    /// blend) are rejected rather than producing inf or NaN.
     fn build<R: AsRef<[f64]>>(
         dof: usize,
         times: Vec<f64>,
         corners: Vec<f64>,
         blend_time: f64,
         points: &[R],
-    ) -> Self {
+    ) -> Result<Self, TrajectoryError> {
         let n = points.len();
         let values: Vec<f64> = points
             .iter()
@@ -568,17 +564,36 @@ impl BlendedSegments {
         for k in 1..n {
             let span = corners[k] - corners[k - 1];
             for j in 0..dof {
-                velocities[k * dof + j] = (values[k * dof + j] - values[(k - 1) * dof + j]) / span;
+                let v = (values[k * dof + j] - values[(k - 1) * dof + j]) / span;
+                let change = (v - velocities[(k - 1) * dof + j]) / blend_time;
+                if !(v.is_finite() && change.is_finite()) {
+                    return Err(TrajectoryError::OutOfFloatRange {
+                        name: "segment velocity",
+                        value: v,
+                        at: Location::point(k, j),
+                    });
+                }
+                velocities[k * dof + j] = v;
             }
         }
-        Self {
+        for j in 0..dof {
+            let stop = velocities[(n - 1) * dof + j] / blend_time;
+            if !stop.is_finite() {
+                return Err(TrajectoryError::OutOfFloatRange {
+                    name: "final blend acceleration",
+                    value: stop,
+                    at: Location::point(n - 1, j),
+                });
+            }
+        }
+        Ok(Self {
             dof,
             times,
             corners,
             blend_time,
             values,
             velocities,
-        }
+        })
     }
 
     /// The via times: start time, interior corner times, end time.
