@@ -13,7 +13,9 @@ pub use dhgen_macros::robot;
 extern crate self as dhgen;
 
 mod arm;
+mod real;
 pub use arm::{Arm, ArmAllocator, ArmDynamics, JointVector};
+pub use real::Real;
 
 /// Rotations (section 3.5): ZYZ Euler angles, roll-pitch-yaw, axis-angle; what nalgebra lacks.
 pub mod rotation;

@@ -398,32 +398,32 @@ pub fn generate(model: &RobotModel, vis: TokenStream, name: &Ident, doc: &str) -
         quote! {
             /// Joint-space inertia matrix D(q).
             #[must_use]
-            pub fn mass_matrix<T: na::RealField + Copy>(q: &[T; DOF]) -> na::SMatrix<T, DOF, DOF> {
+            pub fn mass_matrix<T: ::dhgen::Real>(q: &[T; DOF]) -> na::SMatrix<T, DOF, DOF> {
                 State::for_mass_matrix(q).mass_matrix()
             }
             /// Christoffel symbols, `[i][j][k]` = c_ijk with k the equation index.
             #[must_use]
-            pub fn christoffel<T: na::RealField + Copy>(q: &[T; DOF]) -> [[[T; DOF]; DOF]; DOF] {
+            pub fn christoffel<T: ::dhgen::Real>(q: &[T; DOF]) -> [[[T; DOF]; DOF]; DOF] {
                 State::for_christoffel(q).christoffel()
             }
             /// Coriolis matrix C(q, q̇), C_kj = Σ_i c_ijk q̇_i.
             #[must_use]
-            pub fn coriolis<T: na::RealField + Copy>(q: &[T; DOF], qd: &[T; DOF]) -> na::SMatrix<T, DOF, DOF> {
+            pub fn coriolis<T: ::dhgen::Real>(q: &[T; DOF], qd: &[T; DOF]) -> na::SMatrix<T, DOF, DOF> {
                 State::for_coriolis(q).coriolis(qd)
             }
             /// Gravity torques g(q).
             #[must_use]
-            pub fn gravity<T: na::RealField + Copy>(q: &[T; DOF]) -> na::SVector<T, DOF> {
+            pub fn gravity<T: ::dhgen::Real>(q: &[T; DOF]) -> na::SVector<T, DOF> {
                 State::for_gravity(q).gravity()
             }
             /// Inverse dynamics τ(q, q̇, q̈).
             #[must_use]
-            pub fn inverse_dynamics<T: na::RealField + Copy>(q: &[T; DOF], qd: &[T; DOF], qdd: &[T; DOF]) -> na::SVector<T, DOF> {
+            pub fn inverse_dynamics<T: ::dhgen::Real>(q: &[T; DOF], qd: &[T; DOF], qdd: &[T; DOF]) -> na::SVector<T, DOF> {
                 State::for_inverse_dynamics(q).inverse_dynamics(qd, qdd)
             }
             /// Forward dynamics q̈(q, q̇, τ); `None` where D(q) is not positive definite.
             #[must_use]
-            pub fn forward_dynamics<T: na::RealField + Copy>(q: &[T; DOF], qd: &[T; DOF], tau: &[T; DOF]) -> Option<na::SVector<T, DOF>> {
+            pub fn forward_dynamics<T: ::dhgen::Real>(q: &[T; DOF], qd: &[T; DOF], tau: &[T; DOF]) -> Option<na::SVector<T, DOF>> {
                 State::for_forward_dynamics(q).forward_dynamics(qd, tau)
             }
             /// D, C, g and J at one configuration, as a controller needs them.
@@ -498,7 +498,7 @@ pub fn generate(model: &RobotModel, vis: TokenStream, name: &Ident, doc: &str) -
                 pub d: [T; DOF],
             }
 
-            impl<T: na::RealField + Copy> State<T> {
+            impl<T: ::dhgen::Real> State<T> {
                 /// Prepares configuration `q`.
                 #[must_use]
                 pub fn new(q: &[T; DOF]) -> Self {
@@ -526,17 +526,17 @@ pub fn generate(model: &RobotModel, vis: TokenStream, name: &Ident, doc: &str) -
 
             /// Pose of the tool frame in the world frame.
             #[must_use]
-            pub fn fk<T: na::RealField + Copy>(q: &[T; DOF]) -> na::Isometry3<T> {
+            pub fn fk<T: ::dhgen::Real>(q: &[T; DOF]) -> na::Isometry3<T> {
                 State::for_fk(q).fk()
             }
             /// The link frames in the world frame (tool not applied).
             #[must_use]
-            pub fn frames<T: na::RealField + Copy>(q: &[T; DOF]) -> [na::Isometry3<T>; DOF] {
+            pub fn frames<T: ::dhgen::Real>(q: &[T; DOF]) -> [na::Isometry3<T>; DOF] {
                 State::for_frames(q).frames()
             }
             /// Geometric Jacobian of the tool frame origin, world axes, rows [v; ω].
             #[must_use]
-            pub fn jacobian<T: na::RealField + Copy>(q: &[T; DOF]) -> na::SMatrix<T, 6, DOF> {
+            pub fn jacobian<T: ::dhgen::Real>(q: &[T; DOF]) -> na::SMatrix<T, 6, DOF> {
                 State::for_jacobian(q).jacobian()
             }
             #dyn_free
@@ -579,7 +579,7 @@ pub fn generate(model: &RobotModel, vis: TokenStream, name: &Ident, doc: &str) -
             }
             #arm_dynamics
 
-            fn isometry<T: na::RealField + Copy>(m: &na::Matrix4<T>) -> na::Isometry3<T> {
+            fn isometry<T: ::dhgen::Real>(m: &na::Matrix4<T>) -> na::Isometry3<T> {
                 let r = na::Rotation3::from_matrix_unchecked(m.fixed_view::<3, 3>(0, 0).into_owned());
                 na::Isometry3::from_parts(
                     na::Translation3::new(m[(0, 3)], m[(1, 3)], m[(2, 3)]),
@@ -588,7 +588,7 @@ pub fn generate(model: &RobotModel, vis: TokenStream, name: &Ident, doc: &str) -
             }
 
             #[allow(dead_code)]
-            fn sign<T: na::RealField + Copy>(x: T) -> T {
+            fn sign<T: ::dhgen::Real>(x: T) -> T {
                 if x > T::zero() {
                     T::one()
                 } else if x < T::zero() {
@@ -658,7 +658,7 @@ fn state_new(model: &RobotModel, joints: Option<&[usize]>) -> TokenStream {
                     let k = constant(theta);
                     quote!(q[#j] + #k)
                 };
-                quote!(let (sj, cj) = (#angle).sin_cos(); s[#j] = sj; c[#j] = cj;)
+                quote!(let (sj, cj) = ::dhgen::Real::sincos(#angle); s[#j] = sj; c[#j] = cj;)
             }
             JointKind::Prismatic => {
                 let k = constant(l.d);
