@@ -599,7 +599,10 @@ pub fn generate(model: &RobotModel, vis: TokenStream, name: &Ident, doc: &str) -
             }
         }
     };
-    Generated { tokens, ops: b.ops }
+    Generated {
+        tokens: unsuffix_indices(tokens),
+        ops: b.ops,
+    }
 }
 
 fn frame_outputs(f: &dhgen_model::Frame<E>, out: TokenStream) -> Vec<Output> {
@@ -764,4 +767,33 @@ fn cholesky_solve(n: usize) -> TokenStream {
         #(#s)*
         Some(na::SVector::<T, DOF>::from([#(#xs),*]))
     }
+}
+
+/// `1usize` → `1`: quote writes integer literals with their type suffix, which only adds
+/// noise to indices in printed code.
+fn unsuffix_indices(tokens: TokenStream) -> TokenStream {
+    use proc_macro2::{Group, Literal, TokenTree};
+    tokens
+        .into_iter()
+        .map(|t| match t {
+            TokenTree::Group(g) => {
+                let mut ng = Group::new(g.delimiter(), unsuffix_indices(g.stream()));
+                ng.set_span(g.span());
+                TokenTree::Group(ng)
+            }
+            TokenTree::Literal(l) => match l
+                .to_string()
+                .strip_suffix("usize")
+                .and_then(|d| d.parse::<usize>().ok())
+            {
+                Some(v) => {
+                    let mut nl = Literal::usize_unsuffixed(v);
+                    nl.set_span(l.span());
+                    TokenTree::Literal(nl)
+                }
+                None => TokenTree::Literal(l),
+            },
+            other => other,
+        })
+        .collect()
 }
