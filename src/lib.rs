@@ -17,9 +17,6 @@ mod real;
 pub use arm::{Arm, ArmAllocator, ArmDynamics, JointVector};
 pub use real::Real;
 
-/// Rotations (section 3.5): ZYZ Euler angles, roll-pitch-yaw, axis-angle; what nalgebra lacks.
-pub mod rotation;
-
 #[cfg(feature = "std")]
 mod dynamics;
 #[cfg(feature = "std")]
