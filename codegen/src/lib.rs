@@ -7,7 +7,7 @@
 //!   factoring back into expressions;
 //! - [`graph`]: the hash-consed expression DAG (common subexpressions shared by
 //!   construction, constants folded, signs pushed outward);
-//! - [`derive`]: each quantity (T, J, D, c_ijk, C, g, τ), choosing the cheaper derivation;
+//! - [`derive`](mod@derive): each quantity (T, J, D, c_ijk, C, g, τ), choosing the cheaper derivation;
 //! - [`emit`]: tokens, one `let` per node, functions split under a statement limit;
 //! - [`module`]: the generated module around them;
 //! - [`latex`]: the normal forms of D(q), c_ijk and g(q) as LaTeX equations (`dhgen latex`).

@@ -1,0 +1,202 @@
+//! `dhgen eval`: T, J, D, C, g and τ at one configuration, on the runtime path.
+
+use dhgen::Robot;
+use dhgen::nalgebra::{DMatrix, DVector, Matrix4};
+use dhgen_model::{Angle, JointKind};
+use serde_json::{Value, json};
+use std::fmt::Write as _;
+
+/// Everything `eval` computes at one configuration.
+pub struct Evaluation {
+    q: Vec<f64>,
+    qd: Vec<f64>,
+    qdd: Vec<f64>,
+    pose: Matrix4<f64>,
+    jacobian: DMatrix<f64>,
+    /// Present when the description has mass properties.
+    dynamics: Option<Dynamics>,
+}
+
+/// D(q), C(q, q̇), g(q) and τ(q, q̇, q̈).
+struct Dynamics {
+    d: DMatrix<f64>,
+    c: DMatrix<f64>,
+    g: DVector<f64>,
+    tau: DVector<f64>,
+}
+
+/// Reads joint positions: numbers (rad or m), and for revolute joints also the angle forms
+/// of the description format (`90deg`, `-pi/2`).
+pub fn positions(robot: &Robot, values: &[String]) -> Result<Vec<f64>, String> {
+    check_len(robot, "--q", values.len())?;
+    robot
+        .model()
+        .links
+        .iter()
+        .zip(values)
+        .enumerate()
+        .map(|(i, (l, v))| match l.joint {
+            JointKind::Revolute => Angle::parse(v)
+                .map(Angle::radians)
+                .map_err(|e| format!("--q, joint {}: {e}", i + 1)),
+            JointKind::Prismatic => v
+                .trim()
+                .parse::<f64>()
+                .ok()
+                .filter(|x| x.is_finite())
+                .ok_or_else(|| {
+                    format!(
+                        "--q, joint {}: cannot read {v:?}: the joint is prismatic, give metres as a number",
+                        i + 1
+                    )
+                }),
+        })
+        .collect()
+}
+
+/// Checks that `flag` gave one value per joint.
+pub fn check_len(robot: &Robot, flag: &str, len: usize) -> Result<(), String> {
+    let n = robot.dof();
+    if len == n {
+        Ok(())
+    } else {
+        Err(format!(
+            "{flag} has {len} value{}, but {} has {n} joints",
+            if len == 1 { "" } else { "s" },
+            robot.model().name
+        ))
+    }
+}
+
+/// Evaluates at `q`, `qd`, `qdd` (lengths already checked, values finite).
+pub fn evaluate(robot: &Robot, q: Vec<f64>, qd: Vec<f64>, qdd: Vec<f64>) -> Evaluation {
+    let pose = robot.fk(&q).to_homogeneous();
+    let jacobian = robot.jacobian(&q);
+    let dynamics = robot.has_dynamics().then(|| Dynamics {
+        d: robot.mass_matrix(&q),
+        c: robot.coriolis(&q, &qd),
+        g: robot.gravity(&q),
+        tau: robot.inverse_dynamics(&q, &qd, &qdd),
+    });
+    Evaluation {
+        q,
+        qd,
+        qdd,
+        pose,
+        jacobian,
+        dynamics,
+    }
+}
+
+impl Evaluation {
+    /// The evaluation as JSON: vectors as arrays, matrices as arrays of rows; `D`, `C`, `g`
+    /// and `tau` only when the robot has dynamics.
+    pub fn json(&self, robot: &Robot) -> Value {
+        let rows = |m: &DMatrix<f64>| -> Value {
+            Value::from(
+                m.row_iter()
+                    .map(|r| r.iter().copied().collect::<Vec<f64>>())
+                    .collect::<Vec<_>>(),
+            )
+        };
+        let pose = DMatrix::from_fn(4, 4, |r, c| self.pose[(r, c)]);
+        let mut v = json!({
+            "robot": robot.model().name,
+            "dof": robot.dof(),
+            "has_dynamics": robot.has_dynamics(),
+            "q": self.q,
+            "qd": self.qd,
+            "qdd": self.qdd,
+            "T": rows(&pose),
+            "J": rows(&self.jacobian),
+        });
+        if let (Some(Dynamics { d, c, g, tau }), Some(obj)) = (&self.dynamics, v.as_object_mut()) {
+            obj.insert("D".into(), rows(d));
+            obj.insert("C".into(), rows(c));
+            obj.insert("g".into(), Value::from(g.as_slice().to_vec()));
+            obj.insert("tau".into(), Value::from(tau.as_slice().to_vec()));
+        }
+        v
+    }
+
+    /// The evaluation as aligned text.
+    pub fn text(&self, robot: &Robot) -> String {
+        let mut out = String::new();
+        let _ = writeln!(
+            out,
+            "{} at q = {} (rad, m for prismatic joints)",
+            robot.model().name,
+            list(&self.q)
+        );
+        let _ = writeln!(out, "q̇ = {}, q̈ = {}", list(&self.qd), list(&self.qdd));
+        let pose = DMatrix::from_fn(4, 4, |r, c| self.pose[(r, c)]);
+        block(
+            &mut out,
+            "T: tool pose in the world frame (base · A1 ⋯ An · tool)",
+            &pose,
+        );
+        block(
+            &mut out,
+            "J: geometric Jacobian of the tool origin, world axes, rows vx vy vz ωx ωy ωz",
+            &self.jacobian,
+        );
+        match &self.dynamics {
+            Some(Dynamics { d, c, g, tau }) => {
+                block(&mut out, "D(q): joint-space inertia matrix", d);
+                block(
+                    &mut out,
+                    "C(q, q̇): Coriolis matrix, C_kj = Σ_i c_ijk q̇_i",
+                    c,
+                );
+                block(
+                    &mut out,
+                    "g(q): gravity torques (transposed)",
+                    &DMatrix::from_row_slice(1, g.len(), g.as_slice()),
+                );
+                block(
+                    &mut out,
+                    "τ = D(q) q̈ + C(q, q̇) q̇ + g(q) (+ friction), transposed",
+                    &DMatrix::from_row_slice(1, tau.len(), tau.as_slice()),
+                );
+            }
+            None => {
+                let _ = writeln!(out, "\nno dynamics: the description has no mass properties");
+            }
+        }
+        out
+    }
+}
+
+fn list(v: &[f64]) -> String {
+    let parts: Vec<String> = v.iter().map(|x| crate::table::trimmed(*x, 6)).collect();
+    format!("[{}]", parts.join(", "))
+}
+
+/// A titled matrix, columns right-aligned to a common width, six decimals.
+fn block(out: &mut String, title: &str, m: &DMatrix<f64>) {
+    let cells: Vec<Vec<String>> = m
+        .row_iter()
+        .map(|r| {
+            r.iter()
+                .map(|x| {
+                    let s = format!("{x:.6}");
+                    // A rounding residue like -1e-17 prints as 0, not -0.000000.
+                    if s.trim_start_matches('-')
+                        .chars()
+                        .all(|c| c == '0' || c == '.')
+                    {
+                        "0".to_string()
+                    } else {
+                        s
+                    }
+                })
+                .collect()
+        })
+        .collect();
+    let width = cells.iter().flatten().map(String::len).max().unwrap_or(1);
+    let _ = writeln!(out, "\n{title}");
+    for row in cells {
+        let line: Vec<String> = row.iter().map(|c| format!("{c:>width$}")).collect();
+        let _ = writeln!(out, "  {}", line.join("  "));
+    }
+}

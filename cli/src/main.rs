@@ -1,0 +1,252 @@
+//! `dhgen`: the command line of dhgen.
+//!
+//! - `dhgen info ROBOT.toml`: the DH table, joints, limits, masses, spherical wrist;
+//! - `dhgen eval ROBOT.toml --q ... [--qd ...] [--qdd ...] [--json]`: T, J, D, C, g, τ on
+//!   the runtime path;
+//! - `dhgen emit ROBOT.toml [-o FILE] [--name MOD]`: the module `robot!` generates, formatted;
+//! - `dhgen latex ROBOT.toml`: D(q), c_ijk and g(q) as LaTeX equations;
+//! - `dhgen ops ROBOT.toml`: operation counts of the generated functions.
+//!
+//! Any failure is one line on stderr and a non-zero exit status: 2 for a malformed command
+//! line, 1 for everything else (an unreadable or invalid description, a bad value).
+
+mod emit;
+mod eval;
+mod info;
+mod table;
+
+use clap::error::ErrorKind;
+use clap::{Parser, Subcommand};
+use dhgen::Robot;
+use dhgen_codegen::latex::{Style, dynamics_equations};
+use std::io::Write as _;
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+/// dhgen: robot arms from Denavit–Hartenberg tables.
+#[derive(Parser, Debug)]
+#[command(name = "dhgen", version, about, long_about = None)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand, Debug)]
+enum Command {
+    /// Print the DH table, DOF, convention, joint types, limits, masses and whether the arm
+    /// has a spherical wrist.
+    Info {
+        /// The robot description (TOML).
+        robot: PathBuf,
+    },
+    /// Evaluate the pose T, Jacobian J, and (with mass properties) D, C, g and τ at one
+    /// configuration, on the runtime path (`dhgen::Robot`).
+    Eval {
+        /// The robot description (TOML).
+        robot: PathBuf,
+        /// Joint positions, one per joint: radians (or `90deg`, `pi/2`) and metres for
+        /// prismatic joints; comma- or space-separated.
+        #[arg(long, required = true, num_args = 1.., value_delimiter = ',', allow_negative_numbers = true)]
+        q: Vec<String>,
+        /// Joint velocities (rad/s, m/s); zero if omitted.
+        #[arg(long, num_args = 1.., value_delimiter = ',', allow_negative_numbers = true)]
+        qd: Option<Vec<f64>>,
+        /// Joint accelerations (rad/s², m/s²); zero if omitted.
+        #[arg(long, num_args = 1.., value_delimiter = ',', allow_negative_numbers = true)]
+        qdd: Option<Vec<f64>>,
+        /// Print JSON instead of text.
+        #[arg(long)]
+        json: bool,
+    },
+    /// Write the module `dhgen::robot!` generates for the description, formatted, as a Rust
+    /// source file.
+    Emit {
+        /// The robot description (TOML).
+        robot: PathBuf,
+        /// Output file; standard output if omitted.
+        #[arg(short, long)]
+        output: Option<PathBuf>,
+        /// Module name; the robot's name if omitted.
+        #[arg(long)]
+        name: Option<String>,
+    },
+    /// Print D(q), the Christoffel symbols c_ijk and g(q) as LaTeX equations, from the
+    /// symbolic engine.
+    Latex {
+        /// The robot description (TOML).
+        robot: PathBuf,
+        /// Write runs of parallel axes with cumulative angles, c_{23} = cos(θ2 + θ3), where
+        /// that shortens an entry.
+        #[arg(long)]
+        cumulative: bool,
+        /// Significant digits of the coefficients.
+        #[arg(long, default_value_t = 4, value_parser = clap::value_parser!(u8).range(1..=17))]
+        digits: u8,
+    },
+    /// Print the operation count of every generated function and the generation time.
+    Ops {
+        /// The robot description (TOML).
+        robot: PathBuf,
+    },
+}
+
+/// Loads a description; the error names the file (and for a rule violation the line,
+/// column, link and field) on one line.
+fn load(path: &Path) -> Result<Robot, String> {
+    Robot::from_toml_file(path).map_err(|e| one_line(&e.to_string()))
+}
+
+/// Multi-line messages (TOML syntax errors quote the offending line under a caret) folded
+/// into one line: the lines that say something, joined.
+fn one_line(message: &str) -> String {
+    let lines: Vec<&str> = message
+        .lines()
+        .map(str::trim)
+        .filter(|l| {
+            // Drop the quoted source and caret lines: `|`, `3 | text`, `^^^`.
+            let quoted = l.starts_with('|')
+                || l.starts_with('^')
+                || l.split_once('|')
+                    .is_some_and(|(n, _)| n.trim().parse::<u32>().is_ok());
+            !l.is_empty() && !quoted
+        })
+        .collect();
+    lines.join(": ")
+}
+
+fn run(command: Command) -> Result<String, String> {
+    match command {
+        Command::Info { robot } => Ok(info::report(&load(&robot)?)),
+        Command::Eval {
+            robot,
+            q,
+            qd,
+            qdd,
+            json,
+        } => {
+            let r = load(&robot)?;
+            let q = eval::positions(&r, &q)?;
+            let n = r.dof();
+            let qd = qd.unwrap_or_else(|| vec![0.0; n]);
+            let qdd = qdd.unwrap_or_else(|| vec![0.0; n]);
+            eval::check_len(&r, "--qd", qd.len())?;
+            eval::check_len(&r, "--qdd", qdd.len())?;
+            if let Some(x) = qd.iter().chain(&qdd).find(|x| !x.is_finite()) {
+                return Err(format!("--qd and --qdd must be finite numbers, not {x}"));
+            }
+            let e = eval::evaluate(&r, q, qd, qdd);
+            Ok(if json {
+                format!("{}\n", e.json(&r))
+            } else {
+                e.text(&r)
+            })
+        }
+        Command::Emit {
+            robot,
+            output,
+            name,
+        } => {
+            let r = load(&robot)?;
+            let code = emit::emit(r.model(), &robot, name.as_deref())?;
+            match output {
+                Some(path) => {
+                    std::fs::write(&path, code)
+                        .map_err(|e| format!("{}: cannot write: {e}", path.display()))?;
+                    Ok(String::new())
+                }
+                None => Ok(code),
+            }
+        }
+        Command::Latex {
+            robot,
+            cumulative,
+            digits,
+        } => {
+            let r = load(&robot)?;
+            let style = Style {
+                digits: usize::from(digits),
+                cumulative,
+                ..Style::default()
+            };
+            dynamics_equations(r.model(), &style).ok_or_else(|| {
+                format!(
+                    "{}: the description has no mass properties, so there is no D(q), c_ijk or g(q) to print",
+                    robot.display()
+                )
+            })
+        }
+        Command::Ops { robot } => emit::ops_report(load(&robot)?.model()),
+    }
+}
+
+fn main() -> ExitCode {
+    let cli = match Cli::try_parse() {
+        Ok(cli) => cli,
+        Err(e) => {
+            return match e.kind() {
+                ErrorKind::DisplayHelp | ErrorKind::DisplayVersion => {
+                    let _ = e.print();
+                    ExitCode::SUCCESS
+                }
+                ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand => {
+                    eprintln!(
+                        "dhgen: missing command: info, eval, emit, latex or ops (see dhgen --help)"
+                    );
+                    ExitCode::from(2)
+                }
+                _ => {
+                    // clap's first paragraph (the message and, for missing arguments,
+                    // their names), without the usage and tip paragraphs.
+                    let text = e.render().to_string();
+                    let message: Vec<&str> = text
+                        .lines()
+                        .take_while(|l| !l.trim().is_empty())
+                        .map(str::trim)
+                        .collect();
+                    let message = message.join(" ");
+                    let message = message.strip_prefix("error: ").unwrap_or(&message);
+                    eprintln!("dhgen: {message} (see dhgen --help)");
+                    ExitCode::from(2)
+                }
+            };
+        }
+    };
+    match run(cli.command) {
+        Ok(text) => {
+            let mut out = std::io::stdout().lock();
+            match out.write_all(text.as_bytes()).and_then(|()| out.flush()) {
+                Ok(()) => ExitCode::SUCCESS,
+                // A closed pipe (`dhgen emit robot.toml | head`) is the reader's choice.
+                Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => ExitCode::SUCCESS,
+                Err(e) => {
+                    eprintln!("dhgen: cannot write the output: {e}");
+                    ExitCode::FAILURE
+                }
+            }
+        }
+        Err(message) => {
+            eprintln!("dhgen: {message}");
+            ExitCode::FAILURE
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn toml_errors_fold_into_one_line() {
+        let msg = "robots/x.toml: invalid TOML: TOML parse error at line 3, column 5\n  |\n3 | a = \n  |     ^\nstring values must be quoted\n";
+        assert_eq!(
+            one_line(msg),
+            "robots/x.toml: invalid TOML: TOML parse error at line 3, column 5: string values must be quoted"
+        );
+    }
+
+    #[test]
+    fn command_line_is_consistent() {
+        use clap::CommandFactory;
+        Cli::command().debug_assert();
+    }
+}

@@ -1,0 +1,501 @@
+//! Runs the `dhgen` binary for every command and checks what it prints against the
+//! runtime path and against known values.
+
+use dhgen::Robot;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+/// The workspace root: the paths in the commands are relative to it, as a user would type.
+fn root() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .parent()
+        .expect("cli/ has a parent")
+        .to_path_buf()
+}
+
+fn dhgen(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_dhgen"))
+        .args(args)
+        .current_dir(root())
+        .output()
+        .expect("the dhgen binary runs")
+}
+
+/// Runs a command that must succeed and returns its standard output.
+fn stdout(args: &[&str]) -> String {
+    let out = dhgen(args);
+    assert!(
+        out.status.success(),
+        "dhgen {args:?} failed: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert!(
+        out.stderr.is_empty(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    String::from_utf8(out.stdout).expect("UTF-8 output")
+}
+
+/// Runs a command that must fail and returns its one line of standard error.
+fn failure(args: &[&str]) -> String {
+    let out = dhgen(args);
+    assert!(!out.status.success(), "dhgen {args:?} succeeded");
+    assert!(
+        out.stdout.is_empty(),
+        "{}",
+        String::from_utf8_lossy(&out.stdout)
+    );
+    let err = String::from_utf8(out.stderr).expect("UTF-8 error");
+    assert_eq!(err.lines().count(), 1, "not one line: {err:?}");
+    assert!(err.starts_with("dhgen: "), "{err}");
+    assert!(!err.contains("panicked"), "{err}");
+    err
+}
+
+fn puma() -> Robot {
+    Robot::from_toml_file(root().join("robots/puma560.toml")).unwrap()
+}
+
+#[test]
+fn info_prints_the_dh_table_and_the_wrist() {
+    let out = stdout(&["info", "robots/puma560.toml"]);
+    assert!(out.starts_with("puma560 — Unimation PUMA 560\n"), "{out}");
+    for row in [
+        "│ 1 │ revolute │ q1 │ 0.67183 │      0 │  90° │ -160° │ 160° │",
+        "│ 3 │ revolute │ q3 │ 0.15005 │ 0.0203 │ -90° │ -225° │  45° │",
+        "│ 6 │ revolute │ q6 │       0 │      0 │   0° │ -266° │ 266° │",
+    ] {
+        assert!(out.contains(row), "missing {row:?} in\n{out}");
+    }
+    assert!(out.contains("DOF:             6\n"), "{out}");
+    assert!(out.contains("RRRRRR (6 revolute, 0 prismatic)"), "{out}");
+    assert!(
+        out.contains("masses:          [0, 17.4, 4.8, 0.82, 0.34, 0.09] kg, total 23.45 kg"),
+        "{out}"
+    );
+    // The wrist centre at q = 0: d4 above the elbow along z3, by the runtime frames.
+    let line = out
+        .lines()
+        .find(|l| {
+            l.starts_with("spherical wrist: yes: the axes of joints 4, 5, 6 meet in one point")
+        })
+        .unwrap_or_else(|| panic!("{out}"));
+    let inside = line
+        .split_once("q = 0: [")
+        .unwrap()
+        .1
+        .split_once(']')
+        .unwrap()
+        .0;
+    let centre: Vec<f64> = inside.split(", ").map(|x| x.parse().unwrap()).collect();
+    // Frame 5's origin (index 4) lies on the axes of joints 5 and 6 and, d4 along z3, on 4's.
+    let o5 = puma().frames(&[0.0; 6])[4].translation.vector;
+    for i in 0..3 {
+        assert!((centre[i] - o5[i]).abs() < 1e-6, "{line} vs {o5}");
+    }
+}
+
+#[test]
+fn info_on_other_arms() {
+    let stanford = stdout(&["info", "robots/stanford.toml"]);
+    // The prismatic joint's variable appears in the d column.
+    assert!(stanford.contains("│ 3 │ prismatic │"), "{stanford}");
+    assert!(stanford.contains("RRPRRR"), "{stanford}");
+    assert!(stanford.contains("spherical wrist: yes"), "{stanford}");
+    let panda = stdout(&["info", "robots/panda.toml"]);
+    assert!(panda.contains("aⱼ₋₁"), "modified DH headers: {panda}");
+    assert!(
+        panda.contains("spherical wrist: no: the axes of joints 5, 6, 7 do not meet"),
+        "{panda}"
+    );
+    let planar = stdout(&["info", "robots/planar_elbow.toml"]);
+    assert!(
+        planar.contains("spherical wrist: no (only 2 joints)"),
+        "{planar}"
+    );
+    let cylindrical = stdout(&["info", "robots/cylindrical.toml"]);
+    assert!(
+        cylindrical.contains("dynamics:        none"),
+        "{cylindrical}"
+    );
+    assert!(
+        cylindrical.contains("spherical wrist: yes"),
+        "{cylindrical}"
+    );
+}
+
+/// The numbers of the block titled `title` in `eval`'s text output, row by row.
+fn block(out: &str, title: &str) -> Vec<Vec<f64>> {
+    out.lines()
+        .skip_while(|l| !l.starts_with(title))
+        .skip(1)
+        .take_while(|l| !l.trim().is_empty())
+        .map(|l| l.split_whitespace().map(|x| x.parse().unwrap()).collect())
+        .collect()
+}
+
+#[test]
+fn eval_text_matches_the_runtime_at_zero() {
+    let out = stdout(&["eval", "robots/puma560.toml", "--q", "0,0,0,0,0,0"]);
+    let robot = puma();
+    let d = block(&out, "D(q)");
+    let want = robot.mass_matrix(&[0.0; 6]);
+    assert_eq!(d.len(), 6, "{out}");
+    for (r, row) in d.iter().enumerate() {
+        assert_eq!(row.len(), 6);
+        for (c, x) in row.iter().enumerate() {
+            assert!(
+                (x - want[(r, c)]).abs() <= 5e-7,
+                "D[{r}][{c}] = {x}, want {}",
+                want[(r, c)]
+            );
+        }
+    }
+    let g = block(&out, "g(q)");
+    let want = robot.gravity(&[0.0; 6]);
+    for (j, x) in g[0].iter().enumerate() {
+        assert!((x - want[j]).abs() <= 5e-7, "g[{j}]");
+    }
+    // At q = 0 the tool sits at (a2 - ... ): the pose's translation column.
+    let t = block(&out, "T:");
+    let pose = robot.fk(&[0.0; 6]).translation.vector;
+    for i in 0..3 {
+        assert!((t[i][3] - pose[i]).abs() <= 5e-7);
+    }
+}
+
+#[test]
+fn eval_json_matches_the_runtime() {
+    let q = [0.1, -0.6, 0.4, 0.3, 0.8, -0.2];
+    let qd = [0.5, -0.3, 0.2, 1.0, -0.7, 0.4];
+    let qdd = [1.0, 0.5, -0.5, 0.2, 0.3, -1.0];
+    let list = |v: &[f64]| v.iter().map(f64::to_string).collect::<Vec<_>>().join(",");
+    let out = stdout(&[
+        "eval",
+        "robots/puma560.toml",
+        "--q",
+        &list(&q),
+        "--qd",
+        &list(&qd),
+        "--qdd",
+        &list(&qdd),
+        "--json",
+    ]);
+    let v: serde_json::Value = serde_json::from_str(&out).expect("valid JSON");
+    let robot = puma();
+    let matrix = |key: &str| -> Vec<Vec<f64>> {
+        v[key]
+            .as_array()
+            .unwrap_or_else(|| panic!("{key} missing"))
+            .iter()
+            .map(|r| {
+                r.as_array()
+                    .unwrap()
+                    .iter()
+                    .map(|x| x.as_f64().unwrap())
+                    .collect()
+            })
+            .collect()
+    };
+    let vector = |key: &str| -> Vec<f64> {
+        v[key]
+            .as_array()
+            .unwrap_or_else(|| panic!("{key} missing"))
+            .iter()
+            .map(|x| x.as_f64().unwrap())
+            .collect()
+    };
+    let close = |a: f64, b: f64| (a - b).abs() <= 1e-12 * (1.0 + b.abs());
+    let check = |name: &str,
+                 got: Vec<Vec<f64>>,
+                 want: &dyn Fn(usize, usize) -> f64,
+                 shape: (usize, usize)| {
+        assert_eq!((got.len(), got[0].len()), shape, "{name}");
+        for (r, row) in got.iter().enumerate() {
+            for (c, x) in row.iter().enumerate() {
+                assert!(
+                    close(*x, want(r, c)),
+                    "{name}[{r}][{c}]: {x} vs {}",
+                    want(r, c)
+                );
+            }
+        }
+    };
+    let t = robot.fk(&q).to_homogeneous();
+    check("T", matrix("T"), &|r, c| t[(r, c)], (4, 4));
+    let j = robot.jacobian(&q);
+    check("J", matrix("J"), &|r, c| j[(r, c)], (6, 6));
+    let d = robot.mass_matrix(&q);
+    check("D", matrix("D"), &|r, c| d[(r, c)], (6, 6));
+    let cm = robot.coriolis(&q, &qd);
+    check("C", matrix("C"), &|r, c| cm[(r, c)], (6, 6));
+    let g = robot.gravity(&q);
+    let tau = robot.inverse_dynamics(&q, &qd, &qdd);
+    for i in 0..6 {
+        assert!(close(vector("g")[i], g[i]));
+        assert!(close(vector("tau")[i], tau[i]));
+        assert_eq!(vector("q")[i], q[i]);
+        assert_eq!(vector("qd")[i], qd[i]);
+    }
+    assert_eq!(v["robot"], "puma560");
+    assert_eq!(v["dof"], 6);
+    assert_eq!(v["has_dynamics"], true);
+}
+
+#[test]
+fn eval_reads_angles_and_omits_missing_dynamics() {
+    let deg = stdout(&[
+        "eval",
+        "robots/puma560.toml",
+        "--json",
+        "--q",
+        "90deg,-pi/2,0,0,0,0",
+    ]);
+    let rad = stdout(&[
+        "eval",
+        "robots/puma560.toml",
+        "--json",
+        "--q",
+        &format!(
+            "{},{},0,0,0,0",
+            std::f64::consts::FRAC_PI_2,
+            -std::f64::consts::FRAC_PI_2
+        ),
+    ]);
+    assert_eq!(deg, rad);
+    // Space-separated values and negative numbers work as well.
+    let spaced = stdout(&[
+        "eval",
+        "robots/planar_elbow.toml",
+        "--q",
+        "-0.5",
+        "1",
+        "--json",
+    ]);
+    let v: serde_json::Value = serde_json::from_str(&spaced).unwrap();
+    assert_eq!(v["q"], serde_json::json!([-0.5, 1.0]));
+
+    let out = stdout(&[
+        "eval",
+        "robots/cylindrical.toml",
+        "--q",
+        "0,0.5,0.2,0,0,0",
+        "--json",
+    ]);
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(v["has_dynamics"], false);
+    assert!(v.get("D").is_none() && v.get("tau").is_none(), "{out}");
+    assert!(v.get("J").is_some());
+    let text = stdout(&["eval", "robots/cylindrical.toml", "--q", "0,0.5,0.2,0,0,0"]);
+    assert!(text.contains("no dynamics"), "{text}");
+}
+
+#[test]
+fn emit_is_the_checked_in_file() {
+    // If this fails after a change to the generator, regenerate the file:
+    // `cargo run -p dhgen-cli -- emit robots/puma560.toml -o cli/tests/emitted/puma560.rs`
+    let out = stdout(&["emit", "robots/puma560.toml"]);
+    let checked_in = include_str!("emitted/puma560.rs");
+    assert!(
+        out == checked_in,
+        "cli/tests/emitted/puma560.rs is stale: regenerate it with \
+         `cargo run -p dhgen-cli -- emit robots/puma560.toml -o cli/tests/emitted/puma560.rs`"
+    );
+}
+
+#[test]
+fn emit_writes_a_file_and_renames_the_module() {
+    let path = Path::new(env!("CARGO_TARGET_TMPDIR")).join("emit_planar.rs");
+    let path_text = path.to_str().unwrap();
+    let out = stdout(&[
+        "emit",
+        "robots/planar_elbow.toml",
+        "-o",
+        path_text,
+        "--name",
+        "arm",
+    ]);
+    assert!(out.is_empty());
+    let written = std::fs::read_to_string(&path).unwrap();
+    assert_eq!(
+        written,
+        stdout(&["emit", "robots/planar_elbow.toml", "--name", "arm"])
+    );
+    assert!(written.contains("\npub mod arm {\n"), "{written}");
+    assert!(written.contains("pub const DOF: usize = 2"), "{written}");
+    assert!(
+        written.contains("impl ::dhgen::ArmDynamics for Model"),
+        "{written}"
+    );
+    let err = failure(&["emit", "robots/planar_elbow.toml", "--name", "type"]);
+    assert!(
+        err.contains("--name \"type\" is not a Rust identifier"),
+        "{err}"
+    );
+}
+
+#[test]
+fn latex_prints_the_equations() {
+    let out = stdout(&["latex", "robots/puma560.toml"]);
+    assert!(
+        out.starts_with("% Unimation PUMA 560: D(q), Christoffel symbols and g(q)"),
+        "{out}"
+    );
+    assert_eq!(out.matches("\\begin{align*}").count(), 3, "{out}");
+    assert_eq!(out.matches("\\end{align*}").count(), 3, "{out}");
+    assert!(out.contains("  d_{11} &= 1.554 + "), "{out}");
+    // g_2 at q = 0 is 37.23 + 0.2489 (the c_2 and c_2 c_3 terms) = g(0)[1] of the runtime.
+    assert!(
+        out.contains("  g_{2} &= 37.23\\,c_2 - 1.024\\,s_2 + 0.2489\\,c_2 c_3"),
+        "{out}"
+    );
+    assert!((37.23 + 0.2489 - puma().gravity(&[0.0; 6])[1]).abs() < 6e-3);
+    // g_1 is identically zero (joint 1's axis is vertical) and so is not listed.
+    assert!(!out.contains("g_{1}"), "{out}");
+    // Christoffel symbols with i > j are not listed; c_111 = ½ ∂d_11/∂q_1 = 0.
+    assert!(out.contains("  c_{112} &="), "{out}");
+    assert!(
+        !out.contains("c_{211}") && !out.contains("c_{111}"),
+        "{out}"
+    );
+
+    let cumulative = stdout(&[
+        "latex",
+        "robots/puma560.toml",
+        "--cumulative",
+        "--digits",
+        "3",
+    ]);
+    assert!(
+        cumulative.contains("  g_{3} &= 0.249\\,c_{23} - 8.74\\,s_{23}"),
+        "{cumulative}"
+    );
+
+    let err = failure(&["latex", "robots/cylindrical.toml"]);
+    assert!(
+        err.contains("robots/cylindrical.toml: the description has no mass properties"),
+        "{err}"
+    );
+}
+
+#[test]
+fn ops_prints_the_cost_table() {
+    let out = stdout(&["ops", "robots/puma560.toml"]);
+    let first = out.lines().next().unwrap();
+    assert!(
+        first.starts_with("puma560 (6 DOF, with dynamics): generated in "),
+        "{out}"
+    );
+    assert!(first.contains(" ms, ~"), "{out}");
+    let mut total = 0;
+    let mut all = None;
+    for name in [
+        "fk_matrix",
+        "jacobian",
+        "mass_matrix",
+        "christoffel",
+        "gravity",
+        "all",
+    ] {
+        let row = out
+            .lines()
+            .find(|l| l.starts_with(&format!("│ {name} ")))
+            .unwrap_or_else(|| panic!("no row {name} in\n{out}"));
+        let cells: Vec<usize> = row
+            .split('│')
+            .skip(2)
+            .filter(|c| !c.trim().is_empty())
+            .map(|c| c.trim().parse().unwrap())
+            .collect();
+        assert_eq!(cells.len(), 5, "{row}");
+        // add + mul + div + sqrt = total.
+        assert_eq!(cells[0] + cells[1] + cells[2] + cells[3], cells[4], "{row}");
+        assert!(cells[4] > 0, "{row}");
+        if name == "all" {
+            all = Some(cells[4]);
+        } else {
+            total += cells[4];
+        }
+    }
+    assert!(all.unwrap() >= total, "{out}");
+}
+
+#[test]
+fn bad_files_and_arguments_fail_with_one_line() {
+    let tmp = Path::new(env!("CARGO_TARGET_TMPDIR"));
+
+    let err = failure(&["info", "robots/no_such_robot.toml"]);
+    assert!(
+        err.contains("robots/no_such_robot.toml: cannot read file"),
+        "{err}"
+    );
+
+    let syntax = tmp.join("bad_syntax.toml");
+    std::fs::write(
+        &syntax,
+        "name = \"x\"\nconvention = \"standard\"\n[[links]]\njoint = \"revolute\"\na = \n",
+    )
+    .unwrap();
+    let err = failure(&["info", syntax.to_str().unwrap()]);
+    assert!(
+        err.contains("bad_syntax.toml: invalid TOML") && err.contains("line 5"),
+        "{err}"
+    );
+
+    let text = std::fs::read_to_string(root().join("robots/puma560.toml")).unwrap();
+    let invalid = tmp.join("negative_mass.toml");
+    let bad = text.replace("mass = 4.8", "mass = -4.8");
+    std::fs::write(&invalid, &bad).unwrap();
+    // The error points at the value: its line, and the column after `mass = ` (1-based).
+    let line = bad.lines().position(|l| l == "mass = -4.8").unwrap() + 1;
+    let at = format!("negative_mass.toml:{line}:8: link 3, field `mass`: mass -4.8 is negative");
+    for command in ["info", "emit", "latex", "ops"] {
+        let err = failure(&[command, invalid.to_str().unwrap()]);
+        assert!(err.contains(&at), "{command}: {err}");
+    }
+
+    let err = failure(&["eval", "robots/puma560.toml", "--q", "1,2"]);
+    assert_eq!(err, "dhgen: --q has 2 values, but puma560 has 6 joints\n");
+    let err = failure(&[
+        "eval",
+        "robots/puma560.toml",
+        "--q",
+        "0,0,0,0,0,0",
+        "--qd",
+        "1",
+    ]);
+    assert!(
+        err.contains("--qd has 1 value, but puma560 has 6 joints"),
+        "{err}"
+    );
+    let err = failure(&["eval", "robots/puma560.toml", "--q", "0,0,0,0,0,x"]);
+    assert!(
+        err.contains("--q, joint 6: cannot parse angle \"x\""),
+        "{err}"
+    );
+    let err = failure(&["eval", "robots/puma560.toml"]);
+    assert!(err.contains("--q"), "{err}");
+    let err = failure(&[
+        "eval",
+        "robots/puma560.toml",
+        "--q",
+        "0,0,0,0,0,0",
+        "--qdd",
+        "a,b",
+    ]);
+    assert!(err.contains("invalid value 'a'"), "{err}");
+    let err = failure(&["frobnicate"]);
+    assert!(err.contains("frobnicate"), "{err}");
+    failure(&[]);
+    failure(&["latex", "robots/puma560.toml", "--digits", "0"]);
+}
+
+#[test]
+fn help_and_version_succeed() {
+    let help = stdout(&["--help"]);
+    for command in ["info", "eval", "emit", "latex", "ops"] {
+        assert!(help.contains(command), "{help}");
+    }
+    assert!(stdout(&["--version"]).starts_with("dhgen "));
+}

@@ -1,0 +1,86 @@
+//! The output of `dhgen emit robots/puma560.toml`, checked in as `emitted/puma560.rs`
+//! (`commands.rs` checks that it is current), compiles against `dhgen` and computes the same
+//! numbers as `dhgen::robot!` on the same file.
+
+use dhgen::Arm;
+use dhgen::nalgebra::SVector;
+
+mod emitted {
+    include!("emitted/puma560.rs");
+}
+
+dhgen::robot!(mod generated = "../robots/puma560.toml");
+
+use emitted::puma560 as emitted_puma;
+
+/// Pseudo-random configurations in [-π, π) (a fixed sequence, no dependency needed).
+fn configurations() -> Vec<[f64; 6]> {
+    let mut x = 0x2545_F491_4F6C_DD1D_u64;
+    (0..20)
+        .map(|_| {
+            core::array::from_fn(|_| {
+                x ^= x << 13;
+                x ^= x >> 7;
+                x ^= x << 17;
+                ((x >> 11) as f64 / (1u64 << 53) as f64 - 0.5) * 2.0 * core::f64::consts::PI
+            })
+        })
+        .collect()
+}
+
+fn assert_close(name: &str, a: &[f64], b: &[f64]) {
+    assert_eq!(a.len(), b.len(), "{name}");
+    let scale = b.iter().fold(1.0_f64, |m, x| m.max(x.abs()));
+    for (i, (x, y)) in a.iter().zip(b).enumerate() {
+        assert!((x - y).abs() <= 1e-12 * scale, "{name}[{i}]: {x} vs {y}");
+    }
+}
+
+#[test]
+fn emitted_module_matches_the_macro() {
+    assert_eq!(emitted_puma::DOF, generated::DOF);
+    assert_eq!(emitted_puma::NAME, "puma560");
+    assert_eq!(emitted_puma::LIMITS, generated::LIMITS);
+    let configs = configurations();
+    for (n, q) in configs.iter().enumerate() {
+        let qd = configs[(n + 1) % configs.len()].map(|x| x * 0.5);
+        let qdd = configs[(n + 2) % configs.len()];
+        let (e, g) = (emitted_puma::State::new(q), generated::State::new(q));
+        assert_close(
+            "fk",
+            e.fk().to_homogeneous().as_slice(),
+            g.fk().to_homogeneous().as_slice(),
+        );
+        assert_close("jacobian", e.jacobian().as_slice(), g.jacobian().as_slice());
+        assert_close("D", e.mass_matrix().as_slice(), g.mass_matrix().as_slice());
+        let flat =
+            |c: [[[f64; 6]; 6]; 6]| -> Vec<f64> { c.iter().flatten().flatten().copied().collect() };
+        assert_close("c_ijk", &flat(e.christoffel()), &flat(g.christoffel()));
+        assert_close("C", e.coriolis(&qd).as_slice(), g.coriolis(&qd).as_slice());
+        assert_close("g", e.gravity().as_slice(), g.gravity().as_slice());
+        assert_close(
+            "tau",
+            e.inverse_dynamics(&qd, &qdd).as_slice(),
+            g.inverse_dynamics(&qd, &qdd).as_slice(),
+        );
+        let tau = g.inverse_dynamics(&qd, &qdd);
+        let fd = e
+            .forward_dynamics(&qd, &tau.into())
+            .expect("D is positive definite");
+        // Forward dynamics inverts inverse dynamics.
+        assert_close("forward dynamics", fd.as_slice(), &qdd);
+    }
+}
+
+#[test]
+fn emitted_module_implements_arm() {
+    let q = SVector::<f64, 6>::from([0.3, -0.2, 0.5, 1.0, -0.7, 0.1]);
+    let a = Arm::fk(&emitted_puma::Model, &q);
+    let b = Arm::fk(&generated::Model, &q);
+    assert_close(
+        "Arm::fk",
+        a.to_homogeneous().as_slice(),
+        b.to_homogeneous().as_slice(),
+    );
+    assert_eq!(Arm::dof(&emitted_puma::Model), 6);
+}
