@@ -347,7 +347,7 @@ impl CubicSpline {
     }
 
     /// The state of one joint (`joint < dof`) at time `t`.
-    fn eval_joint(&self, t: f64, joint: usize) -> State {
+    fn joint_state(&self, t: f64, joint: usize) -> State {
         let dof = self.dof;
         let last = self.times.len() - 1;
         if t < self.times[0] {
@@ -373,57 +373,6 @@ impl CubicSpline {
             qd: (y1 - y0) / h + ((1.0 - 3.0 * a * a) * m0 + (3.0 * b * b - 1.0) * m1) * h / 6.0,
             qdd: a * m0 + b * m1,
         }
-    }
-}
-
-impl MultiProfile for CubicSpline {
-    fn dof(&self) -> usize {
-        self.dof
-    }
-
-    fn start_time(&self) -> f64 {
-        self.times[0]
-    }
-
-    fn duration(&self) -> f64 {
-        self.end_time() - self.start_time()
-    }
-
-    fn end_time(&self) -> f64 {
-        self.times[self.times.len() - 1]
-    }
-
-    fn eval_into(&self, t: f64, out: &mut [State]) -> Result<(), TrajectoryError> {
-        if out.len() != self.dof {
-            return Err(TrajectoryError::LengthMismatch {
-                name: "out",
-                expected: self.dof,
-                found: out.len(),
-                at: Location::NONE,
-            });
-        }
-        for (joint, state) in out.iter_mut().enumerate() {
-            *state = self.eval_joint(t, joint);
-        }
-        Ok(())
-    }
-}
-
-impl Profile for JointView<'_, CubicSpline> {
-    fn start_time(&self) -> f64 {
-        MultiProfile::start_time(self.path)
-    }
-
-    fn duration(&self) -> f64 {
-        MultiProfile::duration(self.path)
-    }
-
-    fn end_time(&self) -> f64 {
-        MultiProfile::end_time(self.path)
-    }
-
-    fn eval(&self, t: f64) -> State {
-        self.path.eval_joint(t, self.joint)
     }
 }
 
@@ -621,7 +570,7 @@ impl BlendedSegments {
     }
 
     /// The state of one joint (`joint < dof`) at time `t`.
-    fn eval_joint(&self, t: f64, joint: usize) -> State {
+    fn joint_state(&self, t: f64, joint: usize) -> State {
         let dof = self.dof;
         let m = self.corners.len() - 1;
         let point = |k: usize| self.values[k * dof + joint];
@@ -680,13 +629,45 @@ impl BlendedSegments {
     }
 }
 
-impl MultiProfile for BlendedSegments {
-    fn dof(&self) -> usize {
+/// What the via-point paths share: their knot times, their joints, and one joint's state at
+/// a time. The multi-joint and single-joint profile interfaces follow from it, once.
+trait ViaPath {
+    fn joints(&self) -> usize;
+    fn knot_times(&self) -> &[f64];
+    fn eval_joint(&self, t: f64, joint: usize) -> State;
+}
+
+impl ViaPath for CubicSpline {
+    fn joints(&self) -> usize {
         self.dof
+    }
+    fn knot_times(&self) -> &[f64] {
+        &self.times
+    }
+    fn eval_joint(&self, t: f64, joint: usize) -> State {
+        self.joint_state(t, joint)
+    }
+}
+
+impl ViaPath for BlendedSegments {
+    fn joints(&self) -> usize {
+        self.dof
+    }
+    fn knot_times(&self) -> &[f64] {
+        &self.times
+    }
+    fn eval_joint(&self, t: f64, joint: usize) -> State {
+        self.joint_state(t, joint)
+    }
+}
+
+impl<P: ViaPath> MultiProfile for P {
+    fn dof(&self) -> usize {
+        self.joints()
     }
 
     fn start_time(&self) -> f64 {
-        self.times[0]
+        self.knot_times()[0]
     }
 
     fn duration(&self) -> f64 {
@@ -694,14 +675,14 @@ impl MultiProfile for BlendedSegments {
     }
 
     fn end_time(&self) -> f64 {
-        self.times[self.times.len() - 1]
+        self.knot_times()[self.knot_times().len() - 1]
     }
 
     fn eval_into(&self, t: f64, out: &mut [State]) -> Result<(), TrajectoryError> {
-        if out.len() != self.dof {
+        if out.len() != self.joints() {
             return Err(TrajectoryError::LengthMismatch {
                 name: "out",
-                expected: self.dof,
+                expected: self.joints(),
                 found: out.len(),
                 at: Location::NONE,
             });
@@ -713,7 +694,7 @@ impl MultiProfile for BlendedSegments {
     }
 }
 
-impl Profile for JointView<'_, BlendedSegments> {
+impl<P: ViaPath> Profile for JointView<'_, P> {
     fn start_time(&self) -> f64 {
         MultiProfile::start_time(self.path)
     }
