@@ -69,6 +69,15 @@ mod real;
 pub use arm::{Arm, ArmAllocator, ArmDynamics, JointVector};
 pub use real::Real;
 
+// Rotations (section 3.5): ZYZ Euler angles, roll-pitch-yaw, axis-angle; what nalgebra lacks.
+pub mod rotation;
+
+// Inverse kinematics (section 4.3): closed form by kinematic decoupling, and numeric.
+pub mod ik;
+
+// Velocity kinematics (chapter 5): analytic Jacobian, J̇, singularities, inverse velocity.
+pub mod velocity;
+
 #[cfg(feature = "std")]
 mod dynamics;
 #[cfg(feature = "std")]

@@ -1,0 +1,126 @@
+//! Timings of inverse kinematics and velocity kinematics on generated robots: the closed
+//! form by kinematic decoupling (all solutions, each verified by forward kinematics; the
+//! bar to beat is IKFast's published ~4 µs per solve), the numeric solver from nearby and
+//! from random seeds, and the velocity-kinematics helpers. Every call takes the next of 64
+//! fixed random poses (seeded, from joint vectors within the limits).
+//!
+//! `cargo bench --bench ik -- --warm-up-time 1 --measurement-time 2`
+
+use criterion::{BenchmarkId, Criterion, black_box, criterion_group, criterion_main};
+use dhgen::Arm;
+use dhgen::ik::{DecoupledIk, NumericIk};
+use dhgen::nalgebra::{Isometry3, SVector, Vector6};
+use dhgen::velocity::{Damping, JacobianSvd, inverse_velocity, jacobian_dot_qd};
+use rand::rngs::StdRng;
+use rand::{Rng, SeedableRng};
+
+dhgen::robot!(mod puma560 = "robots/puma560.toml");
+dhgen::robot!(mod stanford = "robots/stanford.toml");
+dhgen::robot!(mod panda = "robots/panda.toml");
+
+const STATES: usize = 64;
+
+struct Case<const N: usize> {
+    q: SVector<f64, N>,
+    pose: Isometry3<f64>,
+    near: SVector<f64, N>,
+    random: SVector<f64, N>,
+}
+
+fn cases<const N: usize, A: Arm<Dof = dhgen::nalgebra::Const<N>>>(
+    arm: &A,
+    seed: u64,
+) -> Vec<Case<N>> {
+    let mut rng = StdRng::seed_from_u64(seed);
+    let within = |rng: &mut StdRng| {
+        SVector::<f64, N>::from_fn(|j, _| {
+            let [lo, hi] = arm.limits(j).unwrap_or([-3.0, 3.0]);
+            rng.gen_range(lo..hi)
+        })
+    };
+    (0..STATES)
+        .map(|_| {
+            let q = within(&mut rng);
+            let random = within(&mut rng);
+            let near = q + SVector::<f64, N>::from_fn(|_, _| rng.gen_range(-0.1..0.1));
+            Case {
+                pose: arm.fk(&q),
+                q,
+                near,
+                random,
+            }
+        })
+        .collect()
+}
+
+fn cycle<const N: usize, R>(
+    c: &mut Criterion,
+    group: &str,
+    name: &str,
+    variant: &str,
+    cases: &[Case<N>],
+    f: impl Fn(&Case<N>) -> R,
+) {
+    c.benchmark_group(group)
+        .bench_function(BenchmarkId::new(name, variant), |b| {
+            let mut i = 0;
+            b.iter(|| {
+                let s = black_box(&cases[i % STATES]);
+                i += 1;
+                black_box(f(s))
+            })
+        });
+}
+
+fn closed_form(c: &mut Criterion) {
+    let puma = cases::<6, _>(&puma560::Model, 560);
+    let ik = DecoupledIk::from_arm(&puma560::Model).unwrap();
+    cycle(
+        c,
+        "puma560",
+        "ik_closed_form",
+        "all_solutions",
+        &puma,
+        |s| ik.solve(&s.pose),
+    );
+    let st = cases::<6, _>(&stanford::Model, 1969);
+    let ik = DecoupledIk::from_arm(&stanford::Model).unwrap();
+    cycle(c, "stanford", "ik_closed_form", "all_solutions", &st, |s| {
+        ik.solve(&s.pose)
+    });
+}
+
+fn numeric(c: &mut Criterion) {
+    let solver = NumericIk::default();
+    let puma = cases::<6, _>(&puma560::Model, 560);
+    cycle(c, "puma560", "ik_numeric", "near_seed", &puma, |s| {
+        solver.solve(&puma560::Model, &s.pose, &s.near)
+    });
+    cycle(c, "puma560", "ik_numeric", "random_seed", &puma, |s| {
+        solver.solve(&puma560::Model, &s.pose, &s.random)
+    });
+    let pd = cases::<7, _>(&panda::Model, 7);
+    cycle(c, "panda", "ik_numeric", "near_seed", &pd, |s| {
+        solver.solve(&panda::Model, &s.pose, &s.near)
+    });
+    cycle(c, "panda", "ik_numeric", "random_seed", &pd, |s| {
+        solver.solve(&panda::Model, &s.pose, &s.random)
+    });
+}
+
+fn velocity(c: &mut Criterion) {
+    let puma = cases::<6, _>(&puma560::Model, 560);
+    let xi = Vector6::new(0.1, -0.2, 0.05, 0.3, 0.0, -0.1);
+    cycle(c, "puma560", "svd", "jacobian", &puma, |s| {
+        JacobianSvd::new(&puma560::Model.jacobian(&s.q))
+    });
+    cycle(c, "puma560", "inverse_velocity", "damped", &puma, |s| {
+        inverse_velocity(&puma560::Model, &s.q, &xi, None, &Damping::default())
+    });
+    cycle(c, "puma560", "jacobian_dot_qd", "analytic", &puma, |s| {
+        jacobian_dot_qd(&puma560::Model, &s.q, &s.near)
+    });
+}
+
+criterion_group!(benches, closed_form, numeric, velocity);
+criterion_main!(benches);
