@@ -406,20 +406,16 @@ impl<R: Ring> Chain<R> {
             .collect()
     }
 
-    /// Recursive Newton-Euler: `τ = D q̈ + C q̇ + g` (gravity included when `with_gravity`).
-    pub fn rnea(&self, qd: &[R], qdd: &[R], with_gravity: bool) -> Vec<R> {
-        let n = self.dof();
+    /// The outward pass of Newton-Euler: for each joint frame K_j, its angular velocity,
+    /// angular acceleration and the linear acceleration of its origin (local coordinates),
+    /// given the base's linear acceleration `a0`.
+    pub fn outward(&self, qd: &[R], qdd: &[R], a0: V3<R>) -> Vec<(V3<R>, V3<R>, V3<R>)> {
         let z = || k::<R>(0.0);
         let mut w: V3<R> = [z(), z(), z()];
         let mut wd: V3<R> = [z(), z(), z()];
-        // The base accelerates upwards instead of gravity pulling down.
-        let mut a: V3<R> = if with_gravity {
-            self.gravity.clone().map(|x| -x)
-        } else {
-            [z(), z(), z()]
-        };
-        let mut forces = Vec::with_capacity(n);
-        for j in 0..n {
+        let mut a = a0;
+        let mut out = Vec::with_capacity(self.dof());
+        for j in 0..self.dof() {
             let t = &self.t[j];
             let wr = rot_t(t, &w);
             let wdr = rot_t(t, &wd);
@@ -446,6 +442,50 @@ impl<R: Ring> Chain<R> {
                 }
             }
             a = aj;
+            out.push((w.clone(), wd.clone(), a.clone()));
+        }
+        out
+    }
+
+    /// `J̇(q, q̇) q̇` of the point `tip` (given in the last joint frame K_n): the tool's
+    /// acceleration `[v̇; ω̇]` at `q̈ = 0`, in the axes of DH frame 0.
+    pub fn jdot_qdot(&self, qd: &[R], tip: &V3<R>) -> [R; 6] {
+        let n = self.dof();
+        let z = || k::<R>(0.0);
+        let zeros: Vec<R> = (0..n).map(|_| z()).collect();
+        let (w, wd, a) = self
+            .outward(qd, &zeros, [z(), z(), z()])
+            .pop()
+            .expect("validated models have links");
+        let at = add3(&add3(&a, &cross(&wd, tip)), &cross(&w, &cross(&w, tip)));
+        let frame = self
+            .joint_frames()
+            .pop()
+            .expect("validated models have links");
+        let (v, o) = (rot(&frame, &at), rot(&frame, &wd));
+        [
+            v[0].clone(),
+            v[1].clone(),
+            v[2].clone(),
+            o[0].clone(),
+            o[1].clone(),
+            o[2].clone(),
+        ]
+    }
+
+    /// Recursive Newton-Euler: `τ = D q̈ + C q̇ + g` (gravity included when `with_gravity`).
+    pub fn rnea(&self, qd: &[R], qdd: &[R], with_gravity: bool) -> Vec<R> {
+        let n = self.dof();
+        let z = || k::<R>(0.0);
+        // The base accelerates upwards instead of gravity pulling down.
+        let a0: V3<R> = if with_gravity {
+            self.gravity.clone().map(|x| -x)
+        } else {
+            [z(), z(), z()]
+        };
+        let motion = self.outward(qd, qdd, a0);
+        let mut forces = Vec::with_capacity(n);
+        for (j, (w, wd, a)) in motion.into_iter().enumerate() {
             let b = &self.bodies[j];
             let f = add3(
                 &add3(&scale3(&b.m, &a), &cross(&wd, &b.h)),

@@ -1,7 +1,9 @@
 //! The generated module: a per-configuration `State` (sine and cosine of every joint
 //! computed once), methods for each quantity, and free functions taking `&[T; DOF]`.
 
-use crate::derive::{Derivation, christoffel, gravity, inertia, kinematics, newton_euler};
+use crate::derive::{
+    Derivation, christoffel, gravity, inertia, kinematics, newton_euler, singularity,
+};
 use crate::emit::{self, Output, constant};
 use crate::graph::{E, OpCount, SharedGraph};
 use dhgen_model::{JointKind, RobotModel};
@@ -201,6 +203,51 @@ pub fn generate(model: &RobotModel, vis: TokenStream, name: &Ident, doc: &str) -
         outs,
     );
 
+    let g = SharedGraph::default();
+    let acc = kinematics::jdot_qdot(model, &g);
+    b.add(
+        Method {
+            name: "jdot_qdot",
+            doc: Some("J̇(q, q̇) q̇ of the tool frame origin, world axes, rows [v; ω]: the tool's acceleration at q̈ = 0."),
+            params: quote!(qd: &[T; DOF],),
+            args: quote!(qd,),
+            out_ty: quote!(na::SVector<T, 6>),
+            out_init: quote!(na::SVector::zeros()),
+        },
+        &g,
+        vector_outputs(&acc),
+    );
+
+    // Arms with a spherical wrist: the decoupled singularity conditions, symbolically.
+    let determinants = singularity::decoupled_determinants(model);
+    if let Some((j11, j22)) = &determinants {
+        let docs = [
+            (
+                "det_j11",
+                j11,
+                "det J11: zero at arm singularities (section 5.6.1; Jacobian about the wrist centre).",
+            ),
+            (
+                "det_j22",
+                j22,
+                "det J22 = z3 · (z4 × z5): zero at wrist singularities (section 5.6.1).",
+            ),
+        ];
+        for (name, poly, doc) in docs {
+            let g = SharedGraph::default();
+            let e = crate::derive::polys_to_exprs(std::slice::from_ref(poly), &g, model);
+            b.add(
+                Method::of_q(name, doc, quote!(T), quote!(T::zero())),
+                &g,
+                vec![Output {
+                    target: quote!(out),
+                    value: e[0].clone(),
+                }],
+            );
+        }
+    }
+    let spherical = determinants.is_some();
+
     let dynamics = model.has_dynamics();
     let mut coriolis_direct = false;
     if dynamics {
@@ -326,6 +373,9 @@ pub fn generate(model: &RobotModel, vis: TokenStream, name: &Ident, doc: &str) -
     // Free functions prepare only the joints their quantity reads (D(q) never needs q1).
     let uses: &[(&str, &[&str])] = &[
         ("fk", &["fk_matrix"]),
+        ("jdot_qdot", &["jdot_qdot"]),
+        ("det_j11", &["det_j11"]),
+        ("det_j22", &["det_j22"]),
         ("frames", &["frames_matrix"]),
         ("jacobian", &["jacobian"]),
         ("mass_matrix", &["mass_matrix"]),
@@ -337,7 +387,11 @@ pub fn generate(model: &RobotModel, vis: TokenStream, name: &Ident, doc: &str) -
     ];
     let preparers = uses
         .iter()
-        .filter(|(q, _)| dynamics || matches!(*q, "fk" | "frames" | "jacobian"))
+        .filter(|(q, _)| {
+            let kinematic = matches!(*q, "fk" | "frames" | "jacobian" | "jdot_qdot");
+            let wrist = matches!(*q, "det_j11" | "det_j22");
+            kinematic || (wrist && spherical) || (dynamics && !wrist)
+        })
         .map(|(q, names)| {
             let f = format_ident!("for_{}", q);
             let body = state_new(model, Some(&b.joints_of(names)));
@@ -442,6 +496,32 @@ pub fn generate(model: &RobotModel, vis: TokenStream, name: &Ident, doc: &str) -
     } else {
         quote!()
     };
+    let wrist_free = if spherical {
+        quote! {
+            /// det J11 (Jacobian about the wrist centre): zero at arm singularities.
+            #[must_use]
+            pub fn det_j11<T: ::dhgen::Real>(q: &[T; DOF]) -> T {
+                State::for_det_j11(q).det_j11()
+            }
+            /// det J22 = z3 · (z4 × z5): zero at wrist singularities.
+            #[must_use]
+            pub fn det_j22<T: ::dhgen::Real>(q: &[T; DOF]) -> T {
+                State::for_det_j22(q).det_j22()
+            }
+            /// The closed-form inverse kinematics solver of this arm (kinematic decoupling,
+            /// section 4.3): build it once and call `solve` for each pose.
+            pub fn ik_solver() -> Result<::dhgen::ik::DecoupledIk, ::dhgen::ik::StructureError> {
+                ::dhgen::ik::DecoupledIk::from_arm(&Model)
+            }
+            /// All closed-form inverse kinematics solutions of `pose` (up to 8), each
+            /// verified by forward kinematics; empty when the pose is unreachable.
+            pub fn ik(pose: &na::Isometry3<f64>) -> Result<::dhgen::ik::Solutions, ::dhgen::ik::StructureError> {
+                Ok(ik_solver()?.solve(pose))
+            }
+        }
+    } else {
+        quote!()
+    };
     let (methods, parts) = (&b.methods, &b.parts);
     let robot_name = &model.name;
     let limits = model.links.iter().map(|l| match l.limits {
@@ -539,6 +619,15 @@ pub fn generate(model: &RobotModel, vis: TokenStream, name: &Ident, doc: &str) -
             pub fn jacobian<T: ::dhgen::Real>(q: &[T; DOF]) -> na::SMatrix<T, 6, DOF> {
                 State::for_jacobian(q).jacobian()
             }
+            /// J̇(q, q̇) q̇ of the tool frame origin (the tool's acceleration at q̈ = 0).
+            #[must_use]
+            pub fn jdot_qdot<T: ::dhgen::Real>(q: &[T; DOF], qd: &[T; DOF]) -> na::SVector<T, 6> {
+                State::for_jdot_qdot(q).jdot_qdot(qd)
+            }
+            /// Whether the last three axes meet in one point (a spherical wrist): then
+            /// `det_j11`, `det_j22`, `ik` and `ik_solver` exist.
+            pub const SPHERICAL_WRIST: bool = #spherical;
+            #wrist_free
             #dyn_free
 
             /// The robot as a value implementing [`::dhgen::Arm`] (f64), for algorithms written

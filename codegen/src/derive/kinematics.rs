@@ -71,3 +71,35 @@ pub fn jacobian(model: &RobotModel, g: &SharedGraph) -> Vec<[E; 6]> {
         })
         .collect()
 }
+
+/// `J̇(q, q̇) q̇` of the tool frame origin, world axes, rows `[v; ω]`.
+pub fn jdot_qdot(model: &RobotModel, g: &SharedGraph) -> [E; 6] {
+    let chain = super::graph_chain(model, g);
+    let n = model.dof();
+    let qd: Vec<E> = (0..n)
+        .map(|i| E::sym(g, crate::graph::Sym::Qd(i)))
+        .collect();
+    // The tool frame origin in the last joint frame.
+    let last = &chain.link_in_k[n - 1];
+    let tip = match model.tool_pose() {
+        Some(t) => last.point(&t.xyz.map(E::K)),
+        None => last.p.clone(),
+    };
+    let a = chain.jdot_qdot(&qd, &tip);
+    match model.base_pose() {
+        Some(b) => {
+            let f = b.frame::<E>();
+            let v = crate::chain::rot(&f, &[a[0].clone(), a[1].clone(), a[2].clone()]);
+            let w = crate::chain::rot(&f, &[a[3].clone(), a[4].clone(), a[5].clone()]);
+            [
+                v[0].clone(),
+                v[1].clone(),
+                v[2].clone(),
+                w[0].clone(),
+                w[1].clone(),
+                w[2].clone(),
+            ]
+        }
+        None => a,
+    }
+}

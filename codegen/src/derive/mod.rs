@@ -9,6 +9,7 @@ pub mod gravity;
 pub mod inertia;
 pub mod kinematics;
 pub mod newton_euler;
+pub mod singularity;
 
 use crate::chain::{Chain, JointSymbols};
 use crate::graph::{E, SharedGraph, Sym, count};
