@@ -246,6 +246,14 @@ pub fn dynamics_equations(model: &RobotModel, style: &Style) -> Option<String> {
             g_lines.push(equation(format!("g_{{{}}}", idx(&[i])), gi));
         }
     }
+    // Arms with a spherical wrist: the decoupled singularity conditions (section 5.6.1).
+    let wrist_lines: Option<Vec<String>> =
+        crate::derive::singularity::decoupled_determinants(model).map(|(j11, j22)| {
+            vec![
+                equation("\\det J_{11}".to_string(), &j11),
+                equation("\\det J_{22}".to_string(), &j22),
+            ]
+        });
 
     let mut out = String::new();
     let _ = writeln!(
@@ -285,6 +293,14 @@ pub fn dynamics_equations(model: &RobotModel, style: &Style) -> Option<String> {
         "\n% Gravity torques g(q); entries not listed are zero."
     );
     out += &block(g_lines);
+    if let Some(lines) = wrist_lines {
+        let _ = writeln!(
+            out,
+            "\n% Spherical wrist: det J = det J11 det J22 about the wrist centre; the arm is singular\n\
+             % where det J11 = 0, the wrist where det J22 = 0."
+        );
+        out += &block(lines);
+    }
     Some(out)
 }
 
