@@ -1,0 +1,87 @@
+//! Repeatable cost of one call, for profiling on a noisy machine: runs 1,000 calls of one
+//! quantity, generated or runtime, so that `valgrind --tool=callgrind` counts instructions
+//! (the same count run after run, whatever else the machine does).
+//!
+//! ```sh
+//! cargo build --release --example instructions
+//! B=target/release/examples/instructions
+//! for path in none generated runtime; do
+//!   valgrind --tool=callgrind --callgrind-out-file=/dev/null $B puma560 mass_matrix $path 2>&1 | grep Collected
+//! done
+//! ```
+//! Instructions per call = (count − count of `none`) / 1000.
+
+use std::hint::black_box;
+
+dhgen::robot!(mod puma560 = "robots/puma560.toml");
+dhgen::robot!(mod panda = "robots/panda.toml");
+
+const CALLS: usize = 1000;
+
+fn inputs<const N: usize>(shift: usize) -> Vec<[f64; N]> {
+    (0..CALLS)
+        .map(|i| core::array::from_fn(|j| (((i + shift) * 7 + j * 13) as f64 * 0.37).sin() * 2.0))
+        .collect()
+}
+
+macro_rules! run {
+    ($m:ident, $quantity:expr, $path:expr) => {{
+        const N: usize = $m::DOF;
+        let file = format!(
+            "{}/robots/{}.toml",
+            env!("CARGO_MANIFEST_DIR"),
+            stringify!($m)
+        );
+        let robot = dhgen::Robot::from_toml_file(file).expect("catalogue robot");
+        let (qs, qds) = (inputs::<N>(0), inputs::<N>(3));
+        let generated = $path == "generated";
+        let mut acc = 0.0;
+        for i in 0..CALLS {
+            let (q, qd) = (black_box(&qs[i]), black_box(&qds[i]));
+            acc += match ($quantity, generated) {
+                ("none", _) => 0.0,
+                ("fk", true) => $m::fk(q).translation.x,
+                ("fk", false) => robot.fk(q).translation.x,
+                ("jacobian", true) => $m::jacobian(q)[(0, 1)],
+                ("jacobian", false) => robot.jacobian(q)[(0, 1)],
+                ("mass_matrix", true) => $m::mass_matrix(q)[(1, 1)],
+                ("mass_matrix", false) => robot.mass_matrix(q)[(1, 1)],
+                ("christoffel", true) => $m::christoffel(q)[1][2][0],
+                ("christoffel", false) => robot.christoffel(q)[1][2][0],
+                ("coriolis", true) => $m::coriolis(q, qd)[(1, 0)],
+                ("coriolis", false) => robot.coriolis(q, qd)[(1, 0)],
+                ("gravity", true) => $m::gravity(q)[1],
+                ("gravity", false) => robot.gravity(q)[1],
+                ("inverse_dynamics", true) => $m::inverse_dynamics(q, qd, qd)[1],
+                ("inverse_dynamics", false) => robot.inverse_dynamics(q, qd, qd)[1],
+                ("forward_dynamics", true) => $m::forward_dynamics(q, qd, qd).map_or(0.0, |x| x[1]),
+                ("forward_dynamics", false) => {
+                    robot.forward_dynamics(q, qd, qd).map_or(0.0, |x| x[1])
+                }
+                (other, _) => {
+                    eprintln!("unknown quantity {other}");
+                    std::process::exit(2);
+                }
+            };
+        }
+        println!("{acc}");
+    }};
+}
+
+fn main() {
+    let args: Vec<String> = std::env::args().collect();
+    if args.len() != 4 {
+        eprintln!(
+            "usage: instructions ROBOT QUANTITY generated|runtime  (ROBOT: puma560 or panda)"
+        );
+        std::process::exit(2);
+    }
+    match args[1].as_str() {
+        "puma560" => run!(puma560, args[2].as_str(), args[3].as_str()),
+        "panda" => run!(panda, args[2].as_str(), args[3].as_str()),
+        other => {
+            eprintln!("unknown robot {other}: puma560 or panda");
+            std::process::exit(2);
+        }
+    }
+}
