@@ -84,6 +84,10 @@ mod dynamics;
 mod error;
 #[cfg(feature = "std")]
 mod kinematics;
+/// Path planning (sections 6.1 to 6.4): collision checking, potential fields, probabilistic
+/// roadmaps.
+#[cfg(feature = "std")]
+pub mod planning;
 #[cfg(feature = "std")]
 mod robot;
 #[cfg(feature = "std")]

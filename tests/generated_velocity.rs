@@ -86,8 +86,13 @@ determinants_match!(cylindrical_decoupled_determinants, cylindrical);
 
 #[test]
 fn spherical_wrists_are_detected() {
-    assert!(puma560::SPHERICAL_WRIST && stanford::SPHERICAL_WRIST && cylindrical::SPHERICAL_WRIST);
-    assert!(!panda::SPHERICAL_WRIST && !scara::SPHERICAL_WRIST);
+    // Checked while compiling: a wrong detection fails the build of this test.
+    const {
+        assert!(
+            puma560::SPHERICAL_WRIST && stanford::SPHERICAL_WRIST && cylindrical::SPHERICAL_WRIST
+        );
+        assert!(!panda::SPHERICAL_WRIST && !scara::SPHERICAL_WRIST);
+    }
 }
 
 #[test]

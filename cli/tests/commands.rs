@@ -342,8 +342,10 @@ fn latex_prints_the_equations() {
         out.starts_with("% Unimation PUMA 560: D(q), Christoffel symbols and g(q)"),
         "{out}"
     );
-    assert_eq!(out.matches("\\begin{align*}").count(), 3, "{out}");
-    assert_eq!(out.matches("\\end{align*}").count(), 3, "{out}");
+    // D, c_ijk, g, and (spherical wrist) det J11 / det J22.
+    assert_eq!(out.matches("\\begin{align*}").count(), 4, "{out}");
+    assert_eq!(out.matches("\\end{align*}").count(), 4, "{out}");
+    assert!(out.contains("  \\det J_{22} &= -s_5"), "{out}");
     assert!(out.contains("  d_{11} &= 1.554 + "), "{out}");
     // g_2 at q = 0 is 37.23 + 0.2489 (the c_2 and c_2 c_3 terms) = g(0)[1] of the runtime.
     assert!(

@@ -27,8 +27,8 @@ pub mod validate;
 
 pub use angle::Angle;
 pub use model::{
-    Convention, Frame, Friction, Inertial, JointKind, JointValue, Link, Motor, Pose, Ring,
-    RobotModel,
+    Collision, Convention, Frame, Friction, Inertial, JointKind, JointValue, Link, Motor, Pose,
+    Ring, RobotModel,
 };
 
 use std::path::Path;

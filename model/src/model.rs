@@ -102,6 +102,25 @@ pub struct Friction {
     pub coulomb: f64,
 }
 
+/// The collision shape of a link, for path planning: a capsule (the points within
+/// `radius` of a segment) around the link's DH segment.
+///
+/// The segment of row i joins the origins of frames i−1 and i (frame 0 is the base frame),
+/// that is the translation of `A_i`, in both conventions:
+/// - standard DH: from joint i's axis (origin of frame i−1) to the far end of link i, built
+///   from `d_i` along `z_{i−1}` and `a_i` along `x_i`; it is rigid with link i;
+/// - modified DH: from the origin of frame i−1 to the origin of frame i on joint i's axis,
+///   built from `a_{i−1}` along `x_{i−1}` and `d_i` along `z_i`; a revolute joint i does not
+///   move it, so it is rigid with link i−1 (the body between joints i−1 and i), and nothing
+///   past frame n (the flange or the tool) is covered.
+///
+/// A zero-length segment (a = d = 0) makes the capsule a sphere about the frame origin.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Collision {
+    /// Capsule radius, m (finite, > 0).
+    pub radius: f64,
+}
+
 /// One row of the DH table together with its link's properties.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Link {
@@ -123,6 +142,8 @@ pub struct Link {
     pub motor: Option<Motor>,
     /// Joint friction.
     pub friction: Option<Friction>,
+    /// Collision capsule around the row's DH segment; `None`: not checked for collisions.
+    pub collision: Option<Collision>,
 }
 
 /// A validated serial robot: the one model type of dhgen.

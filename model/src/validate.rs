@@ -4,7 +4,9 @@
 //! Every rule of the description format lives here, once, for both front ends.
 
 use crate::raw::{Table, Value};
-use crate::{Angle, Convention, Friction, Inertial, JointKind, Link, Motor, Pose, RobotModel};
+use crate::{
+    Angle, Collision, Convention, Friction, Inertial, JointKind, Link, Motor, Pose, RobotModel,
+};
 use core::fmt;
 
 /// A validation error at location `L` (`()` for files, a token span in the macro).
@@ -45,7 +47,18 @@ const TOP_FIELDS: &[&str] = &[
     "allow_nonphysical_inertia",
 ];
 const LINK_FIELDS: &[&str] = &[
-    "joint", "a", "alpha", "d", "theta", "limits", "mass", "com", "inertia", "motor", "friction",
+    "joint",
+    "a",
+    "alpha",
+    "d",
+    "theta",
+    "limits",
+    "mass",
+    "com",
+    "inertia",
+    "motor",
+    "friction",
+    "collision",
 ];
 const INERTIA_FIELDS: &[&str] = &["xx", "yy", "zz", "xy", "yz", "xz"];
 
@@ -477,6 +490,20 @@ fn link<L: Clone>(index: usize, v: &Value<L>, allow_nonphysical: bool) -> Result
             coulomb: m.with("coulomb", coefficient)?.unwrap_or(0.0),
         })
     })?;
+    let collision = f.with("collision", |at, v| {
+        let c = Fields::new(table(at, v)?, at.link, at.field, &["radius"])?;
+        let radius = c.with_required("radius", |at, v| {
+            let r = number(at, v)?;
+            if r <= 0.0 {
+                return Err(at.err(
+                    v.loc(),
+                    format!("collision radius {r} is not positive; give a radius > 0 in m"),
+                ));
+            }
+            Ok(r)
+        })?;
+        Ok(Collision { radius })
+    })?;
     Ok(Link {
         joint,
         a,
@@ -487,6 +514,7 @@ fn link<L: Clone>(index: usize, v: &Value<L>, allow_nonphysical: bool) -> Result
         inertial,
         motor,
         friction,
+        collision,
     })
 }
 

@@ -175,7 +175,7 @@ fn unknown_link_field() {
         1,
         Some(2),
         "weight",
-        "unknown field `weight`; expected one of: joint, a, alpha, d, theta, limits, mass, com, inertia, motor, friction",
+        "unknown field `weight`; expected one of: joint, a, alpha, d, theta, limits, mass, com, inertia, motor, friction, collision",
     );
     // A near miss of a known name is pointed out.
     let text = robot("", &[&format!("{LINK}frction = {{ viscous = 0.1 }}\n")]);
@@ -821,4 +821,90 @@ fn toml_syntax_error_names_the_line() {
     );
     assert!(shown.contains("line 14, column 1"), "{shown}");
     assert!(shown.contains("duplicate key"), "{shown}");
+}
+
+#[test]
+fn collision_radius_not_positive() {
+    for needle in ["0", "-0.05"] {
+        let text = robot(
+            "",
+            &[
+                LINK,
+                &format!("{LINK}collision = {{ radius = {needle} }}\n"),
+            ],
+        );
+        check(
+            &text,
+            &format!("{needle} }}"),
+            1,
+            Some(2),
+            "collision.radius",
+            &format!("collision radius {needle} is not positive"),
+        );
+    }
+    let text = robot("", &[&format!("{LINK}collision = {{ radius = nan }}\n")]);
+    check(
+        &text,
+        "nan",
+        1,
+        Some(1),
+        "collision.radius",
+        "the value is NaN",
+    );
+    let text = robot("", &[&format!("{LINK}collision = {{ radius = inf }}\n")]);
+    check(
+        &text,
+        "inf",
+        1,
+        Some(1),
+        "collision.radius",
+        "the value is inf",
+    );
+}
+
+#[test]
+fn collision_table_fields() {
+    let text = robot(
+        "",
+        &[&format!(
+            "{LINK}collision = {{ radius = 0.05, length = 1 }}\n"
+        )],
+    );
+    check(
+        &text,
+        "length",
+        1,
+        Some(1),
+        "collision.length",
+        "unknown field `length`; expected one of: radius",
+    );
+    let text = robot("", &[LINK, &format!("{LINK}collision = {{ }}\n")]);
+    check(
+        &text,
+        "{ }",
+        1,
+        Some(2),
+        "collision.radius",
+        "missing required field `radius`",
+    );
+    let text = robot("", &[&format!("{LINK}collision = 0.05\n")]);
+    check(
+        &text,
+        "0.05",
+        1,
+        Some(1),
+        "collision",
+        "expected a table, found a number",
+    );
+    // A valid capsule is kept on its link; links without one have none.
+    let text = robot(
+        "",
+        &[LINK, &format!("{LINK}collision = {{ radius = 0.05 }}\n")],
+    );
+    let model = RobotModel::from_toml_named(&text, FILE).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(model.links[0].collision, None);
+    assert_eq!(
+        model.links[1].collision,
+        Some(dhgen_model::Collision { radius: 0.05 })
+    );
 }
