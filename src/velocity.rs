@@ -31,13 +31,13 @@
 
 use crate::rotation::EulerZyz;
 use crate::{Arm, ArmAllocator};
+#[cfg(not(feature = "std"))]
+use nalgebra::ComplexField as _;
 use nalgebra::allocator::Allocator;
 use nalgebra::{
     ArrayStorage, DefaultAllocator, Dim, Matrix3, Matrix6, OMatrix, OVector, U1, U6, Vector3,
     Vector6,
 };
-#[allow(unused_imports)]
-use nalgebra::{ComplexField as _, RealField as _};
 
 /// The singular value decomposition `J = U Σ Vᵀ` of a 6×n Jacobian, by one-sided Jacobi
 /// rotations of its rows (accurate to high relative precision, also for small singular

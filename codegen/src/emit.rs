@@ -31,6 +31,19 @@ pub struct Emitted {
     pub scratch: usize,
     /// Which joints' variables (cos/sin or displacement) the code reads.
     pub joints: Vec<usize>,
+    /// Per part, the argument arrays it reads (`"qd"`, `"qdd"`, `"tau"`).
+    pub part_inputs: Vec<Vec<&'static str>>,
+    /// Per part, whether it stores outputs and whether it touches the scratch array.
+    pub part_uses: Vec<PartUse>,
+}
+
+/// What one part of a split function touches besides its inputs.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct PartUse {
+    /// It stores at least one output.
+    pub out: bool,
+    /// It reads or writes the scratch array.
+    pub scratch: bool,
 }
 
 fn ident(s: &str) -> Ident {
@@ -137,7 +150,11 @@ pub fn emit(g: &SharedGraph, outputs: Vec<Output>) -> Emitted {
         }
     }
     let mut parts = Vec::new();
+    let mut part_inputs = Vec::new();
+    let mut part_uses = Vec::new();
     for (p, nodes) in parts_nodes.iter().enumerate() {
+        let mut uses = PartUse::default();
+        let mut inputs: Vec<&'static str> = Vec::new();
         let mut stmts = Vec::new();
         let mut names: HashMap<Id, TokenStream> = HashMap::new();
         let mut temp = 0usize;
@@ -154,6 +171,17 @@ pub fn emit(g: &SharedGraph, outputs: Vec<Output>) -> Emitted {
         needed.sort_unstable();
         needed.dedup();
         for id in needed {
+            if let Node::Sym(sym) = graph.node(id) {
+                let array = match sym {
+                    Sym::Qd(_) => Some("qd"),
+                    Sym::Qdd(_) => Some("qdd"),
+                    Sym::Tau(_) => Some("tau"),
+                    _ => None,
+                };
+                if let Some(a) = array.filter(|a| !inputs.contains(a)) {
+                    inputs.push(a);
+                }
+            }
             let (n, load) = match graph.node(id) {
                 Node::Sym(s) => sym_load(s),
                 Node::Const(bits) => {
@@ -164,6 +192,7 @@ pub fn emit(g: &SharedGraph, outputs: Vec<Output>) -> Emitted {
                 _ => {
                     let n = ident(&format!("t{id}"));
                     let k = slot[&id];
+                    uses.scratch = true;
                     (n, quote!(w[#k]))
                 }
             };
@@ -203,10 +232,12 @@ pub fn emit(g: &SharedGraph, outputs: Vec<Output>) -> Emitted {
             stmts.push(quote!(let #n: T = #rhs;));
             names.insert(id, quote!(#n));
             if let Some(&k) = slot.get(&id) {
+                uses.scratch = true;
                 stmts.push(quote!(w[#k] = #n;));
             }
             for &i in stored_at.get(&id).map_or(&[][..], Vec::as_slice) {
                 let target = &outputs[i].target;
+                uses.out = true;
                 stmts.push(quote!(#target = #n;));
             }
         }
@@ -216,10 +247,12 @@ pub fn emit(g: &SharedGraph, outputs: Vec<Output>) -> Emitted {
                 match (&o.value, ids[i]) {
                     (E::K(x), _) => {
                         let c = constant(*x);
+                        uses.out = true;
                         stmts.push(quote!(#target = #c;));
                     }
                     (_, Some(id)) if !is_op(id) => {
                         let value = names[&id].clone();
+                        uses.out = true;
                         stmts.push(quote!(#target = #value;));
                     }
                     _ => {}
@@ -227,6 +260,8 @@ pub fn emit(g: &SharedGraph, outputs: Vec<Output>) -> Emitted {
             }
         }
         parts.push(stmts);
+        part_inputs.push(inputs);
+        part_uses.push(uses);
     }
     let mut joints: Vec<usize> = order
         .iter()
@@ -243,6 +278,8 @@ pub fn emit(g: &SharedGraph, outputs: Vec<Output>) -> Emitted {
         ops,
         scratch: slots,
         joints,
+        part_inputs,
+        part_uses,
     }
 }
 

@@ -23,10 +23,8 @@ struct Method {
     name: &'static str,
     /// `Some(doc)` for a public method.
     doc: Option<&'static str>,
-    /// Extra parameters, each followed by a comma (`qd: &[T; DOF],`).
-    params: TokenStream,
-    /// The same parameters as call arguments (`qd,`).
-    args: TokenStream,
+    /// Extra joint-vector parameters (`qd`, `qdd`), each `&[T; DOF]`.
+    inputs: &'static [&'static str],
     out_ty: TokenStream,
     out_init: TokenStream,
 }
@@ -42,8 +40,7 @@ impl Method {
         Method {
             name,
             doc: Some(doc),
-            params: TokenStream::new(),
-            args: TokenStream::new(),
+            inputs: &[],
             out_ty,
             out_init,
         }
@@ -83,11 +80,19 @@ impl Builder {
         let Method {
             name,
             doc,
-            params,
-            args,
+            inputs,
             out_ty,
             out_init,
         } = m;
+        let params_of = |names: &[&str]| {
+            let ids = names.iter().map(|n| format_ident!("{}", n));
+            quote!(#(#ids: &[T; DOF],)*)
+        };
+        let args_of = |names: &[&str]| {
+            let ids = names.iter().map(|n| format_ident!("{}", n));
+            quote!(#(#ids,)*)
+        };
+        let params = params_of(inputs);
         let emitted = emit::emit(g, outputs);
         let mut ops = emitted.ops;
         ops.sincos = emitted
@@ -106,19 +111,43 @@ impl Builder {
             let mut calls = vec![quote!(let mut w = [T::zero(); #w];)];
             for (i, stmts) in emitted.parts.iter().enumerate() {
                 let part = format_ident!("{}_part{}", name, i);
+                // Each part takes only the joint vectors it reads.
+                let used: Vec<&str> = inputs
+                    .iter()
+                    .copied()
+                    .filter(|n| emitted.part_inputs[i].contains(n))
+                    .collect();
+                let (part_params, part_args) = (params_of(&used), args_of(&used));
+                let u = emitted.part_uses[i];
+                let out = if u.out {
+                    format_ident!("out")
+                } else {
+                    format_ident!("_out")
+                };
+                let scratch = if u.scratch {
+                    format_ident!("w")
+                } else {
+                    format_ident!("_w")
+                };
                 self.parts.push(quote! {
                     #[inline(never)]
-                    fn #part(&self, #params w: &mut [T; #w], out: &mut #out_ty) {
+                    fn #part(&self, #part_params #scratch: &mut [T; #w], #out: &mut #out_ty) {
                         #(#stmts)*
                     }
                 });
-                calls.push(quote!(self.#part(#args &mut w, &mut out);));
+                calls.push(quote!(self.#part(#part_args &mut w, &mut out);));
             }
             quote!(#(#calls)*)
         };
+        // A scalar is assigned exactly once: declare it without a dead initial value.
+        let declare = if out_init.is_empty() {
+            quote!(let out: #out_ty;)
+        } else {
+            quote!(let mut out: #out_ty = #out_init;)
+        };
         let method = quote! {
             fn #fname(&self, #params) -> #out_ty {
-                let mut out: #out_ty = #out_init;
+                #declare
                 #body
                 out
             }
@@ -209,8 +238,7 @@ pub fn generate(model: &RobotModel, vis: TokenStream, name: &Ident, doc: &str) -
         Method {
             name: "jdot_qdot",
             doc: Some("J̇(q, q̇) q̇ of the tool frame origin, world axes, rows [v; ω]: the tool's acceleration at q̈ = 0."),
-            params: quote!(qd: &[T; DOF],),
-            args: quote!(qd,),
+            inputs: &["qd"],
             out_ty: quote!(na::SVector<T, 6>),
             out_init: quote!(na::SVector::zeros()),
         },
@@ -237,7 +265,7 @@ pub fn generate(model: &RobotModel, vis: TokenStream, name: &Ident, doc: &str) -
             let g = SharedGraph::default();
             let e = crate::derive::polys_to_exprs(std::slice::from_ref(poly), &g, model);
             b.add(
-                Method::of_q(name, doc, quote!(T), quote!(T::zero())),
+                Method::of_q(name, doc, quote!(T), TokenStream::new()),
                 &g,
                 vec![Output {
                     target: quote!(out),
@@ -294,8 +322,7 @@ pub fn generate(model: &RobotModel, vis: TokenStream, name: &Ident, doc: &str) -
                 Method {
                     name: "coriolis",
                     doc: Some("Coriolis and centrifugal matrix: C_kj = Σ_i c_ijk q̇_i (so Ḋ − 2C is skew-symmetric)."),
-                    params: quote!(qd: &[T; DOF],),
-                    args: quote!(qd,),
+                    inputs: &["qd"],
                     out_ty: quote!(na::SMatrix<T, DOF, DOF>),
                     out_init: quote!(na::SMatrix::zeros()),
                 },
@@ -322,8 +349,7 @@ pub fn generate(model: &RobotModel, vis: TokenStream, name: &Ident, doc: &str) -
             Method {
                 name: "inverse_dynamics_smooth",
                 doc: None,
-                params: quote!(qd: &[T; DOF], qdd: &[T; DOF],),
-                args: quote!(qd, qdd,),
+                inputs: &["qd", "qdd"],
                 out_ty: quote!(na::SVector<T, DOF>),
                 out_init: quote!(na::SVector::zeros()),
             },
@@ -337,8 +363,7 @@ pub fn generate(model: &RobotModel, vis: TokenStream, name: &Ident, doc: &str) -
             Method {
                 name: "bias_smooth",
                 doc: None,
-                params: quote!(qd: &[T; DOF],),
-                args: quote!(qd,),
+                inputs: &["qd"],
                 out_ty: quote!(na::SVector<T, DOF>),
                 out_init: quote!(na::SVector::zeros()),
             },
@@ -394,22 +419,34 @@ pub fn generate(model: &RobotModel, vis: TokenStream, name: &Ident, doc: &str) -
         })
         .map(|(q, names)| {
             let f = format_ident!("for_{}", q);
-            let body = state_new(model, Some(&b.joints_of(names)));
+            let joints = b.joints_of(names);
+            let body = state_new(model, Some(&joints));
+            // A quantity that reads no joint (a constant) ignores the configuration.
+            let q = if joints.is_empty() {
+                format_ident!("_q")
+            } else {
+                format_ident!("q")
+            };
             quote! {
                 #[inline]
-                fn #f(q: &[T; DOF]) -> Self {
+                fn #f(#q: &[T; DOF]) -> Self {
                     #body
                 }
             }
         });
     let coulomb = coulomb(model);
+    let tau_mut = if coulomb.is_empty() {
+        quote!()
+    } else {
+        quote!(mut)
+    };
     let dyn_items = if dynamics {
         let chol = cholesky_solve(n);
         quote! {
             /// Inverse dynamics τ = D(q) q̈ + C(q, q̇) q̇ + g(q), plus motor inertia and friction.
             #[must_use]
             pub fn inverse_dynamics(&self, qd: &[T; DOF], qdd: &[T; DOF]) -> na::SVector<T, DOF> {
-                let mut tau = self.inverse_dynamics_smooth(qd, qdd);
+                let #tau_mut tau = self.inverse_dynamics_smooth(qd, qdd);
                 #coulomb
                 tau
             }
@@ -417,7 +454,7 @@ pub fn generate(model: &RobotModel, vis: TokenStream, name: &Ident, doc: &str) -
             /// The torques at zero acceleration: C(q, q̇) q̇ + g(q) + friction.
             #[must_use]
             pub fn bias(&self, qd: &[T; DOF]) -> na::SVector<T, DOF> {
-                let mut tau = self.bias_smooth(qd);
+                let #tau_mut tau = self.bias_smooth(qd);
                 #coulomb
                 tau
             }
@@ -517,6 +554,27 @@ pub fn generate(model: &RobotModel, vis: TokenStream, name: &Ident, doc: &str) -
             /// verified by forward kinematics; empty when the pose is unreachable.
             pub fn ik(pose: &na::Isometry3<f64>) -> Result<::dhgen::ik::Solutions, ::dhgen::ik::StructureError> {
                 Ok(ik_solver()?.solve(pose))
+            }
+        }
+    } else {
+        quote!()
+    };
+    // `sign` (Coulomb friction, with sign(0) = 0) only where some joint has Coulomb friction.
+    let sign_fn = if dynamics
+        && model
+            .links
+            .iter()
+            .any(|l| l.friction.is_some_and(|f| f.coulomb != 0.0))
+    {
+        quote! {
+            fn sign<T: ::dhgen::Real>(x: T) -> T {
+                if x > T::zero() {
+                    T::one()
+                } else if x < T::zero() {
+                    -T::one()
+                } else {
+                    T::zero()
+                }
             }
         }
     } else {
@@ -676,16 +734,7 @@ pub fn generate(model: &RobotModel, vis: TokenStream, name: &Ident, doc: &str) -
                 )
             }
 
-            #[allow(dead_code)]
-            fn sign<T: ::dhgen::Real>(x: T) -> T {
-                if x > T::zero() {
-                    T::one()
-                } else if x < T::zero() {
-                    -T::one()
-                } else {
-                    T::zero()
-                }
-            }
+            #sign_fn
         }
     };
     Generated {

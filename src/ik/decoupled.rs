@@ -58,7 +58,7 @@ use core::fmt;
 use nalgebra::{DefaultAllocator, Isometry3, Matrix3, OVector, Rotation3, SVector, Vector3};
 // Without `std`, f64 has no `sin_cos`, `atan2`, `hypot`...: nalgebra's traits supply them
 // (through libm). With `std` the inherent methods win and the imports go unused.
-#[allow(unused_imports)]
+#[cfg(not(feature = "std"))]
 use nalgebra::{ComplexField as _, RealField as _};
 
 /// A returned solution reproduces the pose to this: position error in metres and orientation

@@ -37,7 +37,7 @@ pub use decoupled::{ArmGeometry, DecoupledIk, Solutions, StructureError, VERIFY_
 pub use numeric::{IkError, NumericIk, Solution};
 
 use nalgebra::Isometry3;
-#[allow(unused_imports)]
+#[cfg(not(feature = "std"))]
 use nalgebra::RealField as _;
 
 /// The distance between two poses: `(position error in m, orientation error in rad)`, the

@@ -31,8 +31,8 @@ use crate::rotation::rotation_vector;
 use crate::velocity::JacobianSvd;
 use crate::{Arm, ArmAllocator};
 use core::fmt;
-#[allow(unused_imports)]
-use nalgebra::{ComplexField as _, RealField as _};
+#[cfg(not(feature = "std"))]
+use nalgebra::ComplexField as _;
 use nalgebra::{
     DefaultAllocator, Dim, Isometry3, Matrix6, OMatrix, OVector, Rotation3, U6, Vector6,
 };
