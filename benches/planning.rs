@@ -19,7 +19,7 @@ use rand::{Rng, SeedableRng};
 use std::time::Duration;
 
 #[path = "../tests/planning_support/mod.rs"]
-mod scenes;
+pub mod scenes;
 
 dhgen::robot!(mod puma560 = "robots/puma560.toml");
 

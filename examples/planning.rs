@@ -35,7 +35,7 @@ use dhgen::planning::{
 use plotters::prelude::*;
 
 #[path = "../tests/planning_support/mod.rs"]
-mod scenes;
+pub mod scenes;
 use scenes::PlanarScene;
 
 dhgen::robot!(mod planar = "robots/planar_elbow.toml");

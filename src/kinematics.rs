@@ -28,7 +28,7 @@ impl Robot {
                 }
                 JointKind::Prismatic => (1.0, 0.0),
             };
-            frame.apply_joint(body.joint, qi, cos_sin);
+            frame.apply_joint(body.joint == JointKind::Prismatic, qi, cos_sin);
             visit(i, &frame);
         }
         frame

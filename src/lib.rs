@@ -66,6 +66,7 @@ extern crate self as dhgen;
 
 mod arm;
 mod real;
+mod rigid;
 pub use arm::{Arm, ArmAllocator, ArmDynamics, JointVector};
 pub use real::Real;
 

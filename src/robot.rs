@@ -3,72 +3,10 @@
 //! the per-call work, which lives in [`crate::kinematics`] and [`crate::dynamics`]).
 
 use crate::Error;
-use dhgen_model::{Convention, Frame, JointKind, JointValue, Link, RobotModel};
-use nalgebra::{Isometry3, Matrix3, Rotation3, Translation3, UnitQuaternion, Vector3};
+pub(crate) use crate::rigid::Rigid;
+use dhgen_model::{Convention, JointKind, JointValue, Link, RobotModel};
+use nalgebra::{Matrix3, Vector3};
 use std::path::Path;
-
-/// A rigid transform as a rotation matrix and a translation. Composing two of these is a
-/// plain 3×3 product, cheaper than nalgebra's quaternion-based `Isometry3`, which is only
-/// built for results handed to the user.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub(crate) struct Rigid {
-    /// Rotation: the columns are the frame's axes in the outer frame.
-    pub r: Matrix3<f64>,
-    /// Origin of the frame in the outer frame.
-    pub p: Vector3<f64>,
-}
-
-impl Rigid {
-    /// The identity transform.
-    pub const IDENTITY: Rigid = Rigid {
-        r: Matrix3::new(1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0),
-        p: Vector3::new(0.0, 0.0, 0.0),
-    };
-
-    /// Converts the model's row-major frame.
-    fn from_frame(f: &Frame<f64>) -> Rigid {
-        let r = &f.r;
-        Rigid {
-            r: Matrix3::new(
-                r[0][0], r[0][1], r[0][2], r[1][0], r[1][1], r[1][2], r[2][0], r[2][1], r[2][2],
-            ),
-            p: Vector3::new(f.p[0], f.p[1], f.p[2]),
-        }
-    }
-
-    /// `self · other`.
-    #[inline]
-    pub fn compose(&self, other: &Rigid) -> Rigid {
-        Rigid {
-            r: self.r * other.r,
-            p: self.r * other.p + self.p,
-        }
-    }
-
-    /// Right-multiplies by the joint motion: `Rz(q)` for a revolute joint, `Tz(q)` for a
-    /// prismatic one. `cos_sin` is `(cos q, sin q)` and only read for revolute joints.
-    #[inline]
-    pub fn apply_joint(&mut self, joint: JointKind, q: f64, (c, s): (f64, f64)) {
-        match joint {
-            JointKind::Revolute => {
-                let x = self.r.column(0).into_owned();
-                let y = self.r.column(1).into_owned();
-                self.r.set_column(0, &(x * c + y * s));
-                self.r.set_column(1, &(y * c - x * s));
-            }
-            JointKind::Prismatic => {
-                self.p += self.r.column(2) * q;
-            }
-        }
-    }
-
-    /// The transform as an nalgebra isometry.
-    pub fn to_isometry(self) -> Isometry3<f64> {
-        let rotation =
-            UnitQuaternion::from_rotation_matrix(&Rotation3::from_matrix_unchecked(self.r));
-        Isometry3::from_parts(Translation3::from(self.p), rotation)
-    }
-}
 
 /// The constants of one moving body (link i with the joint that moves it).
 ///

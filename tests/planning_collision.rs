@@ -2,7 +2,7 @@
 //! both DH conventions, the motion bound that makes the local planner sound, and the
 //! errors for bad geometry.
 
-mod planning_support;
+pub mod planning_support;
 
 use dhgen::Robot;
 use dhgen::model::{Collision, RobotModel};

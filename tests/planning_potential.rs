@@ -2,7 +2,7 @@
 //! are the gradients of the potentials, the planner reaches the goal with no obstacles and
 //! around a simple one, and reports a local minimum in a trap instead of failing silently.
 
-mod planning_support;
+pub mod planning_support;
 
 use dhgen::nalgebra::SVector;
 use dhgen::planning::potential::{self, ConvexCSpaceObstacles, ConvexRegion};

@@ -7,7 +7,7 @@
 //! 30 s per query (a debug build needs well under a second for most seeds). Run with
 //! `--nocapture` to see the success rates and timings.
 
-mod planning_support;
+pub mod planning_support;
 
 use std::time::{Duration, Instant};
 

@@ -2,7 +2,7 @@
 //! reaches the goal with no obstacles and in a simple scene, and reports a local minimum in
 //! a trap.
 
-mod planning_support;
+pub mod planning_support;
 
 use dhgen::nalgebra::SVector;
 use dhgen::planning::{

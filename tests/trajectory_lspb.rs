@@ -1,6 +1,6 @@
 //! LSPB (section 6.5.1.2): from the cruise velocity and from the blend acceleration.
 
-mod trajectory_support;
+pub mod trajectory_support;
 
 use dhgen::trajectory::{Location, Lspb, Profile, State, TrajectoryError};
 use proptest::prelude::*;

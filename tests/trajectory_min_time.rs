@@ -1,6 +1,6 @@
 //! Minimum-time profiles (section 6.5.1.3): bang-bang and the velocity-limited trapezoid.
 
-mod trajectory_support;
+pub mod trajectory_support;
 
 use dhgen::trajectory::{
     Location, Lspb, Profile, State, TrajectoryError, bang_bang_duration, velocity_limited_duration,

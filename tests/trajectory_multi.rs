@@ -1,6 +1,6 @@
 //! Many joints synchronized to one duration (issue 6, item 2).
 
-mod trajectory_support;
+pub mod trajectory_support;
 
 use dhgen::trajectory::{
     Cubic, Location, Lspb, MultiProfile, Profile, Quintic, State, Synchronized, TrajectoryError,

@@ -1,7 +1,7 @@
 //! Cubic and quintic point-to-point profiles (section 6.5.1.1), checked against an independent
 //! solve of the boundary-condition systems (equation 15 and its quintic analogue).
 
-mod trajectory_support;
+pub mod trajectory_support;
 
 use dhgen::nalgebra::{SMatrix, SVector};
 use dhgen::trajectory::{Cubic, Profile, Quintic, State, TrajectoryError};

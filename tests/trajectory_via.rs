@@ -1,7 +1,7 @@
 //! Via-point trajectories (section 6.5.2): the cubic spline and linear segments with parabolic
 //! blends (`mstraj`-like), from given times and from limits.
 
-mod trajectory_support;
+pub mod trajectory_support;
 
 use dhgen::trajectory::{
     BlendedSegments, CubicSpline, Location, Lspb, MultiProfile, Profile, SplineEnds, State,

@@ -7,7 +7,7 @@
 //! Indices are 1-based, as in the textbook; they are separated by commas once a robot has
 //! ten joints or more (`c_{10,11}`).
 
-use crate::derive::{Derivation, gravity::gravity_polys, parallel_runs, vars};
+use crate::derive::{Derivation, parallel_runs, vars};
 use crate::poly::{Basis, Mono, Poly, Var};
 use dhgen_model::RobotModel;
 use std::fmt::Write as _;
@@ -193,7 +193,7 @@ pub fn dynamics_equations(model: &RobotModel, style: &Style) -> Option<String> {
     let dv = Derivation::new(model);
     let d = dv.mass_matrix_polys();
     let c = dv.christoffel_polys();
-    let g = gravity_polys(model);
+    let g = dv.gravity_polys();
 
     let idx = |ids: &[usize]| {
         let parts: Vec<String> = ids.iter().map(|i| (i + 1).to_string()).collect();

@@ -332,7 +332,7 @@ pub fn generate(model: &RobotModel, vis: TokenStream, name: &Ident, doc: &str) -
         }
         coriolis_direct = direct < symbols + 2 * n * n * n;
 
-        let (g, gr) = gravity::gravity(model);
+        let (g, gr) = gravity::gravity(&dv);
         b.add(
             Method::of_q(
                 "gravity",
@@ -612,7 +612,7 @@ pub fn generate(model: &RobotModel, vis: TokenStream, name: &Ident, doc: &str) -
     };
     let tokens = quote! {
         #[doc = #doc]
-        #[allow(clippy::all, clippy::pedantic, clippy::nursery, non_snake_case, unused_parens)]
+        #[allow(clippy::all, clippy::pedantic, clippy::nursery)]
         #vis mod #name {
             use ::dhgen::nalgebra as na;
 

@@ -194,29 +194,6 @@ pub fn from_toml_text(text: &str) -> Result<Table<Position>, String> {
     table(&lines, doc.get_ref(), doc.span())
 }
 
-/// Converts an already parsed TOML document; every location is `()` (the caller knows
-/// only the file). [`from_toml_text`] keeps lines and columns instead.
-pub fn from_toml(table: &toml::Table) -> Table<()> {
-    fn value(v: &toml::Value) -> Value<()> {
-        match v {
-            toml::Value::String(s) => Value::Str(s.clone(), ()),
-            toml::Value::Integer(i) => Value::Number(*i as f64, ()),
-            toml::Value::Float(f) => Value::Number(*f, ()),
-            toml::Value::Boolean(b) => Value::Bool(*b, ()),
-            toml::Value::Datetime(d) => Value::Str(d.to_string(), ()),
-            toml::Value::Array(a) => Value::Array(a.iter().map(value).collect(), ()),
-            toml::Value::Table(t) => Value::Table(from_toml(t)),
-        }
-    }
-    Table {
-        entries: table
-            .iter()
-            .map(|(k, v)| (k.clone(), (), value(v)))
-            .collect(),
-        loc: (),
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -52,6 +52,7 @@
 //! limits where that makes them fit. Solutions outside the limits are returned too (the
 //! complete solution set); [`DecoupledIk::solve_within_limits`] keeps only those inside.
 
+use crate::rigid::Rigid;
 use crate::rotation::{EulerZyz, wrap_angle};
 use crate::{Arm, ArmAllocator};
 use core::fmt;
@@ -65,91 +66,17 @@ use nalgebra::{ComplexField as _, RealField as _};
 /// error in radians, each.
 pub const VERIFY_TOLERANCE: f64 = 1e-9;
 
-/// A rigid transform: rotation and translation (cheaper to compose than an `Isometry3`).
-#[derive(Clone, Copy, Debug, PartialEq)]
-struct Frame {
-    r: Matrix3<f64>,
-    p: Vector3<f64>,
-}
-
-impl Frame {
-    const IDENTITY: Frame = Frame {
-        r: Matrix3::new(1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0),
-        p: Vector3::new(0.0, 0.0, 0.0),
-    };
-
-    fn compose(&self, o: &Frame) -> Frame {
-        Frame {
-            r: self.r * o.r,
-            p: self.r * o.p + self.p,
-        }
-    }
-
-    fn inverse(&self) -> Frame {
-        let rt = self.r.transpose();
-        Frame {
-            r: rt,
-            p: -(rt * self.p),
-        }
-    }
-
-    fn point(&self, v: &Vector3<f64>) -> Vector3<f64> {
-        self.r * v + self.p
-    }
-
-    fn from_isometry(iso: &Isometry3<f64>) -> Frame {
-        Frame {
-            r: *iso.rotation.to_rotation_matrix().matrix(),
-            p: iso.translation.vector,
-        }
-    }
-
-    fn to_isometry(self) -> Isometry3<f64> {
-        Isometry3::from_parts(
-            self.p.into(),
-            nalgebra::UnitQuaternion::from_rotation_matrix(&Rotation3::from_matrix_unchecked(
-                self.r,
-            )),
-        )
-    }
-
-    /// A frame at `origin` whose z axis is `z` (unit); x is chosen perpendicular to it.
-    fn with_z(origin: Vector3<f64>, z: Vector3<f64>) -> Frame {
-        let helper = if z.x.abs() < 0.9 {
-            Vector3::x()
-        } else {
-            Vector3::y()
-        };
-        let x = (helper - z * z.dot(&helper)).normalize();
-        let y = z.cross(&x);
-        Frame {
-            r: Matrix3::from_columns(&[x, y, z]),
-            p: origin,
-        }
-    }
-
-    /// `self · Z(q)`: right-multiplies by the joint motion.
-    fn joint(&self, prismatic: bool, q: f64) -> Frame {
-        if prismatic {
-            Frame {
-                r: self.r,
-                p: self.p + self.r.column(2) * q,
-            }
-        } else {
-            let (s, c) = q.sin_cos();
-            let x = self.r.column(0).into_owned();
-            let y = self.r.column(1).into_owned();
-            let mut r = self.r;
-            r.set_column(0, &(x * c + y * s));
-            r.set_column(1, &(y * c - x * s));
-            Frame { r, p: self.p }
-        }
-    }
+/// `f · Z(q)`: the frame right-multiplied by the joint motion.
+fn joint(f: &Rigid, prismatic: bool, q: f64) -> Rigid {
+    let mut out = *f;
+    let (s, c) = q.sin_cos();
+    out.apply_joint(prismatic, q, (c, s));
+    out
 }
 
 /// Position error and rotation angle between two frames; the angle from
 /// `‖Ra − Rb‖_F = 2√2 sin(θ/2)`, accurate for small angles.
-fn frame_error(a: &Frame, b: &Frame) -> (f64, f64) {
+fn frame_error(a: &Rigid, b: &Rigid) -> (f64, f64) {
     let chord = (a.r - b.r).norm() / (2.0 * core::f64::consts::SQRT_2);
     ((a.p - b.p).norm(), 2.0 * chord.min(1.0).asin())
 }
@@ -310,14 +237,14 @@ enum Position {
         r1: Matrix3<f64>,
         /// `R1ᵀ e_z`: axis 1 in the frame of joint 2.
         n: Vector3<f64>,
-        p2: Frame,
+        p2: Rigid,
         /// `R2ᵀ t2`: P2's translation in the frame of joint 3.
         m: Vector3<f64>,
     },
     /// `p = Rz(q1) (R1 Rz(q2) g(q3) + t1)`, axes 2 ∥ 3.
     Parallel {
-        p1: Frame,
-        p2: Frame,
+        p1: Rigid,
+        p2: Rigid,
         /// Axis 2 in the frame of joint 1.
         a2: Vector3<f64>,
         /// Constant offset of the wrist centre along axis 2.
@@ -352,11 +279,11 @@ enum Position {
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct DecoupledIk {
-    chain: [Frame; 7],
+    chain: [Rigid; 7],
     prismatic: [bool; 6],
     limits: [Option<[f64; 2]>; 6],
     /// Inverse of `P0`.
-    p0_inv: Frame,
+    p0_inv: Rigid,
     /// The wrist centre in the tool frame.
     centre_tool: Vector3<f64>,
     /// The wrist centre in the frame in which joint 3 moves: `P3 c_3`.
@@ -487,17 +414,14 @@ impl DecoupledIk {
         if dof != 6 {
             return Err(StructureError::NotSixJoints { dof });
         }
-        let frame = |f: &dhgen_model::Frame<f64>| Frame {
-            r: Matrix3::from_fn(|i, j| f.r[i][j]),
-            p: Vector3::from(f.p),
-        };
+        let frame = Rigid::from_frame;
         let base = model
             .base_pose()
-            .map_or(Frame::IDENTITY, |p| frame(&p.frame()));
+            .map_or(Rigid::IDENTITY, |p| frame(&p.frame()));
         let tool = model
             .tool_pose()
-            .map_or(Frame::IDENTITY, |p| frame(&p.frame()));
-        let at_zero: [Frame; 6] = core::array::from_fn(|i| {
+            .map_or(Rigid::IDENTITY, |p| frame(&p.frame()));
+        let at_zero: [Rigid; 6] = core::array::from_fn(|i| {
             let link = &model.links[i];
             let zero = match link.joint {
                 JointKind::Revolute => JointValue::Revolute { cos: 1.0, sin: 0.0 },
@@ -505,7 +429,7 @@ impl DecoupledIk {
             };
             frame(&link.transform(model.convention, zero))
         });
-        let chain: [Frame; 7] = match model.convention {
+        let chain: [Rigid; 7] = match model.convention {
             Convention::Standard => core::array::from_fn(|i| match i {
                 0 => base,
                 6 => at_zero[5].compose(&tool),
@@ -536,8 +460,8 @@ impl DecoupledIk {
         }
         let q0 = OVector::<f64, A::Dof>::zeros_generic(arm.dim(), nalgebra::U1);
         let j = arm.jacobian(&q0);
-        let tip = Frame::from_isometry(&arm.fk(&q0));
-        let mut axes = [Frame::IDENTITY; 6];
+        let tip = Rigid::from_isometry(&arm.fk(&q0));
+        let mut axes = [Rigid::IDENTITY; 6];
         for (i, axis) in axes.iter_mut().enumerate() {
             let v = Vector3::new(j[(0, i)], j[(1, i)], j[(2, i)]);
             let w = Vector3::new(j[(3, i)], j[(4, i)], j[(5, i)]);
@@ -551,9 +475,9 @@ impl DecoupledIk {
             if !(n.is_finite() && (n - 1.0).abs() < 1e-6 && origin.iter().all(|x| x.is_finite())) {
                 return Err(StructureError::InvalidAxis { joint: i + 1 });
             }
-            *axis = Frame::with_z(origin, z / n);
+            *axis = Rigid::with_z(origin, z / n);
         }
-        let chain: [Frame; 7] = core::array::from_fn(|i| match i {
+        let chain: [Rigid; 7] = core::array::from_fn(|i| match i {
             0 => axes[0],
             6 => axes[5].inverse().compose(&tip),
             _ => axes[i - 1].inverse().compose(&axes[i]),
@@ -564,7 +488,7 @@ impl DecoupledIk {
     }
 
     fn from_chain(
-        chain: [Frame; 7],
+        chain: [Rigid; 7],
         prismatic: [bool; 6],
         limits: [Option<[f64; 2]>; 6],
     ) -> Result<DecoupledIk, StructureError> {
@@ -642,7 +566,7 @@ impl DecoupledIk {
             let along = rest.dot(&a2);
             let parallel_23 = (p2.r[(2, 2)].abs() - 1.0).abs() < 1e-12;
             if (rest - a2 * along).norm() <= tol {
-                let p2 = Frame {
+                let p2 = Rigid {
                     r: p2.r,
                     p: p2.p + Vector3::z() * along,
                 };
@@ -748,10 +672,10 @@ impl DecoupledIk {
         self.fk_frame(q).to_isometry()
     }
 
-    fn fk_frame(&self, q: &SVector<f64, 6>) -> Frame {
+    fn fk_frame(&self, q: &SVector<f64, 6>) -> Rigid {
         let mut f = self.chain[0];
         for i in 0..6 {
-            f = f.joint(self.prismatic[i], q[i]).compose(&self.chain[i + 1]);
+            f = joint(&f, self.prismatic[i], q[i]).compose(&self.chain[i + 1]);
         }
         f
     }
@@ -760,7 +684,7 @@ impl DecoupledIk {
     /// kinematics to [`VERIFY_TOLERANCE`]. Empty when the pose is out of reach or not finite.
     pub fn solve(&self, pose: &Isometry3<f64>) -> Solutions {
         let mut out = Solutions::EMPTY;
-        let target = Frame::from_isometry(pose);
+        let target = Rigid::from_isometry(pose);
         if !(target.r.iter().all(|x| x.is_finite()) && target.p.iter().all(|x| x.is_finite())) {
             return out;
         }
@@ -820,7 +744,7 @@ impl DecoupledIk {
                     solve_trig(a, b, p.norm_squared() - k)
                 };
                 for &q3 in &q3s[..count] {
-                    let g = p2.joint(self.prismatic[2], q3).point(&w);
+                    let g = joint(&p2, self.prismatic[2], q3).point(&w);
                     let a = n.x * g.x + n.y * g.y;
                     let b = n.y * g.x - n.x * g.y;
                     let c = p.z - n.z * g.z;
@@ -869,7 +793,7 @@ impl DecoupledIk {
                     let x = p1.inverse().point(&(rz(-q1) * p));
                     let (q3s, count3) = solve_trig(a3, b3, x.norm_squared() - k3);
                     for &q3 in &q3s[..count3] {
-                        let g = p2.joint(false, q3).point(&w);
+                        let g = joint(&p2, false, q3).point(&w);
                         if let Some(q2) = azimuth(&x, &g) {
                             out.push([q1, q2, q3]);
                         }
@@ -910,10 +834,10 @@ impl DecoupledIk {
         out
     }
 
-    fn solve_orientation(&self, arm: &[f64; 3], target: &Frame, out: &mut Solutions) {
+    fn solve_orientation(&self, arm: &[f64; 3], target: &Rigid, out: &mut Solutions) {
         let mut g = self.chain[0];
         for (i, &qi) in arm.iter().enumerate() {
-            g = g.joint(self.prismatic[i], qi).compose(&self.chain[i + 1]);
+            g = joint(&g, self.prismatic[i], qi).compose(&self.chain[i + 1]);
         }
         // R_3ᵀ R Q6ᵀ = Rz(q4 + a4) Rx(90°) Rz(b4 + q5 + a5) Rx(90°) Rz(b5 + q6)
         //            = Rz(φ) Ry(θ) Rz(ψ) Rx(180°), φ = q4 + a4, θ = −(b4 + q5 + a5), ψ = −(b5 + q6).

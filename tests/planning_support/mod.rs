@@ -1,6 +1,5 @@
 //! Scenes and budgets shared by the planning tests (`tests/planning_*.rs`), the example
 //! (`examples/planning.rs`) and the benchmark (`benches/planning.rs`).
-#![allow(dead_code)] // each crate uses a different subset
 
 use dhgen::model::RobotModel;
 use dhgen::planning::{Obstacle, PrmConfig};

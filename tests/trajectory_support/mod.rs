@@ -1,5 +1,4 @@
 //! Checks shared by the trajectory property tests (`tests/trajectory_*.rs`).
-#![allow(dead_code)] // each test crate uses a different subset of these helpers
 
 use dhgen::trajectory::{Profile, State};
 

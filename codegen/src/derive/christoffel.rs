@@ -42,37 +42,13 @@ pub fn christoffel_polys(model: &RobotModel, d: &[Vec<Poly>]) -> Vec<Vec<Vec<Pol
 /// numbers, whichever is cheaper.
 pub fn christoffel(dv: &Derivation<'_>) -> (SharedGraph, Vec<E>) {
     let model = dv.model;
-    let mut candidates = vec![christoffel_analytic(model)];
-    if model.dof() <= 6 {
-        candidates.push(christoffel_dual(model));
-    }
+    let mut candidates = vec![christoffel_dual(model)];
     if dv.normal_form_is_small() {
         let g = SharedGraph::default();
-        let polys: Vec<Poly> = dv
-            .christoffel_polys()
-            .iter()
-            .flatten()
-            .flatten()
-            .cloned()
-            .collect();
-        let e = super::polys_to_exprs(&polys, &g, model);
+        let e = dv.christoffel_exprs(&g);
         candidates.push((g, e));
     }
     super::cheapest(candidates)
-}
-
-/// From the analytic derivative of the composite-rigid-body recursion.
-fn christoffel_analytic(model: &RobotModel) -> (SharedGraph, Vec<E>) {
-    let n = model.dof();
-    let g = SharedGraph::default();
-    let dd = super::graph_chain(model, &g).mass_matrix_derivatives();
-    let out = (0..n)
-        .flat_map(|i| (0..n).flat_map(move |j| (0..n).map(move |k| (i, j, k))))
-        .map(|(i, j, k)| {
-            (dd[i][k][j].clone() + dd[j][k][i].clone() - dd[k][i][j].clone()) * E::K(0.5)
-        })
-        .collect();
-    (g, out)
 }
 
 fn christoffel_dual(model: &RobotModel) -> (SharedGraph, Vec<E>) {

@@ -1,5 +1,6 @@
 //! The gravity torques g(q): expanded normal form, or the composite-body recursion.
 
+use super::Derivation;
 use crate::graph::{E, SharedGraph};
 use crate::poly::Poly;
 use dhgen_model::RobotModel;
@@ -14,15 +15,15 @@ pub fn gravity_polys(model: &RobotModel) -> Vec<Poly> {
 }
 
 /// g(q) as expressions, whichever derivation is cheaper.
-pub fn gravity(model: &RobotModel) -> (SharedGraph, Vec<E>) {
+pub fn gravity(dv: &Derivation<'_>) -> (SharedGraph, Vec<E>) {
     let expanded = {
         let g = SharedGraph::default();
-        let e = super::polys_to_exprs(&gravity_polys(model), &g, model);
+        let e = dv.gravity_exprs(&g);
         (g, e)
     };
     let recursive = {
         let g = SharedGraph::default();
-        let e = super::graph_chain(model, &g).gravity_torques();
+        let e = super::graph_chain(dv.model, &g).gravity_torques();
         (g, e)
     };
     super::cheapest(vec![expanded, recursive])

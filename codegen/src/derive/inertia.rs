@@ -31,8 +31,7 @@ pub fn mass_matrix(dv: &Derivation<'_>) -> (SharedGraph, Vec<E>) {
     let n = model.dof();
     let expanded = {
         let g = SharedGraph::default();
-        let polys: Vec<Poly> = dv.mass_matrix_polys().iter().flatten().cloned().collect();
-        let e = super::polys_to_exprs(&polys, &g, model);
+        let e = dv.mass_matrix_exprs(&g);
         (g, e)
     };
     let recursive = {

@@ -24,6 +24,7 @@ pub struct Derivation<'m> {
     pub model: &'m RobotModel,
     mass_matrix: OnceCell<Vec<Vec<Poly>>>,
     christoffel: OnceCell<Vec<Vec<Vec<Poly>>>>,
+    gravity: OnceCell<Vec<Poly>>,
 }
 
 /// Terms in D's normal form above which expanding is not worth trying: arms without
@@ -37,6 +38,7 @@ impl<'m> Derivation<'m> {
             model,
             mass_matrix: OnceCell::new(),
             christoffel: OnceCell::new(),
+            gravity: OnceCell::new(),
         }
     }
 
@@ -50,6 +52,35 @@ impl<'m> Derivation<'m> {
     pub fn christoffel_polys(&self) -> &Vec<Vec<Vec<Poly>>> {
         self.christoffel
             .get_or_init(|| christoffel::christoffel_polys(self.model, self.mass_matrix_polys()))
+    }
+
+    /// g(q) in the normal form.
+    pub fn gravity_polys(&self) -> &Vec<Poly> {
+        self.gravity
+            .get_or_init(|| gravity::gravity_polys(self.model))
+    }
+
+    /// D(q) as Horner-factored expressions in `g`, flattened row-major.
+    pub fn mass_matrix_exprs(&self, g: &SharedGraph) -> Vec<E> {
+        let flat: Vec<Poly> = self.mass_matrix_polys().iter().flatten().cloned().collect();
+        polys_to_exprs(&flat, g, self.model)
+    }
+
+    /// `c[i][j][k]` as Horner-factored expressions in `g`, flattened `(i·n + j)·n + k`.
+    pub fn christoffel_exprs(&self, g: &SharedGraph) -> Vec<E> {
+        let flat: Vec<Poly> = self
+            .christoffel_polys()
+            .iter()
+            .flatten()
+            .flatten()
+            .cloned()
+            .collect();
+        polys_to_exprs(&flat, g, self.model)
+    }
+
+    /// g(q) as Horner-factored expressions in `g`.
+    pub fn gravity_exprs(&self, g: &SharedGraph) -> Vec<E> {
+        polys_to_exprs(self.gravity_polys(), g, self.model)
     }
 
     /// Whether the normal form is small enough for its candidates to be worth building.

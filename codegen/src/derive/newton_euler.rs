@@ -66,17 +66,9 @@ pub fn inverse_dynamics(dv: &Derivation<'_>) -> (SharedGraph, Vec<E>) {
     }
     let assembled = {
         let g = SharedGraph::default();
-        let flat_d: Vec<_> = dv.mass_matrix_polys().iter().flatten().cloned().collect();
-        let d = super::polys_to_exprs(&flat_d, &g, model);
-        let flat_c: Vec<_> = dv
-            .christoffel_polys()
-            .iter()
-            .flatten()
-            .flatten()
-            .cloned()
-            .collect();
-        let c = super::polys_to_exprs(&flat_c, &g, model);
-        let gr = super::polys_to_exprs(&super::gravity::gravity_polys(model), &g, model);
+        let d = dv.mass_matrix_exprs(&g);
+        let c = dv.christoffel_exprs(&g);
+        let gr = dv.gravity_exprs(&g);
         let qd: Vec<E> = (0..n).map(|i| E::sym(&g, Sym::Qd(i))).collect();
         let qdd: Vec<E> = (0..n).map(|i| E::sym(&g, Sym::Qdd(i))).collect();
         let e = (0..n)

@@ -1,0 +1,99 @@
+//! The library's working rigid transform: a rotation matrix and a translation. Composing
+//! two is a plain 3×3 product, cheaper than nalgebra's quaternion-based `Isometry3`, which
+//! is only built for results handed to the user. Shared by the runtime path and inverse
+//! kinematics; available without `std`.
+
+use nalgebra::{Isometry3, Matrix3, Rotation3, Translation3, UnitQuaternion, Vector3};
+
+/// A rigid transform `x ↦ r x + p`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Rigid {
+    /// Rotation: the columns are the frame's axes in the outer frame.
+    pub r: Matrix3<f64>,
+    /// Origin of the frame in the outer frame.
+    pub p: Vector3<f64>,
+}
+
+impl Rigid {
+    /// The identity transform.
+    pub const IDENTITY: Rigid = Rigid {
+        r: Matrix3::new(1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0),
+        p: Vector3::new(0.0, 0.0, 0.0),
+    };
+
+    /// Converts the model's row-major frame.
+    #[cfg(feature = "std")]
+    pub fn from_frame(f: &dhgen_model::Frame<f64>) -> Rigid {
+        Rigid {
+            r: Matrix3::from_fn(|i, j| f.r[i][j]),
+            p: Vector3::from(f.p),
+        }
+    }
+
+    /// `self · other`.
+    #[inline]
+    pub fn compose(&self, other: &Rigid) -> Rigid {
+        Rigid {
+            r: self.r * other.r,
+            p: self.r * other.p + self.p,
+        }
+    }
+
+    /// The inverse transform.
+    pub fn inverse(&self) -> Rigid {
+        let rt = self.r.transpose();
+        Rigid {
+            r: rt,
+            p: -(rt * self.p),
+        }
+    }
+
+    /// Applies the transform to a point.
+    pub fn point(&self, v: &Vector3<f64>) -> Vector3<f64> {
+        self.r * v + self.p
+    }
+
+    /// Right-multiplies by the joint motion: `Rz(q)` for a revolute joint, `Tz(q)` for a
+    /// prismatic one. `(c, s)` is `(cos q, sin q)` and only read for revolute joints.
+    #[inline]
+    pub fn apply_joint(&mut self, prismatic: bool, q: f64, (c, s): (f64, f64)) {
+        if prismatic {
+            self.p += self.r.column(2) * q;
+        } else {
+            let x = self.r.column(0).into_owned();
+            let y = self.r.column(1).into_owned();
+            self.r.set_column(0, &(x * c + y * s));
+            self.r.set_column(1, &(y * c - x * s));
+        }
+    }
+
+    /// From an nalgebra isometry.
+    pub fn from_isometry(iso: &Isometry3<f64>) -> Rigid {
+        Rigid {
+            r: *iso.rotation.to_rotation_matrix().matrix(),
+            p: iso.translation.vector,
+        }
+    }
+
+    /// The transform as an nalgebra isometry.
+    pub fn to_isometry(self) -> Isometry3<f64> {
+        let rotation =
+            UnitQuaternion::from_rotation_matrix(&Rotation3::from_matrix_unchecked(self.r));
+        Isometry3::from_parts(Translation3::from(self.p), rotation)
+    }
+
+    /// A frame at `origin` whose z axis is `z` (unit); x is chosen perpendicular to it.
+    pub fn with_z(origin: Vector3<f64>, z: Vector3<f64>) -> Rigid {
+        let helper = if z.x.abs() < 0.9 {
+            Vector3::x()
+        } else {
+            Vector3::y()
+        };
+        let x = (helper - z * z.dot(&helper)).normalize();
+        let y = z.cross(&x);
+        Rigid {
+            r: Matrix3::from_columns(&[x, y, z]),
+            p: origin,
+        }
+    }
+}
