@@ -84,7 +84,10 @@ fn main() {
                 "coriolis" => {
                     op("coriolis").or_else(|| op("christoffel").map(|c| c + 2 * model.dof().pow(3)))
                 }
-                "forward_dynamics" => op("mass_matrix").zip(op("bias_smooth")).map(|(a, b)| a + b),
+                "forward_dynamics" => op("mass_matrix")
+                    .zip(op("bias_smooth"))
+                    .zip(op("cholesky_solve"))
+                    .map(|((a, b), c)| a + b + c),
                 other => op(other),
             };
             println!(

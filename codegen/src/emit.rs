@@ -165,7 +165,8 @@ pub fn emit(g: &SharedGraph, outputs: Vec<Output>) -> Emitted {
             .filter(|c| !is_op(*c) || part_of[c] != p)
             .collect();
         if p == 0 {
-            // Constant-valued... none here; symbol or constant outputs are stored by part 0.
+            // Outputs that are bare symbols or constants have no operation of their own: part 0
+            // loads them and stores them.
             needed.extend(ids.iter().flatten().copied().filter(|id| !is_op(*id)));
         }
         needed.sort_unstable();
@@ -215,17 +216,9 @@ pub fn emit(g: &SharedGraph, outputs: Vec<Output>) -> Emitted {
                     let (a, b) = (v(a), v(b));
                     quote!(#a * #b)
                 }
-                Node::Div(a, b) => {
-                    let (a, b) = (v(a), v(b));
-                    quote!(#a / #b)
-                }
                 Node::Neg(a) => {
                     let a = v(a);
                     quote!(-#a)
-                }
-                Node::Sqrt(a) => {
-                    let a = v(a);
-                    quote!(#a.sqrt())
                 }
                 Node::Sym(_) | Node::Const(_) => unreachable!("operations only"),
             };
@@ -285,8 +278,8 @@ pub fn emit(g: &SharedGraph, outputs: Vec<Output>) -> Emitted {
 
 fn children(node: Node) -> Vec<Id> {
     match node {
-        Node::Add(a, b) | Node::Sub(a, b) | Node::Mul(a, b) | Node::Div(a, b) => vec![a, b],
-        Node::Neg(a) | Node::Sqrt(a) => vec![a],
+        Node::Add(a, b) | Node::Sub(a, b) | Node::Mul(a, b) => vec![a, b],
+        Node::Neg(a) => vec![a],
         Node::Const(_) | Node::Sym(_) => vec![],
     }
 }

@@ -49,10 +49,6 @@ pub enum Node {
     Mul(Id, Id),
     /// -a
     Neg(Id),
-    /// a / b
-    Div(Id, Id),
-    /// sqrt(a)
-    Sqrt(Id),
 }
 
 /// Exact comparison with a structural constant (0, 1 or −1), written as a function so the
@@ -202,25 +198,6 @@ impl Graph {
             (None, None) => self.intern(Node::Mul(a.min(b), a.max(b))),
         }
     }
-
-    /// `a / b`
-    pub fn div(&mut self, a: Id, b: Id) -> Id {
-        match (self.constant(a), self.constant(b)) {
-            (Some(x), Some(y)) => return self.konst(x / y),
-            (Some(x), _) if is(x, 0.0) => return self.konst(0.0),
-            (_, Some(y)) if is(y, 1.0) => return a,
-            _ => {}
-        }
-        self.intern(Node::Div(a, b))
-    }
-
-    /// `sqrt(a)`
-    pub fn sqrt(&mut self, a: Id) -> Id {
-        if let Some(x) = self.constant(a) {
-            return self.konst(x.sqrt());
-        }
-        self.intern(Node::Sqrt(a))
-    }
 }
 
 /// A shared, growable graph.
@@ -251,30 +228,6 @@ impl E {
             E::K(x) => g.borrow_mut().konst(*x),
             E::N(_, id) => *id,
         }
-    }
-
-    /// The constant value, if this is a constant.
-    pub fn as_const(&self) -> Option<f64> {
-        match self {
-            E::K(x) => Some(*x),
-            E::N(g, id) => g.borrow().constant(*id),
-        }
-    }
-
-    /// `sqrt(self)`
-    pub fn sqrt(&self) -> E {
-        match self {
-            E::K(x) => E::K(x.sqrt()),
-            E::N(g, id) => {
-                let r = g.borrow_mut().sqrt(*id);
-                E::N(g.clone(), r)
-            }
-        }
-    }
-
-    /// `self / other`
-    pub fn div(&self, other: &E) -> E {
-        binary(self.clone(), other.clone(), |a, b| a / b, Graph::div)
     }
 }
 
@@ -375,11 +328,11 @@ pub fn reachable(g: &Graph, roots: impl IntoIterator<Item = Id>) -> Vec<Id> {
             continue;
         }
         match g.nodes[id as usize] {
-            Node::Add(a, b) | Node::Sub(a, b) | Node::Mul(a, b) | Node::Div(a, b) => {
+            Node::Add(a, b) | Node::Sub(a, b) | Node::Mul(a, b) => {
                 stack.push(a);
                 stack.push(b);
             }
-            Node::Neg(a) | Node::Sqrt(a) => stack.push(a),
+            Node::Neg(a) => stack.push(a),
             Node::Const(_) | Node::Sym(_) => {}
         }
     }
@@ -395,8 +348,6 @@ pub fn count(g: &Graph, roots: impl IntoIterator<Item = Id>) -> OpCount {
         match g.nodes[id as usize] {
             Node::Add(..) | Node::Sub(..) | Node::Neg(..) => c.add += 1,
             Node::Mul(..) => c.mul += 1,
-            Node::Div(..) => c.div += 1,
-            Node::Sqrt(..) => c.sqrt += 1,
             Node::Const(_) | Node::Sym(_) => {}
         }
     }

@@ -433,7 +433,8 @@ pub fn generate(model: &RobotModel, vis: TokenStream, name: &Ident, doc: &str) -
                     #body
                 }
             }
-        });
+        })
+        .collect::<Vec<_>>();
     let coulomb = coulomb(model);
     let tau_mut = if coulomb.is_empty() {
         quote!()
@@ -441,7 +442,8 @@ pub fn generate(model: &RobotModel, vis: TokenStream, name: &Ident, doc: &str) -
         quote!(mut)
     };
     let dyn_items = if dynamics {
-        let chol = cholesky_solve(n);
+        let (chol, chol_ops) = cholesky_solve(n);
+        b.ops.push(("cholesky_solve".to_string(), chol_ops));
         quote! {
             /// Inverse dynamics τ = D(q) q̈ + C(q, q̇) q̇ + g(q), plus motor inertia and friction.
             #[must_use]
@@ -846,8 +848,26 @@ fn coulomb(model: &RobotModel) -> TokenStream {
     quote!(#(#lines)*)
 }
 
-/// Unrolled `D x = rhs` by Cholesky, `None` on a non-positive pivot.
-fn cholesky_solve(n: usize) -> TokenStream {
+/// Unrolled `D x = rhs` by Cholesky, `None` on a non-positive pivot, with its operation
+/// count (the `n` subtractions forming `rhs = τ − bias` included).
+fn cholesky_solve(n: usize) -> (TokenStream, OpCount) {
+    // Per pivot j: j squares subtracted, one sqrt, one reciprocal; per entry below it, j
+    // products subtracted and one scaling; forward and back substitution: a row's products
+    // and one scaling each.
+    let mut ops = OpCount {
+        add: n,
+        ..OpCount::default()
+    };
+    for j in 0..n {
+        ops.mul += j + (n - 1 - j) * (j + 1);
+        ops.add += j + (n - 1 - j) * j;
+        ops.sqrt += 1;
+        ops.div += 1;
+    }
+    for i in 0..n {
+        ops.mul += 2 * i + 2;
+        ops.add += 2 * i;
+    }
     let l = |i: usize, j: usize| format_ident!("l{}_{}", i, j);
     let inv = |i: usize| format_ident!("inv{}", i);
     let y = |i: usize| format_ident!("y{}", i);
@@ -901,10 +921,11 @@ fn cholesky_solve(n: usize) -> TokenStream {
         s.push(quote!(let #xi: T = (#e) * #invi;));
     }
     let xs = (0..n).map(x);
-    quote! {
+    let solve = quote! {
         #(#s)*
         Some(na::SVector::<T, DOF>::from([#(#xs),*]))
-    }
+    };
+    (solve, ops)
 }
 
 /// `1usize` → `1`: quote writes integer literals with their type suffix, which only adds

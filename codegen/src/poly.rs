@@ -240,11 +240,6 @@ impl Poly {
         out
     }
 
-    /// The largest coefficient magnitude (0 for the zero polynomial).
-    pub fn max_abs(&self) -> f64 {
-        self.terms.iter().fold(0.0, |m, (_, c)| m.max(c.abs()))
-    }
-
     /// Evaluates at numeric variable values (`values[v]`).
     pub fn eval(&self, values: &[f64]) -> f64 {
         self.terms
