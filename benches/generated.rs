@@ -5,11 +5,12 @@
 //!
 //! `cargo bench --bench generated`, then `cargo run --release --example bench_report`.
 
-use criterion::{BenchmarkId, Criterion, black_box, criterion_group, criterion_main};
+use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
 use dhgen::Robot;
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
 use std::f64::consts::PI;
+use std::hint::black_box;
 use std::time::Duration;
 
 const STATES: usize = 64;
@@ -39,10 +40,10 @@ fn samples<const N: usize>(robot: &Robot, seed: u64) -> Vec<Sample<N>> {
         .map(|_| {
             let q: [f64; N] = core::array::from_fn(|j| {
                 let [lo, hi] = robot.model().links[j].limits.unwrap_or([-PI, PI]);
-                rng.gen_range(lo..hi)
+                rng.random_range(lo..hi)
             });
-            let qd: [f64; N] = core::array::from_fn(|_| rng.gen_range(-2.0..2.0));
-            let qdd: [f64; N] = core::array::from_fn(|_| rng.gen_range(-5.0..5.0));
+            let qd: [f64; N] = core::array::from_fn(|_| rng.random_range(-2.0..2.0));
+            let qdd: [f64; N] = core::array::from_fn(|_| rng.random_range(-5.0..5.0));
             let t = robot.inverse_dynamics(&q, &qd, &qdd);
             let tau: [f64; N] = core::array::from_fn(|j| t[j]);
             let f = |a: [f64; N]| a.map(|x| x as f32);

@@ -6,13 +6,14 @@
 //!
 //! `cargo bench --bench ik -- --warm-up-time 1 --measurement-time 2`
 
-use criterion::{BenchmarkId, Criterion, black_box, criterion_group, criterion_main};
+use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
 use dhgen::Arm;
 use dhgen::ik::{DecoupledIk, NumericIk};
 use dhgen::nalgebra::{Isometry3, SVector, Vector6};
 use dhgen::velocity::{Damping, JacobianSvd, inverse_velocity, jacobian_dot_qd};
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
+use std::hint::black_box;
 
 dhgen::robot!(mod puma560 = "robots/puma560.toml");
 dhgen::robot!(mod stanford = "robots/stanford.toml");
@@ -35,14 +36,14 @@ fn cases<const N: usize, A: Arm<Dof = dhgen::nalgebra::Const<N>>>(
     let within = |rng: &mut StdRng| {
         SVector::<f64, N>::from_fn(|j, _| {
             let [lo, hi] = arm.limits(j).unwrap_or([-3.0, 3.0]);
-            rng.gen_range(lo..hi)
+            rng.random_range(lo..hi)
         })
     };
     (0..STATES)
         .map(|_| {
             let q = within(&mut rng);
             let random = within(&mut rng);
-            let near = q + SVector::<f64, N>::from_fn(|_, _| rng.gen_range(-0.1..0.1));
+            let near = q + SVector::<f64, N>::from_fn(|_, _| rng.random_range(-0.1..0.1));
             Case {
                 pose: arm.fk(&q),
                 q,

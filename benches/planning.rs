@@ -10,12 +10,13 @@
 //!
 //! `cargo bench --bench planning`
 
-use criterion::{BenchmarkId, Criterion, Throughput, black_box, criterion_group, criterion_main};
+use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
 use dhgen::nalgebra::{DVector, SVector};
 use dhgen::planning::{ArmGeometry, CollisionChecker, Prm, PrmConfig, Scene};
 use dhgen::{Arm, ArmAllocator, JointVector, Robot};
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
+use std::hint::black_box;
 use std::time::Duration;
 
 #[path = "../tests/planning_support/mod.rs"]
@@ -50,7 +51,7 @@ fn configurations(checker: &CollisionChecker<'_, puma560::Model>) -> Vec<[f64; 6
         .map(|_| {
             core::array::from_fn(|j| {
                 let [lo, hi] = checker.joint_range(j);
-                rng.gen_range(lo..hi)
+                rng.random_range(lo..hi)
             })
         })
         .collect()

@@ -4,11 +4,12 @@
 //!
 //! `cargo bench --bench runtime -- --warm-up-time 1 --measurement-time 2`
 
-use criterion::{Criterion, black_box, criterion_group, criterion_main};
+use criterion::{Criterion, criterion_group, criterion_main};
 use dhgen::Robot;
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
 use std::f64::consts::PI;
+use std::hint::black_box;
 
 const STATES: usize = 64;
 
@@ -30,11 +31,15 @@ fn states(robot: &Robot, seed: u64) -> Vec<State> {
                 .iter()
                 .map(|l| {
                     let [lo, hi] = l.limits.unwrap_or([-PI, PI]);
-                    rng.gen_range(lo..hi)
+                    rng.random_range(lo..hi)
                 })
                 .collect();
-            let qd: Vec<f64> = (0..robot.dof()).map(|_| rng.gen_range(-2.0..2.0)).collect();
-            let qdd: Vec<f64> = (0..robot.dof()).map(|_| rng.gen_range(-5.0..5.0)).collect();
+            let qd: Vec<f64> = (0..robot.dof())
+                .map(|_| rng.random_range(-2.0..2.0))
+                .collect();
+            let qdd: Vec<f64> = (0..robot.dof())
+                .map(|_| rng.random_range(-5.0..5.0))
+                .collect();
             let tau = robot.inverse_dynamics(&q, &qd, &qdd).as_slice().to_vec();
             State { q, qd, qdd, tau }
         })

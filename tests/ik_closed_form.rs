@@ -77,7 +77,7 @@ fn model(name: &str) -> RobotModel {
 fn random_q<A: Arm<Dof = dhgen::nalgebra::Const<6>>>(arm: &A, rng: &mut StdRng) -> SVector<f64, 6> {
     SVector::from_fn(|j, _| {
         let [lo, hi] = arm.limits(j).unwrap_or([-PI, PI]);
-        rng.gen_range(lo..=hi)
+        rng.random_range(lo..=hi)
     })
 }
 
@@ -241,7 +241,7 @@ fn from_model_and_from_arm_agree_for_generated_and_runtime_robots() {
                 .iter()
                 .map(|l| {
                     let [lo, hi] = l.limits.unwrap();
-                    rng.gen_range(lo..=hi)
+                    rng.random_range(lo..=hi)
                 })
                 .collect();
             let pose = robot.fk(&q);
@@ -360,7 +360,7 @@ fn from_model_honours_offsets_base_tool_and_modified_dh() {
     ] {
         let ik = DecoupledIk::from_model(&model).unwrap();
         for _ in 0..300 {
-            let q = SVector::<f64, 6>::from_fn(|_, _| rng.gen_range(-2.0..2.0));
+            let q = SVector::<f64, 6>::from_fn(|_, _| rng.random_range(-2.0..2.0));
             let pose = fk(&q.into());
             let solutions = ik.solve(&pose);
             assert!(solutions.len() >= 2, "{}: {q:?}", model.name);

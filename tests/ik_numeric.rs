@@ -1,6 +1,10 @@
 //! Numeric inverse kinematics (damped least squares / Levenberg–Marquardt): convergence rate
 //! from random seeds on random reachable poses (PUMA 560, Panda), prismatic joints, the
 //! runtime robot, limits, and every error reason.
+#![expect(
+    unsafe_code,
+    reason = "a GlobalAlloc that counts and delegates to System"
+)]
 
 use dhgen::ik::{DecoupledIk, IkError, NumericIk, pose_error};
 use dhgen::nalgebra::{
@@ -51,7 +55,7 @@ where
 {
     OVector::<f64, A::Dof>::from_fn_generic(arm.dim(), dhgen::nalgebra::U1, |j, _| {
         let [lo, hi] = arm.limits(j).unwrap_or([-3.0, 3.0]);
-        rng.gen_range(lo..=hi)
+        rng.random_range(lo..=hi)
     })
 }
 

@@ -70,9 +70,9 @@ fn reference_distance(o: &Obstacle, a: &Point3<f64>, b: &Point3<f64>) -> f64 {
 
 fn random_point(rng: &mut StdRng, scale: f64) -> Point3<f64> {
     Point3::new(
-        rng.gen_range(-scale..scale),
-        rng.gen_range(-scale..scale),
-        rng.gen_range(-scale..scale),
+        rng.random_range(-scale..scale),
+        rng.random_range(-scale..scale),
+        rng.random_range(-scale..scale),
     )
 }
 
@@ -182,7 +182,7 @@ fn planar_clearance_is_the_capsule_distance() {
     );
     let mut rng = StdRng::seed_from_u64(3);
     for _ in 0..500 {
-        let q = SVector::<f64, 2>::new(rng.gen_range(-3.1..3.1), rng.gen_range(-3.1..3.1));
+        let q = SVector::<f64, 2>::new(rng.random_range(-3.1..3.1), rng.random_range(-3.1..3.1));
         let elbow = Point3::new(q[0].cos(), q[0].sin(), 0.0);
         let tip = elbow + 0.8 * Vector3::new((q[0] + q[1]).cos(), (q[0] + q[1]).sin(), 0.0);
         let want = spheres
@@ -219,7 +219,7 @@ fn generated_and_runtime_arms_agree() {
         let q: Vec<f64> = (0..6)
             .map(|j| {
                 let [lo, hi] = generated.joint_range(j);
-                rng.gen_range(lo..hi)
+                rng.random_range(lo..hi)
             })
             .collect();
         let a = generated.clearance(&SVector::<f64, 6>::from_column_slice(&q));
@@ -347,11 +347,11 @@ fn no_point_moves_farther_than_the_sweep_bound() {
             let sample = |rng: &mut StdRng| {
                 DVector::from_fn(n, |j, _| {
                     let [lo, hi] = checker.joint_range(j);
-                    rng.gen_range(lo..hi)
+                    rng.random_range(lo..hi)
                 })
             };
             let a = sample(&mut rng);
-            let b = a.lerp(&sample(&mut rng), rng.gen_range(0.0..0.3));
+            let b = a.lerp(&sample(&mut rng), rng.random_range(0.0..0.3));
             let start = checker.capsules(&a);
             for k in 1..=10 {
                 let q = a.lerp(&b, k as f64 / 10.0);

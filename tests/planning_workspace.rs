@@ -49,7 +49,7 @@ fn check_gradient<const N: usize>(
     while tried < samples {
         let q = SVector::<f64, N>::from_fn(|j, _| {
             let [lo, hi] = planner.checker().joint_range(j);
-            rng.gen_range(lo..hi)
+            rng.random_range(lo..hi)
         });
         let mut torque = [0.0; N];
         let u = planner.potential_towards(&q, goal, &mut torque);

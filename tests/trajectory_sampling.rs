@@ -1,4 +1,10 @@
 //! Sampling into caller buffers (no allocation) and into Vecs (issue 6, item 4).
+// A counting global allocator is the one way to prove "no allocation": it must implement the
+// unsafe `GlobalAlloc` trait, delegating to the system allocator.
+#![expect(
+    unsafe_code,
+    reason = "a GlobalAlloc that counts and delegates to System"
+)]
 
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::cell::Cell;

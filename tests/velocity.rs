@@ -66,7 +66,7 @@ where
 {
     OVector::<f64, A::Dof>::from_fn_generic(arm.dim(), dhgen::nalgebra::U1, |j, _| {
         let [lo, hi] = arm.limits(j).unwrap_or([-2.5, 2.5]);
-        rng.gen_range(lo..=hi)
+        rng.random_range(lo..=hi)
     })
 }
 
@@ -75,7 +75,7 @@ where
     DefaultAllocator: ArmAllocator<A::Dof>,
 {
     OVector::<f64, A::Dof>::from_fn_generic(arm.dim(), dhgen::nalgebra::U1, |_, _| {
-        rng.gen_range(-1.5..1.5)
+        rng.random_range(-1.5..1.5)
     })
 }
 
@@ -129,14 +129,14 @@ fn euler_rate_matrix_maps_euler_rates_to_angular_velocity() {
     let mut rng = StdRng::seed_from_u64(3);
     for _ in 0..200 {
         let e = EulerZyz::new(
-            rng.gen_range(-3.0..3.0),
-            rng.gen_range(0.1..3.0),
-            rng.gen_range(-3.0..3.0),
+            rng.random_range(-3.0..3.0),
+            rng.random_range(0.1..3.0),
+            rng.random_range(-3.0..3.0),
         );
         let rate = Vector3::new(
-            rng.gen_range(-1.0..1.0),
-            rng.gen_range(-1.0..1.0),
-            rng.gen_range(-1.0..1.0),
+            rng.random_range(-1.0..1.0),
+            rng.random_range(-1.0..1.0),
+            rng.random_range(-1.0..1.0),
         );
         let h = 1e-6;
         let at = |t: f64| {
@@ -416,7 +416,7 @@ fn inverse_velocity_reproduces_the_twist_away_from_singularities() {
             continue;
         }
         checked += 1;
-        let xi = Vector6::from_fn(|_, _| rng.gen_range(-1.0..1.0));
+        let xi = Vector6::from_fn(|_, _| rng.random_range(-1.0..1.0));
         let qd = inverse_velocity(&puma560::Model, &q, &xi, None, &damping);
         let err = (j * qd - xi).norm();
         worst = worst.max(err);
@@ -429,8 +429,8 @@ fn inverse_velocity_reproduces_the_twist_away_from_singularities() {
         if JacobianSvd::new(&j).min_singular_value() < damping.threshold {
             continue;
         }
-        let xi = Vector6::from_fn(|_, _| rng.gen_range(-1.0..1.0));
-        let b = SVector::<f64, 7>::from_fn(|_, _| rng.gen_range(-1.0..1.0));
+        let xi = Vector6::from_fn(|_, _| rng.random_range(-1.0..1.0));
+        let b = SVector::<f64, 7>::from_fn(|_, _| rng.random_range(-1.0..1.0));
         let least = inverse_velocity(&panda::Model, &q, &xi, None, &damping);
         let with_b = inverse_velocity(&panda::Model, &q, &xi, Some(&b), &damping);
         assert!((j * least - xi).norm() < 1e-9);
@@ -498,7 +498,7 @@ fn inverse_acceleration_reproduces_the_tool_acceleration() {
         }
         checked += 1;
         let qd = random_qd(&puma560::Model, &mut rng);
-        let xdd = Vector6::from_fn(|_, _| rng.gen_range(-2.0..2.0));
+        let xdd = Vector6::from_fn(|_, _| rng.random_range(-2.0..2.0));
         let qdd = inverse_acceleration(&puma560::Model, &q, &qd, &xdd, None, &damping);
         let achieved = j * qdd + jacobian_dot_qd(&puma560::Model, &q, &qd);
         assert!((achieved - xdd).norm() < 1e-9);

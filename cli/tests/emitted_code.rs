@@ -7,6 +7,7 @@ use dhgen::nalgebra::SVector;
 
 // Public, as in a firmware crate that checks the file in: what this test does not call is
 // still part of the crate's interface, not dead code.
+/// The checked-in output of `dhgen emit`.
 pub mod emitted {
     include!("emitted/puma560.rs");
 }

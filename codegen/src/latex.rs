@@ -61,7 +61,7 @@ impl Symbols<'_> {
             return format!("d_{}", self.index(&[j]));
         }
         let joints: Vec<usize> = (self.basis.start[j]..=j).collect();
-        let letter = if v % 2 == 0 { 'c' } else { 's' };
+        let letter = if v.is_multiple_of(2) { 'c' } else { 's' };
         format!("{letter}_{}", self.index(&joints))
     }
 }

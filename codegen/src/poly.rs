@@ -410,7 +410,14 @@ fn slot_expr(v: usize, g: &SharedGraph, vars: &[Var], basis: &Basis) -> E {
     }
     let start = basis.start[j];
     if start == j {
-        return E::sym(g, if v % 2 == 0 { Sym::Cos(j) } else { Sym::Sin(j) });
+        return E::sym(
+            g,
+            if v.is_multiple_of(2) {
+                Sym::Cos(j)
+            } else {
+                Sym::Sin(j)
+            },
+        );
     }
     let mut shorter = basis.clone();
     shorter.start[j - 1] = start;
@@ -419,7 +426,7 @@ fn slot_expr(v: usize, g: &SharedGraph, vars: &[Var], basis: &Basis) -> E {
         slot_expr(2 * (j - 1) + 1, g, vars, &shorter),
     );
     let (c, s) = (E::sym(g, Sym::Cos(j)), E::sym(g, Sym::Sin(j)));
-    if v % 2 == 0 {
+    if v.is_multiple_of(2) {
         pc * c - ps * s
     } else {
         ps * c + pc * s

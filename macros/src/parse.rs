@@ -191,12 +191,11 @@ fn value(tokens: Vec<TokenTree>) -> syn::Result<Value<Loc>> {
             _ => {}
         }
     }
-    if let [TokenTree::Punct(p), TokenTree::Literal(lit)] = tokens.as_slice() {
-        if p.as_char() == '-' {
-            if let Some(x) = number(lit) {
-                return Ok(Value::Number(-x, loc));
-            }
-        }
+    if let [TokenTree::Punct(p), TokenTree::Literal(lit)] = tokens.as_slice()
+        && p.as_char() == '-'
+        && let Some(x) = number(lit)
+    {
+        return Ok(Value::Number(-x, loc));
     }
     // Anything else (`90 deg`, `PI / 2`, `-3 * PI / 4`) is an angle expression, read by
     // the same parser as the TOML strings, which ignores spaces. The tokens are joined

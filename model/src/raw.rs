@@ -174,10 +174,10 @@ pub fn from_toml_text(text: &str) -> Result<Table<Position>, String> {
     /// still a number: decimal digits parse as a float (correctly rounded); binary, octal
     /// and hex digits (never signed in TOML) are summed, exactly up to 2^53.
     fn integer(digits: &str, radix: u32) -> f64 {
-        if radix == 10 {
-            if let Ok(x) = digits.parse::<f64>() {
-                return x;
-            }
+        if radix == 10
+            && let Ok(x) = digits.parse::<f64>()
+        {
+            return x;
         }
         let (sign, digits) = match digits.strip_prefix('-') {
             Some(rest) => (-1.0, rest),

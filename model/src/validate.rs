@@ -386,22 +386,22 @@ pub fn validate<L: Clone>(
         )),
     })?;
     // Dynamics are all or nothing: a link silently treated as massless would be a bug.
-    if let Some(with) = links.iter().position(|l| l.inertial.is_some()) {
-        if let Some(without) = links.iter().position(|l| l.inertial.is_none()) {
-            let Value::Array(items, _) = f.required("links")? else {
-                unreachable!("links was read as an array above")
-            };
-            return Err(Error {
-                loc: items[without].loc().clone(),
-                link: Some(without + 1),
-                field: Some("mass".into()),
-                message: format!(
-                    "this link has no `mass`, `com` and `inertia` but link {} has them; \
+    if let Some(with) = links.iter().position(|l| l.inertial.is_some())
+        && let Some(without) = links.iter().position(|l| l.inertial.is_none())
+    {
+        let Value::Array(items, _) = f.required("links")? else {
+            unreachable!("links was read as an array above")
+        };
+        return Err(Error {
+            loc: items[without].loc().clone(),
+            link: Some(without + 1),
+            field: Some("mass".into()),
+            message: format!(
+                "this link has no `mass`, `com` and `inertia` but link {} has them; \
                      give every link its mass properties, or none",
-                    with + 1
-                ),
-            });
-        }
+                with + 1
+            ),
+        });
     }
     Ok(RobotModel {
         name,

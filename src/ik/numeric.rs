@@ -432,13 +432,13 @@ impl NumericIk {
             for k in 0..n {
                 let dq = free[k] * j.column(k).dot(&y);
                 trial[k] = q[k] + dq;
-                if self.respect_limits && free[k] != 0.0 {
-                    if let Some([lo, hi]) = arm.limits(k) {
-                        if (q[k] <= lo && dq < 0.0) || (q[k] >= hi && dq > 0.0) {
-                            free[k] = 0.0;
-                            locked = true;
-                        }
-                    }
+                if self.respect_limits
+                    && free[k] != 0.0
+                    && let Some([lo, hi]) = arm.limits(k)
+                    && ((q[k] <= lo && dq < 0.0) || (q[k] >= hi && dq > 0.0))
+                {
+                    free[k] = 0.0;
+                    locked = true;
                 }
             }
             if !locked {

@@ -531,7 +531,7 @@ pub(crate) fn descend(
             for _ in 0..params.walk_steps {
                 for j in 0..n {
                     let [lo, hi] = field.bounds(j);
-                    let v = rng.gen_range(-params.walk_step..=params.walk_step);
+                    let v = rng.random_range(-params.walk_step..=params.walk_step);
                     next[j] = (q[j] + v).clamp(lo, hi);
                 }
                 if field.motion_is_free(&q, &next) {

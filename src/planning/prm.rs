@@ -405,7 +405,7 @@ where
         let ranges = &self.ranges;
         JointVector::<A>::from_fn_generic(dim, U1, |j, _| {
             let [lo, hi] = ranges[j];
-            rng.gen_range(lo..=hi)
+            rng.random_range(lo..=hi)
         })
     }
 
@@ -417,7 +417,7 @@ where
         let centre = &self.nodes[node];
         JointVector::<A>::from_fn_generic(dim, U1, |j, _| {
             let [lo, hi] = ranges[j];
-            (centre[j] + rng.gen_range(-radius..=radius)).clamp(lo, hi)
+            (centre[j] + rng.random_range(-radius..=radius)).clamp(lo, hi)
         })
     }
 
@@ -464,8 +464,8 @@ where
             .collect();
         let mut added = 0;
         while added < self.config.enhancement_nodes && self.out_of_budget().is_none() {
-            let q = if !sparse.is_empty() && self.rng.gen_bool(0.7) {
-                let node = sparse[self.rng.gen_range(0..sparse.len())];
+            let q = if !sparse.is_empty() && self.rng.random_bool(0.7) {
+                let node = sparse[self.rng.random_range(0..sparse.len())];
                 self.sample_near(node)
             } else {
                 self.uniform_sample()
@@ -527,10 +527,11 @@ where
 
     /// The node at `q`, added and connected if the roadmap has none there.
     fn insert(&mut self, q: &JointVector<A>) -> usize {
-        if let Some(&(d, i)) = self.tree.nearest(q.as_slice(), 1).first() {
-            if d == 0.0 && self.nodes[i] == *q {
-                return i;
-            }
+        if let Some(&(d, i)) = self.tree.nearest(q.as_slice(), 1).first()
+            && d == 0.0
+            && self.nodes[i] == *q
+        {
+            return i;
         }
         let i = self.add_node(q.clone());
         self.connect(i);
@@ -629,8 +630,8 @@ where
                 cumulative.push(total);
             }
             let (mut s1, mut s2) = (
-                self.rng.gen_range(0.0..=total),
-                self.rng.gen_range(0.0..=total),
+                self.rng.random_range(0.0..=total),
+                self.rng.random_range(0.0..=total),
             );
             if s1 > s2 {
                 core::mem::swap(&mut s1, &mut s2);

@@ -561,7 +561,7 @@ pub fn sample_multi_into<M: MultiProfile + ?Sized>(
     if dof == 0 {
         return Err(TrajectoryError::NoJoints);
     }
-    if out.len() % dof != 0 {
+    if !out.len().is_multiple_of(dof) {
         return Err(TrajectoryError::LengthMismatch {
             name: "out (whole rows of dof states)",
             expected: (out.len() / dof + 1) * dof,
