@@ -12,7 +12,7 @@
 
 use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
 use dhgen::nalgebra::{DVector, SVector};
-use dhgen::planning::{ArmGeometry, CollisionChecker, Prm, PrmConfig, Scene};
+use dhgen::planning::{CollisionChecker, Prm, PrmConfig, Scene};
 use dhgen::{Arm, ArmAllocator, JointVector, Robot};
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
@@ -41,8 +41,7 @@ fn checker<A: Arm>(arm: &A) -> CollisionChecker<'_, A>
 where
     dhgen::nalgebra::DefaultAllocator: ArmAllocator<A::Dof>,
 {
-    let geometry = ArmGeometry::from_model(&scenes::model("puma560.toml")).unwrap();
-    CollisionChecker::new(arm, geometry, Scene::new(scenes::puma_obstacles()).unwrap()).unwrap()
+    CollisionChecker::new(arm, Scene::new(scenes::puma_obstacles()).unwrap()).unwrap()
 }
 
 fn configurations(checker: &CollisionChecker<'_, puma560::Model>) -> Vec<[f64; 6]> {
@@ -107,7 +106,7 @@ where
 fn planning(c: &mut Criterion) {
     let robot = Robot::from_model(scenes::model("puma560.toml"));
     let margin = checker(&puma560::Model)
-        .geometry()
+        .model()
         .margin(roadmap_config().resolution);
     let qs = configurations(&checker(&puma560::Model));
     let generated: Vec<SVector<f64, 6>> = qs.iter().map(|q| SVector::from(*q)).collect();

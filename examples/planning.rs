@@ -25,12 +25,11 @@ use std::error::Error;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-use dhgen::model::RobotModel;
 use dhgen::nalgebra::{SVector, Vector3};
 use dhgen::planning::collision::LinkCapsule;
 use dhgen::planning::{
-    ArmGeometry, CSpaceField, CSpaceGrid, CollisionChecker, DescentParams, Obstacle, PlanError,
-    Prm, Scene, WorkspaceField, WorkspacePlanner,
+    CSpaceField, CSpaceGrid, CollisionChecker, DescentParams, Obstacle, PlanError, Prm, Scene,
+    WorkspaceField, WorkspacePlanner,
 };
 use plotters::prelude::*;
 
@@ -58,21 +57,15 @@ fn main() -> Result<(), Box<dyn Error>> {
             .join("plots"),
     };
     std::fs::create_dir_all(&dir)?;
-    let planar_model = scenes::model("planar_elbow.toml");
     for scene in [scenes::figure3(), scenes::narrow_passage()] {
-        planar(&dir, &planar_model, &scene)?;
+        planar(&dir, &scene)?;
     }
     puma560(&dir)?;
     Ok(())
 }
 
-fn planar(dir: &Path, model: &RobotModel, scene: &PlanarScene) -> Result<(), Box<dyn Error>> {
-    let geometry = ArmGeometry::from_model(model)?;
-    let mut checker = CollisionChecker::new(
-        &planar::Model,
-        geometry,
-        Scene::new(scene.obstacles.clone())?,
-    )?;
+fn planar(dir: &Path, scene: &PlanarScene) -> Result<(), Box<dyn Error>> {
+    let mut checker = CollisionChecker::new(&planar::Model, Scene::new(scene.obstacles.clone())?)?;
     let (start, goal) = (Q2::from(scene.start), Q2::from(scene.goal));
     let config = scenes::narrow_config();
     let resolution = config.resolution;
@@ -439,9 +432,8 @@ fn draw_workspace(
 }
 
 fn puma560(dir: &Path) -> Result<(), Box<dyn Error>> {
-    let model = scenes::model("puma560.toml");
     let scene = Scene::new(scenes::puma_obstacles())?;
-    let mut checker = CollisionChecker::new(&puma::Model, ArmGeometry::from_model(&model)?, scene)?;
+    let mut checker = CollisionChecker::new(&puma::Model, scene)?;
     let (start, goal) = (Q6::from(scenes::PUMA_START), Q6::from(scenes::PUMA_GOAL));
     let mut prm = Prm::new(&mut checker, scenes::puma_config(), 1)?;
     let path = prm.query(&start, &goal)?;

@@ -21,6 +21,7 @@
 //! assert!((reach(&planar::Model, &q) - 1.8).abs() < 1e-12);
 //! ```
 
+use dhgen_model::ChainRef;
 use nalgebra::allocator::Allocator;
 use nalgebra::{DefaultAllocator, Dim, Isometry3, OMatrix, OVector, U6};
 
@@ -41,17 +42,32 @@ where
     /// The dimension of joint vectors: `Const<N>` (generated) or `Dyn` (runtime).
     type Dof: Dim;
 
+    /// The arm's kinematic structure: its fixed transforms, joints, limits, link frames,
+    /// mass properties and collision capsules, the same numbers its kinematics and dynamics
+    /// are computed from (a generated module's `CHAIN`, a runtime robot's
+    /// [`Robot::chain`](crate::Robot::chain)).
+    fn chain(&self) -> ChainRef<'_>;
+
     /// Number of joints.
-    fn dof(&self) -> usize;
+    fn dof(&self) -> usize {
+        self.chain().dof()
+    }
 
     /// The joint dimension as a value, to build vectors with `OVector::zeros_generic`.
     fn dim(&self) -> Self::Dof;
 
     /// Joint limits `[lower, upper]` of joint `j` (0-based), if the description gives them.
-    fn limits(&self, j: usize) -> Option<[f64; 2]>;
+    fn limits(&self, j: usize) -> Option<[f64; 2]> {
+        self.chain().bodies.get(j)?.limits
+    }
 
     /// Whether joint `j` is prismatic.
-    fn is_prismatic(&self, j: usize) -> bool;
+    fn is_prismatic(&self, j: usize) -> bool {
+        self.chain()
+            .bodies
+            .get(j)
+            .is_some_and(|b| b.joint == dhgen_model::JointKind::Prismatic)
+    }
 
     /// Pose of the tool frame in the world frame: base · A1 ⋯ An · tool.
     fn fk(&self, q: &OVector<f64, Self::Dof>) -> Isometry3<f64>;
@@ -102,11 +118,16 @@ where
 #[cfg(feature = "std")]
 mod runtime {
     use super::{Arm, ArmDynamics};
-    use crate::{JointKind, Robot};
+    use crate::Robot;
+    use dhgen_model::ChainRef;
     use nalgebra::{DMatrix, DVector, Dyn, Isometry3, OMatrix, U6};
 
     impl Arm for Robot {
         type Dof = Dyn;
+
+        fn chain(&self) -> ChainRef<'_> {
+            Robot::chain(self)
+        }
 
         fn dof(&self) -> usize {
             Robot::dof(self)
@@ -114,17 +135,6 @@ mod runtime {
 
         fn dim(&self) -> Dyn {
             Dyn(Robot::dof(self))
-        }
-
-        fn limits(&self, j: usize) -> Option<[f64; 2]> {
-            self.model().links.get(j)?.limits
-        }
-
-        fn is_prismatic(&self, j: usize) -> bool {
-            self.model()
-                .links
-                .get(j)
-                .is_some_and(|l| l.joint == JointKind::Prismatic)
         }
 
         fn fk(&self, q: &DVector<f64>) -> Isometry3<f64> {

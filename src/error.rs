@@ -1,7 +1,7 @@
 //! The error type of the runtime path.
 
 /// Why a [`Robot`](crate::Robot) could not be built.
-#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[derive(Debug, thiserror::Error)]
 #[non_exhaustive]
 pub enum Error {
     /// The description could not be read, parsed or validated. The message names the file

@@ -17,18 +17,11 @@ impl Robot {
         let mut frame = Rigid::IDENTITY;
         for (i, (body, &qi)) in self.bodies.iter().zip(q).enumerate() {
             frame = if i == 0 {
-                body.parent_to_joint
+                body.placement
             } else {
-                frame.compose(&body.parent_to_joint)
+                frame.compose(&body.placement)
             };
-            let cos_sin = match body.joint {
-                JointKind::Revolute => {
-                    let (s, c) = qi.sin_cos();
-                    (c, s)
-                }
-                JointKind::Prismatic => (1.0, 0.0),
-            };
-            frame.apply_joint(body.joint == JointKind::Prismatic, qi, cos_sin);
+            frame.apply_joint(body.joint, qi + body.offset);
             visit(i, &frame);
         }
         frame
@@ -55,7 +48,7 @@ impl Robot {
         self.check_len("frames", "q", q);
         let mut frames = Vec::with_capacity(self.dof());
         self.walk_joint_frames(q, |i, joint_frame| {
-            let link = match &self.bodies[i].link_in_joint {
+            let link = match &self.bodies[i].link {
                 Some(l) => joint_frame.compose(l),
                 None => *joint_frame,
             };

@@ -86,15 +86,17 @@ mod error;
 #[cfg(feature = "std")]
 mod kinematics;
 /// Path planning (sections 6.1 to 6.4): collision checking, potential fields, probabilistic
-/// roadmaps.
-#[cfg(feature = "std")]
+/// roadmaps. Needs the `planning` feature (on by default).
+#[cfg(feature = "planning")]
 pub mod planning;
 #[cfg(feature = "std")]
 mod robot;
-#[cfg(feature = "std")]
+/// The robot model: the description format, validation, and the kinematic structure
+/// ([`model::ChainRef`]) that generated modules carry and [`Arm::chain`] returns.
 pub use dhgen_model as model;
+pub use dhgen_model::{ChainRef, JointKind};
 #[cfg(feature = "std")]
-pub use dhgen_model::{Convention, JointKind, LoadError, RobotModel};
+pub use dhgen_model::{Convention, JointChain, LoadError, RobotModel};
 #[cfg(feature = "std")]
 pub use dynamics::{Christoffel, ChristoffelPlane};
 #[cfg(feature = "std")]

@@ -3,6 +3,9 @@
 //! is only built for results handed to the user. Shared by the runtime path and inverse
 //! kinematics; available without `std`.
 
+use dhgen_model::JointKind;
+#[cfg(not(feature = "std"))]
+use nalgebra::ComplexField as _;
 use nalgebra::{Isometry3, Matrix3, Rotation3, Translation3, UnitQuaternion, Vector3};
 
 /// A rigid transform `x ↦ r x + p`.
@@ -16,13 +19,13 @@ pub(crate) struct Rigid {
 
 impl Rigid {
     /// The identity transform.
+    #[cfg(feature = "std")]
     pub const IDENTITY: Rigid = Rigid {
         r: Matrix3::new(1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0),
         p: Vector3::new(0.0, 0.0, 0.0),
     };
 
     /// Converts the model's row-major frame.
-    #[cfg(feature = "std")]
     pub fn from_frame(f: &dhgen_model::Frame<f64>) -> Rigid {
         Rigid {
             r: Matrix3::from_fn(|i, j| f.r[i][j]),
@@ -53,17 +56,19 @@ impl Rigid {
         self.r * v + self.p
     }
 
-    /// Right-multiplies by the joint motion: `Rz(q)` for a revolute joint, `Tz(q)` for a
-    /// prismatic one. `(c, s)` is `(cos q, sin q)` and only read for revolute joints.
+    /// Right-multiplies by the joint motion: `Rz(v)` for a revolute joint, `Tz(v)` for a
+    /// prismatic one, `v` the full joint value (offset included).
     #[inline]
-    pub fn apply_joint(&mut self, prismatic: bool, q: f64, (c, s): (f64, f64)) {
-        if prismatic {
-            self.p += self.r.column(2) * q;
-        } else {
-            let x = self.r.column(0).into_owned();
-            let y = self.r.column(1).into_owned();
-            self.r.set_column(0, &(x * c + y * s));
-            self.r.set_column(1, &(y * c - x * s));
+    pub fn apply_joint(&mut self, joint: JointKind, v: f64) {
+        match joint {
+            JointKind::Prismatic => self.p += self.r.column(2) * v,
+            JointKind::Revolute => {
+                let (s, c) = v.sin_cos();
+                let x = self.r.column(0).into_owned();
+                let y = self.r.column(1).into_owned();
+                self.r.set_column(0, &(x * c + y * s));
+                self.r.set_column(1, &(y * c - x * s));
+            }
         }
     }
 
@@ -80,20 +85,5 @@ impl Rigid {
         let rotation =
             UnitQuaternion::from_rotation_matrix(&Rotation3::from_matrix_unchecked(self.r));
         Isometry3::from_parts(Translation3::from(self.p), rotation)
-    }
-
-    /// A frame at `origin` whose z axis is `z` (unit); x is chosen perpendicular to it.
-    pub fn with_z(origin: Vector3<f64>, z: Vector3<f64>) -> Rigid {
-        let helper = if z.x.abs() < 0.9 {
-            Vector3::x()
-        } else {
-            Vector3::y()
-        };
-        let x = (helper - z * z.dot(&helper)).normalize();
-        let y = z.cross(&x);
-        Rigid {
-            r: Matrix3::from_columns(&[x, y, z]),
-            p: origin,
-        }
     }
 }

@@ -4,27 +4,26 @@
 
 use crate::Error;
 pub(crate) use crate::rigid::Rigid;
-use dhgen_model::{Convention, JointKind, JointValue, Link, RobotModel};
+use dhgen_model::{ChainRef, JointChain, JointKind, RobotModel};
 use nalgebra::{Matrix3, Vector3};
 use std::path::Path;
 
-/// The constants of one moving body (link i with the joint that moves it).
+/// The constants of one joint and the link it moves, in the runtime's working form (taken
+/// from the model's [`JointChain`], computed once at construction).
 ///
-/// Each body carries a *joint frame* in which its joint is a pure `Rz(q)` or `Tz(q)` about
-/// or along the frame's z axis: for modified DH that is link frame i itself; for standard DH
-/// it is link frame i−1 turned by the joint (same origin and z axis), and link frame i is
-/// fixed in it. Both follow from [`Link::transform`]: standard DH gives
-/// `A_i(q) = J(q) · A_i(0)` and modified DH `A_i(q) = A_i(0) · J(q)`, with
-/// `J = Rz` (revolute) or `Tz` (prismatic), because `Rz` and `Tz` commute.
+/// Each body carries its *joint frame* (see [`dhgen_model::chain`]), in which its joint is a
+/// pure `Rz(q + offset)` or `Tz(q + offset)` about or along the frame's z axis.
 #[derive(Clone, Debug)]
-pub(crate) struct Body {
+pub(crate) struct BodyConstants {
     /// Revolute or prismatic.
     pub joint: JointKind,
-    /// The joint frame at q = 0 in the previous body's joint frame (in the world frame for
-    /// the first body, so the base pose is folded in).
-    pub parent_to_joint: Rigid,
-    /// Link frame i in the joint frame; `None` for the identity (modified DH).
-    pub link_in_joint: Option<Rigid>,
+    /// Added to the joint value.
+    pub offset: f64,
+    /// `P_k`: the joint frame at rest in the previous body's joint frame (in the world frame
+    /// for the first body, so the base pose is folded in).
+    pub placement: Rigid,
+    /// The link frame in the joint frame; `None` for the identity.
+    pub link: Option<Rigid>,
     /// Mass, kg (0 for a kinematics-only robot).
     pub mass: f64,
     /// Centre of mass in the joint frame.
@@ -81,92 +80,55 @@ pub(crate) struct Body {
 #[derive(Clone, Debug)]
 pub struct Robot {
     pub(crate) model: RobotModel,
-    pub(crate) bodies: Vec<Body>,
-    /// The tool frame in the last body's joint frame.
+    pub(crate) chain: JointChain,
+    pub(crate) bodies: Vec<BodyConstants>,
+    /// The tool frame in the last body's joint frame (`P_n`).
     pub(crate) tool: Rigid,
     /// Gravitational acceleration in the world frame.
     pub(crate) gravity: Vector3<f64>,
     pub(crate) has_dynamics: bool,
 }
 
-/// `A_i(0)`: the link transform with the joint at zero (offsets applied).
-fn transform_at_zero(link: &Link, convention: Convention) -> Rigid {
-    let zero = match link.joint {
-        JointKind::Revolute => JointValue::Revolute { cos: 1.0, sin: 0.0 },
-        JointKind::Prismatic => JointValue::Prismatic(0.0),
-    };
-    Rigid::from_frame(&link.transform(convention, zero))
-}
-
 impl Robot {
-    /// Builds a robot from a validated model, precomputing the per-link constants.
+    /// Builds a robot from a validated model, precomputing the per-link constants from its
+    /// kinematic structure ([`RobotModel::chain`]).
     pub fn from_model(model: RobotModel) -> Robot {
-        let convention = model.convention;
-        let base = model
-            .base_pose()
-            .map_or(Rigid::IDENTITY, |p| Rigid::from_frame(&p.frame()));
-        let tool = model
-            .tool_pose()
-            .map_or(Rigid::IDENTITY, |p| Rigid::from_frame(&p.frame()));
-        let at_zero: Vec<Rigid> = model
-            .links
+        let chain = model.chain();
+        let view = chain.view();
+        let bodies = view
+            .bodies
             .iter()
-            .map(|l| transform_at_zero(l, convention))
-            .collect();
-        let bodies: Vec<Body> = model
-            .links
-            .iter()
-            .enumerate()
-            .map(|(i, link)| {
-                let (parent_to_joint, link_in_joint) = match convention {
-                    Convention::Standard => {
-                        let previous = if i == 0 { base } else { at_zero[i - 1] };
-                        (previous, Some(at_zero[i]))
-                    }
-                    Convention::Modified => {
-                        let joint = if i == 0 {
-                            base.compose(&at_zero[0])
-                        } else {
-                            at_zero[i]
-                        };
-                        (joint, None)
-                    }
-                };
-                let to_joint = link_in_joint.unwrap_or(Rigid::IDENTITY);
-                let (mass, com, inertia) = match &link.inertial {
-                    Some(inertial) => {
-                        let c = Vector3::from(inertial.com);
-                        let i = Matrix3::from_fn(|r, k| inertial.inertia[r][k]);
-                        (
-                            inertial.mass,
-                            to_joint.r * c + to_joint.p,
-                            to_joint.r * i * to_joint.r.transpose(),
-                        )
-                    }
+            .zip(view.placements)
+            .map(|(b, placement)| {
+                let (mass, com, inertia) = match &b.inertial {
+                    Some(i) => (
+                        i.mass,
+                        Vector3::from(i.com),
+                        Matrix3::from_fn(|r, k| i.inertia[r][k]),
+                    ),
                     None => (0.0, Vector3::zeros(), Matrix3::zeros()),
                 };
-                Body {
-                    joint: link.joint,
-                    parent_to_joint,
-                    link_in_joint,
+                BodyConstants {
+                    joint: b.joint,
+                    offset: b.offset,
+                    placement: Rigid::from_frame(placement),
+                    link: (!(b.link.rotation_is_identity() && b.link.p == [0.0; 3]))
+                        .then(|| Rigid::from_frame(&b.link)),
                     mass,
                     com,
                     inertia,
-                    armature: link.motor.map_or(0.0, |m| m.reflected_inertia()),
-                    viscous: link.friction.map_or(0.0, |f| f.viscous),
-                    coulomb: link.friction.map_or(0.0, |f| f.coulomb),
+                    armature: b.armature,
+                    viscous: b.friction.viscous,
+                    coulomb: b.friction.coulomb,
                 }
             })
             .collect();
-        let last = bodies
-            .last()
-            .expect("a validated model has at least one link");
-        let tool = last.link_in_joint.unwrap_or(Rigid::IDENTITY).compose(&tool);
         Robot {
-            gravity: Vector3::from(model.gravity),
-            has_dynamics: model.has_dynamics(),
-            tool,
+            gravity: Vector3::from(view.gravity),
+            has_dynamics: view.has_dynamics(),
+            tool: Rigid::from_frame(&view.placements[view.dof()]),
             bodies,
+            chain,
             model,
         }
     }
@@ -186,6 +148,11 @@ impl Robot {
     /// The validated model this robot was built from.
     pub fn model(&self) -> &RobotModel {
         &self.model
+    }
+
+    /// The robot's kinematic structure (built once from the model).
+    pub fn chain(&self) -> ChainRef<'_> {
+        self.chain.view()
     }
 
     /// Number of joints.

@@ -6,6 +6,7 @@ use dhgen::Arm;
 use dhgen::ik::{
     ArmGeometry, DecoupledIk, Solutions, StructureError, VERIFY_TOLERANCE, pose_error,
 };
+use dhgen::model::NotSpherical;
 use dhgen::nalgebra::{Isometry3, SVector, Translation3, UnitQuaternion, Vector3};
 use dhgen::rotation::wrap_angle;
 use dhgen::{Robot, RobotModel};
@@ -485,7 +486,7 @@ fn solutions_within_limits_respect_them() {
         assert!(inside.len() <= ik.solve(&pose).len());
         for s in &inside {
             for j in 0..6 {
-                let [lo, hi] = puma560::LIMITS[j].unwrap();
+                let [lo, hi] = puma560::CHAIN.bodies[j].limits.unwrap();
                 assert!(s[j] >= lo - 1e-12 && s[j] <= hi + 1e-12);
             }
         }
@@ -502,13 +503,19 @@ fn structures_without_a_closed_form_are_rejected_with_the_reason() {
     );
     let err = DecoupledIk::from_arm(&ur5::Model).unwrap_err();
     assert!(
-        matches!(err, StructureError::WristAxesDoNotIntersect { .. }),
+        matches!(
+            err,
+            StructureError::NoSphericalWrist(NotSpherical::AxesApart { .. })
+        ),
         "{err}"
     );
-    assert!(err.to_string().contains("wrist axes"), "{err}");
+    assert!(err.to_string().contains("no spherical wrist"), "{err}");
     let err = DecoupledIk::from_model(&model("ur5")).unwrap_err();
     assert!(
-        matches!(err, StructureError::WristAxesDoNotIntersect { .. }),
+        matches!(
+            err,
+            StructureError::NoSphericalWrist(NotSpherical::AxesApart { .. })
+        ),
         "{err}"
     );
 }

@@ -7,7 +7,7 @@ pub mod planning_support;
 use dhgen::Robot;
 use dhgen::model::{Collision, RobotModel};
 use dhgen::nalgebra::{DVector, Isometry3, Point3, SVector, Translation3, UnitQuaternion, Vector3};
-use dhgen::planning::{ArmGeometry, CollisionChecker, Obstacle, PlanError, Scene};
+use dhgen::planning::{CollisionChecker, CollisionModel, Obstacle, PlanError, Scene};
 use planning_support::{model, puma_obstacles};
 use rand::{Rng, SeedableRng, rngs::StdRng};
 
@@ -161,8 +161,7 @@ fn nearest_points_lie_on_segment_and_surface() {
 }
 
 fn planar_checker(obstacles: Vec<Obstacle>) -> CollisionChecker<'static, planar::Model> {
-    let geometry = ArmGeometry::from_model(&model("planar_elbow.toml")).unwrap();
-    CollisionChecker::new(&planar::Model, geometry, Scene::new(obstacles).unwrap()).unwrap()
+    CollisionChecker::new(&planar::Model, Scene::new(obstacles).unwrap()).unwrap()
 }
 
 #[test]
@@ -210,9 +209,9 @@ fn generated_and_runtime_arms_agree() {
     let model = model("puma560.toml");
     let robot = Robot::from_model(model.clone());
     let scene = || Scene::new(puma_obstacles()).unwrap();
-    let geometry = ArmGeometry::from_model(&model).unwrap();
-    let mut generated = CollisionChecker::new(&puma::Model, geometry.clone(), scene()).unwrap();
-    let mut runtime = CollisionChecker::new(&robot, geometry, scene()).unwrap();
+    let mut generated = CollisionChecker::new(&puma::Model, scene()).unwrap();
+    let mut runtime = CollisionChecker::new(&robot, scene()).unwrap();
+    assert_eq!(generated.model(), runtime.model());
     let mut rng = StdRng::seed_from_u64(4);
     let mut hits = 0;
     for _ in 0..300 {
@@ -255,12 +254,7 @@ fn capsules_join_frame_origins_in_both_conventions() {
     "#;
     let model = RobotModel::from_toml_str(text).unwrap();
     let robot = Robot::from_model(model.clone());
-    let mut checker = CollisionChecker::new(
-        &robot,
-        ArmGeometry::from_model(&model).unwrap(),
-        Scene::default(),
-    )
-    .unwrap();
+    let mut checker = CollisionChecker::new(&robot, Scene::default()).unwrap();
     let q = DVector::from_vec(vec![0.3, 0.25]);
     let capsules = checker.capsules(&q);
     assert_eq!(capsules.len(), 2);
@@ -296,12 +290,7 @@ fn capsules_join_frame_origins_in_both_conventions() {
     let model = RobotModel::from_toml_str(text).unwrap();
     let robot = Robot::from_model(model.clone());
     let obstacle = Obstacle::sphere([0.0, 1.5, 0.0], 0.2);
-    let mut checker = CollisionChecker::new(
-        &robot,
-        ArmGeometry::from_model(&model).unwrap(),
-        Scene::new(vec![obstacle]).unwrap(),
-    )
-    .unwrap();
+    let mut checker = CollisionChecker::new(&robot, Scene::new(vec![obstacle]).unwrap()).unwrap();
     let q = DVector::from_vec(vec![std::f64::consts::FRAC_PI_2, 0.4]);
     let capsules = checker.capsules(&q);
     assert_eq!(capsules[0].a, capsules[0].b);
@@ -338,9 +327,8 @@ fn no_point_moves_farther_than_the_sweep_bound() {
     ] {
         let model = with_capsules(file);
         let robot = Robot::from_model(model.clone());
-        let geometry = ArmGeometry::from_model(&model).unwrap();
-        let mut checker =
-            CollisionChecker::new(&robot, geometry.clone(), Scene::default()).unwrap();
+        let geometry = CollisionModel::from_chain(robot.chain()).unwrap();
+        let mut checker = CollisionChecker::new(&robot, Scene::default()).unwrap();
         let n = robot.dof();
         let mut tightest: f64 = 0.0;
         for _ in 0..200 {
@@ -393,40 +381,20 @@ fn motions_checked_at_a_resolution_are_free_in_between() {
 
 #[test]
 fn bad_geometry_and_obstacles_are_errors() {
-    let planar = model("planar_elbow.toml");
-    let geometry = ArmGeometry::from_model(&planar).unwrap();
-    // Another robot's geometry.
-    let err = CollisionChecker::new(&puma::Model, geometry.clone(), Scene::default())
-        .err()
-        .unwrap();
-    assert!(
-        matches!(err, PlanError::InvalidGeometry(ref m) if m.contains("2 links but the arm has 6")),
-        "{err}"
-    );
-    let mut longer = planar.clone();
-    longer.links[1].a = 0.9;
-    let err = CollisionChecker::new(
-        &planar::Model,
-        ArmGeometry::from_model(&longer).unwrap(),
-        Scene::default(),
-    )
-    .err()
-    .unwrap();
-    assert!(
-        err.to_string().contains("belongs to another robot"),
-        "{err}"
-    );
     // No capsule at all.
     let bare = RobotModel::from_toml_file(
         std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("robots/ur5.toml"),
     )
     .unwrap();
-    let err = ArmGeometry::from_model(&bare).unwrap_err();
-    assert!(err.to_string().contains("no `collision"), "{err}");
+    let err = CollisionModel::from_chain(bare.chain().view()).unwrap_err();
+    assert!(
+        err.to_string().contains("no link has a collision capsule"),
+        "{err}"
+    );
     // A prismatic joint without limits.
     let mut stanford = with_capsules("stanford.toml");
     stanford.links[2].limits = None;
-    let err = ArmGeometry::from_model(&stanford).unwrap_err();
+    let err = CollisionModel::from_chain(stanford.chain().view()).unwrap_err();
     assert!(
         err.to_string()
             .contains("joint 3 is prismatic and has no limits"),

@@ -6,10 +6,8 @@ pub mod planning_support;
 
 use dhgen::nalgebra::SVector;
 use dhgen::planning::potential::{self, ConvexCSpaceObstacles, ConvexRegion};
-use dhgen::planning::{
-    ArmGeometry, CSpaceField, CSpaceGrid, CollisionChecker, DescentParams, PlanError, Scene,
-};
-use planning_support::{figure3, model};
+use dhgen::planning::{CSpaceField, CSpaceGrid, CollisionChecker, DescentParams, PlanError, Scene};
+use planning_support::figure3;
 
 dhgen::robot!(mod planar = "robots/planar_elbow.toml");
 
@@ -229,13 +227,9 @@ fn bad_input_is_an_error() {
 fn planar_arm_descends_over_its_obstacle_grid() {
     // The C-space field of a real arm: QO sampled on a grid, motions checked on the arm.
     let scene = figure3();
-    let geometry = ArmGeometry::from_model(&model("planar_elbow.toml")).unwrap();
-    let mut checker = CollisionChecker::new(
-        &planar::Model,
-        geometry,
-        Scene::new(scene.obstacles.clone()).unwrap(),
-    )
-    .unwrap();
+    let mut checker =
+        CollisionChecker::new(&planar::Model, Scene::new(scene.obstacles.clone()).unwrap())
+            .unwrap();
     let grid = CSpaceGrid::compute(&mut checker, [120, 120]).unwrap();
     assert!(grid.components() >= 3);
     // The grid is the checker's verdict at the cell centres.

@@ -13,9 +13,7 @@ use std::time::{Duration, Instant};
 
 use dhgen::nalgebra::DefaultAllocator;
 use dhgen::nalgebra::{DVector, SVector};
-use dhgen::planning::{
-    ArmGeometry, CollisionChecker, Obstacle, PlanError, Prm, PrmConfig, PrmPath, Scene,
-};
+use dhgen::planning::{CollisionChecker, Obstacle, PlanError, Prm, PrmConfig, PrmPath, Scene};
 use dhgen::{Arm, ArmAllocator, JointVector, Robot};
 use planning_support::{
     PUMA_GOAL, PUMA_START, model, narrow_config, narrow_passage, puma_config, puma_obstacles,
@@ -40,7 +38,6 @@ struct Outcome {
 fn run_seeds<A: Arm + Sync>(
     arm: &A,
     obstacles: fn() -> Vec<Obstacle>,
-    file: &str,
     config: &PrmConfig,
     start: &JointVector<A>,
     goal: &JointVector<A>,
@@ -49,7 +46,6 @@ where
     DefaultAllocator: ArmAllocator<A::Dof>,
     JointVector<A>: Sync,
 {
-    let geometry = ArmGeometry::from_model(&model(file)).unwrap();
     let config = PrmConfig {
         time_budget: Some(TIME_BUDGET),
         ..config.clone()
@@ -58,7 +54,7 @@ where
         seeds
             .map(|seed| {
                 let scene = Scene::new(obstacles()).unwrap();
-                let mut checker = CollisionChecker::new(arm, geometry.clone(), scene).unwrap();
+                let mut checker = CollisionChecker::new(arm, scene).unwrap();
                 let started = Instant::now();
                 let found = Prm::new(&mut checker, config.clone(), seed)
                     .unwrap()
@@ -145,7 +141,6 @@ fn narrow_passage_is_solved_for_95_of_100_seeds() {
     let outcomes = run_seeds(
         &planar::Model,
         || narrow_passage().obstacles,
-        "planar_elbow.toml",
         &narrow_config(),
         &start,
         &goal,
@@ -157,22 +152,10 @@ fn narrow_passage_is_solved_for_95_of_100_seeds() {
 fn puma560_scene_is_solved_for_95_of_100_seeds() {
     let (start, goal) = (SVector::from(PUMA_START), SVector::from(PUMA_GOAL));
     // The direct motion is blocked: the roadmap is needed.
-    let geometry = ArmGeometry::from_model(&model("puma560.toml")).unwrap();
-    let mut checker = CollisionChecker::new(
-        &puma::Model,
-        geometry,
-        Scene::new(puma_obstacles()).unwrap(),
-    )
-    .unwrap();
+    let mut checker =
+        CollisionChecker::new(&puma::Model, Scene::new(puma_obstacles()).unwrap()).unwrap();
     assert!(!checker.motion_is_free(&start, &goal, puma_config().resolution));
-    let outcomes = run_seeds(
-        &puma::Model,
-        puma_obstacles,
-        "puma560.toml",
-        &puma_config(),
-        &start,
-        &goal,
-    );
+    let outcomes = run_seeds(&puma::Model, puma_obstacles, &puma_config(), &start, &goal);
     summarize("PUMA 560 scene", &outcomes);
 }
 
@@ -180,13 +163,7 @@ fn narrow_checker<A: Arm>(arm: &A) -> CollisionChecker<'_, A>
 where
     DefaultAllocator: ArmAllocator<A::Dof>,
 {
-    let geometry = ArmGeometry::from_model(&model("planar_elbow.toml")).unwrap();
-    CollisionChecker::new(
-        arm,
-        geometry,
-        Scene::new(narrow_passage().obstacles).unwrap(),
-    )
-    .unwrap()
+    CollisionChecker::new(arm, Scene::new(narrow_passage().obstacles).unwrap()).unwrap()
 }
 
 #[test]
@@ -257,13 +234,12 @@ fn every_roadmap_edge_is_free() {
 fn an_unreachable_goal_is_reported() {
     // Two balls within reach of link 1 block q1 = ±π/2 whatever q2 is: the configuration
     // space falls apart into q1 ∈ (−π/2, π/2) and the rest.
-    let geometry = ArmGeometry::from_model(&model("planar_elbow.toml")).unwrap();
     let scene = Scene::new(vec![
         Obstacle::sphere([0.0, 0.7, 0.0], 0.15),
         Obstacle::sphere([0.0, -0.7, 0.0], 0.15),
     ])
     .unwrap();
-    let mut checker = CollisionChecker::new(&planar::Model, geometry, scene).unwrap();
+    let mut checker = CollisionChecker::new(&planar::Model, scene).unwrap();
     let config = PrmConfig {
         max_nodes: 300,
         ..narrow_config()
@@ -332,8 +308,7 @@ fn bad_queries_are_errors() {
         link.repeat(9)
     );
     let snake = Robot::from_toml_str(&text).unwrap();
-    let geometry = ArmGeometry::from_model(snake.model()).unwrap();
-    let mut checker = CollisionChecker::new(&snake, geometry, Scene::default()).unwrap();
+    let mut checker = CollisionChecker::new(&snake, Scene::default()).unwrap();
     let err = Prm::new(&mut checker, narrow_config(), 0).err().unwrap();
     assert!(
         err.to_string().contains("1 to 8 joints; the arm has 9"),

@@ -6,10 +6,9 @@ pub mod planning_support;
 
 use dhgen::nalgebra::SVector;
 use dhgen::planning::{
-    ArmGeometry, CollisionChecker, DescentParams, Obstacle, PlanError, Scene, WorkspaceField,
-    WorkspacePlanner,
+    CollisionChecker, DescentParams, Obstacle, PlanError, Scene, WorkspaceField, WorkspacePlanner,
 };
-use planning_support::{PUMA_GOAL, PUMA_START, figure3, model, puma_obstacles};
+use planning_support::{PUMA_GOAL, PUMA_START, figure3, puma_obstacles};
 use rand::{Rng, SeedableRng, rngs::StdRng};
 
 dhgen::robot!(mod planar = "robots/planar_elbow.toml");
@@ -19,13 +18,11 @@ type Q2 = SVector<f64, 2>;
 type Q6 = SVector<f64, 6>;
 
 fn planar_checker(obstacles: Vec<Obstacle>) -> CollisionChecker<'static, planar::Model> {
-    let geometry = ArmGeometry::from_model(&model("planar_elbow.toml")).unwrap();
-    CollisionChecker::new(&planar::Model, geometry, Scene::new(obstacles).unwrap()).unwrap()
+    CollisionChecker::new(&planar::Model, Scene::new(obstacles).unwrap()).unwrap()
 }
 
 fn puma_checker(obstacles: Vec<Obstacle>) -> CollisionChecker<'static, puma::Model> {
-    let geometry = ArmGeometry::from_model(&model("puma560.toml")).unwrap();
-    CollisionChecker::new(&puma::Model, geometry, Scene::new(obstacles).unwrap()).unwrap()
+    CollisionChecker::new(&puma::Model, Scene::new(obstacles).unwrap()).unwrap()
 }
 
 const RESOLUTION: f64 = 0.02;

@@ -497,7 +497,7 @@ fn motor_inertia_and_friction_add_exactly_their_terms() {
                 .model()
                 .links
                 .iter()
-                .map(|l| l.motor.unwrap().reflected_inertia())
+                .map(|l| l.motor.unwrap().armature())
                 .collect();
             prop_assert_eq!(armature[2], 3.3e-5 * 76.0 * 76.0);
             let extra = DVector::from_fn(3, |i, _| armature[i] * qdd[i]) + friction(&robot, &qd);

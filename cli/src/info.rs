@@ -3,7 +3,6 @@
 
 use crate::table::{Align, Table, degrees, trimmed};
 use dhgen::Robot;
-use dhgen::nalgebra::{Matrix3, Vector3};
 use dhgen_model::{Convention, JointKind, Link, Pose, RobotModel};
 use std::fmt::Write as _;
 
@@ -184,10 +183,7 @@ fn dynamics_table(model: &RobotModel) -> Table {
             vector(&[m[0][1], m[1][2], m[0][2]]),
         ];
         if motors {
-            row.push(
-                l.motor
-                    .map_or("-".into(), |mo| trimmed(mo.reflected_inertia(), 6)),
-            );
+            row.push(l.motor.map_or("-".into(), |mo| trimmed(mo.armature(), 6)));
         }
         if friction {
             row.push(l.friction.map_or("-".into(), |f| trimmed(f.viscous, 6)));
@@ -213,116 +209,23 @@ fn pose(p: Option<&Pose>) -> String {
     }
 }
 
-/// Whether the last three joints are revolute and their axes meet in one point at every
-/// configuration; with the wrist centre at q = 0 when they do.
+/// Whether the last three joints are revolute and their axes meet in one point (the one
+/// test of the structure, [`dhgen::ChainRef::spherical_wrist`]: the same answer as the
+/// generated module's `SPHERICAL_WRIST`); with the wrist centre at q = 0 when they do.
 fn wrist_text(robot: &Robot) -> String {
     let n = robot.dof();
-    if n < 3 {
-        return format!("no (only {n} joints)");
-    }
-    let model = robot.model();
-    if model.links[n - 3..]
-        .iter()
-        .any(|l| l.joint != JointKind::Revolute)
-    {
-        return format!("no (joints {}–{n} are not all revolute)", n - 2);
-    }
-    match spherical_wrist_centre(robot) {
-        Some(c) => format!(
+    match robot.chain().spherical_wrist() {
+        Ok(w) => format!(
             "yes: the axes of joints {}, {}, {n} meet in one point (wrist centre at q = 0: {} m, world frame)",
             n - 2,
             n - 1,
-            vector(&[c.x, c.y, c.z])
+            vector(&w.centre_at_zero)
         ),
-        None => format!(
-            "no: the axes of joints {}, {}, {n} do not meet in one point",
+        Err(dhgen::model::NotSpherical::TooFewJoints { dof }) => format!("no (only {dof} joints)"),
+        Err(why) => format!(
+            "no: the axes of joints {}, {}, {n} do not meet in one point ({why})",
             n - 2,
             n - 1
         ),
     }
-}
-
-/// Tests the wrist at q = 0 and at several pseudo-random configurations (within the limits
-/// where given): at each, the point closest to the three axes (least squares) must lie on
-/// all of them. Returns that point at q = 0.
-pub fn spherical_wrist_centre(robot: &Robot) -> Option<Vector3<f64>> {
-    let n = robot.dof();
-    let mut seed = 0x9E37_79B9_7F4A_7C15_u64;
-    let mut uniform = move || {
-        // SplitMix64: a fixed sequence, so `info` prints the same thing every time.
-        seed = seed.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = seed;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^= z >> 31;
-        (z >> 11) as f64 / (1u64 << 53) as f64
-    };
-    let mut centre = None;
-    for sample in 0..8 {
-        let q: Vec<f64> = robot
-            .model()
-            .links
-            .iter()
-            .map(|l| {
-                if sample == 0 {
-                    return 0.0;
-                }
-                let [lo, hi] = l.limits.unwrap_or(match l.joint {
-                    JointKind::Revolute => [-std::f64::consts::PI, std::f64::consts::PI],
-                    JointKind::Prismatic => [-0.5, 0.5],
-                });
-                lo + (hi - lo) * uniform()
-            })
-            .collect();
-        let axes: Vec<(Vector3<f64>, Vector3<f64>)> =
-            (n - 3..n).map(|j| joint_axis(robot, &q, j)).collect();
-        let c = common_point(&axes)?;
-        if sample == 0 {
-            centre = Some(c);
-        }
-    }
-    centre
-}
-
-/// Joint `j`'s axis at `q` in the world frame: a point on it and its unit direction.
-fn joint_axis(robot: &Robot, q: &[f64], j: usize) -> (Vector3<f64>, Vector3<f64>) {
-    let model = robot.model();
-    // Frame 0 is the base; `Robot::frames` gives frames 1..n.
-    let frame = model.convention.joint_frame(j);
-    if frame == 0 {
-        let base = model
-            .base_pose()
-            .map_or(dhgen_model::Frame::identity(), |p| p.frame::<f64>());
-        let z = base.z_axis();
-        return (Vector3::from(base.p), Vector3::from(z));
-    }
-    let f = robot.frames(q)[frame - 1];
-    (
-        f.translation.vector,
-        f.rotation * Vector3::new(0.0, 0.0, 1.0),
-    )
-}
-
-/// The point nearest to all lines in the least-squares sense, if the lines are not all
-/// parallel and that point lies on every line (to 1e-9 relative to the arm's size).
-fn common_point(lines: &[(Vector3<f64>, Vector3<f64>)]) -> Option<Vector3<f64>> {
-    let mut a = Matrix3::zeros();
-    let mut b = Vector3::zeros();
-    let mut scale = 1.0_f64;
-    for (p, z) in lines {
-        let proj = Matrix3::identity() - z * z.transpose();
-        a += proj;
-        b += proj * p;
-        scale = scale.max(p.norm());
-    }
-    // All lines parallel: the normal equations are singular along the common direction.
-    if a.symmetric_eigenvalues().min() < 1e-9 {
-        return None;
-    }
-    let x = a.try_inverse()? * b;
-    let on_all = lines.iter().all(|(p, z)| {
-        let d = x - p;
-        (d - z * z.dot(&d)).norm() <= 1e-9 * scale
-    });
-    on_all.then_some(x)
 }

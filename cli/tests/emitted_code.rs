@@ -43,7 +43,7 @@ fn assert_close(name: &str, a: &[f64], b: &[f64]) {
 fn emitted_module_matches_the_macro() {
     assert_eq!(emitted_puma::DOF, generated::DOF);
     assert_eq!(emitted_puma::NAME, "puma560");
-    assert_eq!(emitted_puma::LIMITS, generated::LIMITS);
+    assert_eq!(emitted_puma::CHAIN, generated::CHAIN);
     let configs = configurations();
     for (n, q) in configs.iter().enumerate() {
         let qd = configs[(n + 1) % configs.len()].map(|x| x * 0.5);

@@ -1,14 +1,13 @@
-//! The kinematic chain in "joint frames", generic over the arithmetic.
+//! The kinematic chain in joint frames, generic over the arithmetic.
 //!
-//! Both DH conventions factor each link transform into a constant part and the joint
-//! motion `J(q) = Rz(θ) Tz(d)`: standard DH is `A = J(q) · F` with `F = Tx(a) Rx(α)`,
-//! modified DH is `A = F · J(q)` with `F = Rx(α) Tx(a)`. Working in the frame K_k just
-//! after joint k's motion, every joint axis is the local z axis through the origin, every
-//! link's inertia is constant, and consecutive frames differ by `T_k = F' · J(q_k)` with a
-//! constant `F'`. The algorithms below (composite inertia, gravity, Newton-Euler) are
-//! written once for any [`Ring`]: polynomials (the normal form) and expression nodes alike.
+//! The structure comes from [`dhgen_model::ChainRef`]: `T(q) = P_0 Z_1 P_1 ⋯ Z_n P_n`. In
+//! joint frame k every joint axis is the local z axis through the origin and every link's
+//! inertia is constant, and consecutive frames differ by `T_k = P_k · Z_k(q_k)`. The
+//! algorithms below (composite inertia, gravity, Newton-Euler, J̇q̇) are written once for any
+//! [`Ring`]: polynomials (the normal form), expression nodes and dual numbers alike. They run
+//! in the root frame that `P_0` places in the world, with gravity rotated into it.
 
-use dhgen_model::{Convention, Frame, JointKind, Ring, RobotModel};
+use dhgen_model::{ChainRef, Frame, Inertial, JointKind, JointValue, Ring};
 
 /// A 3-vector over a ring.
 pub type V3<R> = [R; 3];
@@ -55,7 +54,7 @@ pub fn rot_t<R: Ring>(f: &Frame<R>, v: &V3<R>) -> V3<R> {
 /// Mass properties about a frame's origin: mass, first moment `h = m c`, and the
 /// rotational inertia about the origin `Ī`.
 #[derive(Clone, Debug)]
-pub struct Body<R> {
+pub struct MassMoments<R> {
     /// Mass.
     pub m: R,
     /// First moment of mass.
@@ -64,11 +63,27 @@ pub struct Body<R> {
     pub i: [[R; 3]; 3],
 }
 
-impl<R: Ring> Body<R> {
+impl<R: Ring> MassMoments<R> {
+    /// The moments about the origin of the frame `inertial` is given in.
+    pub fn about_origin(inertial: &Inertial) -> MassMoments<R> {
+        let (m, c) = (inertial.mass, inertial.com);
+        let cc = c[0] * c[0] + c[1] * c[1] + c[2] * c[2];
+        MassMoments {
+            m: k(m),
+            h: c.map(|x| k(m * x)),
+            i: core::array::from_fn(|a| {
+                core::array::from_fn(|b| {
+                    let parallel = if a == b { m * cc } else { 0.0 } - m * c[a] * c[b];
+                    k(inertial.inertia[a][b] + parallel)
+                })
+            }),
+        }
+    }
+
     /// The body seen from the parent frame of `f` (`f` maps child coordinates to parent).
     ///
     /// `Ī' = R Ī Rᵀ + 2(p·w)1 − w pᵀ − p wᵀ + m(|p|² 1 − p pᵀ)` with `w = R h`.
-    pub fn transformed(&self, f: &Frame<R>) -> Body<R> {
+    pub fn transformed(&self, f: &Frame<R>) -> MassMoments<R> {
         let w = rot(f, &self.h);
         let p = &f.p;
         let h = add3(&w, &scale3(&self.m, p));
@@ -97,15 +112,15 @@ impl<R: Ring> Body<R> {
                 v
             })
         });
-        Body {
+        MassMoments {
             m: self.m.clone(),
             h,
             i,
         }
     }
 
-    fn plus(&self, o: &Body<R>) -> Body<R> {
-        Body {
+    fn plus(&self, o: &MassMoments<R>) -> MassMoments<R> {
+        MassMoments {
             m: self.m.clone() + o.m.clone(),
             h: add3(&self.h, &o.h),
             i: core::array::from_fn(|a| {
@@ -127,114 +142,54 @@ pub trait JointSymbols<R> {
     fn length(&self, j: usize) -> R;
 }
 
-/// The chain of one robot in one arithmetic.
-pub struct Chain<R> {
+/// The chain of one robot in one arithmetic, in joint frames (see
+/// [`ChainRef`]): the recursions run in the root frame, the frame
+/// that `P_0` places in the world.
+pub struct RingChain<'c, R> {
+    /// The structure.
+    pub chain: ChainRef<'c>,
     /// Joint kinds.
     pub kinds: Vec<JointKind>,
-    /// `T_k`: frame K_k in frame K_{k−1} (K_0 = the base frame of the DH table).
+    /// `Z_k`: joint k's motion.
+    pub motions: Vec<Frame<R>>,
+    /// `T_k`: joint frame k in joint frame k − 1 (joint frame 0 in the root frame).
     pub t: Vec<Frame<R>>,
-    /// Link frame B_k in K_k (constant).
+    /// Link frame k in joint frame k (constant).
     pub link_in_k: Vec<Frame<R>>,
-    /// Each link's mass properties in K_k (when the model has dynamics).
-    pub bodies: Vec<Body<R>>,
-    /// Gravity in DH frame 0.
+    /// Each link's mass properties in its joint frame (when the model has dynamics).
+    pub bodies: Vec<MassMoments<R>>,
+    /// Gravity in the root frame.
     pub gravity: V3<R>,
 }
 
-/// Gravity is given in the world frame (rotating the base turns the robot, not gravity);
-/// the recursions run in DH frame 0, so it is rotated by the base's inverse.
-fn gravity_in_table_frame(model: &RobotModel) -> [f64; 3] {
-    let g = model.gravity;
-    match model.base_pose() {
-        Some(b) => {
-            let r = b.rotation();
-            core::array::from_fn(|i| r[0][i] * g[0] + r[1][i] * g[1] + r[2][i] * g[2])
-        }
-        None => g,
-    }
-}
-
-/// `Rz(θ) Tz(d)`
-fn joint_motion<R: Ring>(c: R, s: R, d: R) -> Frame<R> {
-    let (o, i) = (k::<R>(0.0), k::<R>(1.0));
-    Frame {
-        r: [
-            [c.clone(), -s.clone(), o.clone()],
-            [s, c, o.clone()],
-            [o.clone(), o.clone(), i],
-        ],
-        p: [o.clone(), o, d],
-    }
-}
-
-impl<R: Ring> Chain<R> {
-    /// Builds the chain; constants come from the model through `Link::dh_transform`.
-    pub fn new(model: &RobotModel, sym: &impl JointSymbols<R>) -> Chain<R> {
-        let n = model.dof();
-        let conv = model.convention;
-        // The constant part F of each link: the DH formula at θ = 0, d = 0.
-        let fixed: Vec<Frame<R>> = model
-            .links
-            .iter()
-            .map(|l| l.dh_transform(conv, k(1.0), k(0.0), k(0.0)))
-            .collect();
-        let motion: Vec<Frame<R>> = (0..n)
-            .map(|j| {
-                let l = &model.links[j];
-                match l.joint {
-                    JointKind::Revolute => {
-                        let (c, s) = sym.angle(j);
-                        joint_motion(c, s, k(l.d))
-                    }
-                    JointKind::Prismatic => {
-                        let (c, s) = l.theta.cos_sin();
-                        joint_motion(k(c), k(s), sym.length(j))
-                    }
+impl<'c, R: Ring> RingChain<'c, R> {
+    /// The chain of `chain` with joint variables `sym`.
+    pub fn new(chain: ChainRef<'c>, sym: &impl JointSymbols<R>) -> RingChain<'c, R> {
+        let motion = |j: usize| -> Frame<R> {
+            match chain.bodies[j].joint {
+                JointKind::Revolute => {
+                    let (cos, sin) = sym.angle(j);
+                    JointValue::Revolute { cos, sin }.motion()
                 }
-            })
-            .collect();
-        let t = (0..n)
-            .map(|j| match conv {
-                Convention::Standard if j == 0 => motion[0].clone(),
-                Convention::Standard => fixed[j - 1].compose(&motion[j]),
-                Convention::Modified => fixed[j].compose(&motion[j]),
-            })
-            .collect();
-        let link_in_k: Vec<Frame<R>> = (0..n)
-            .map(|j| match conv {
-                Convention::Standard => fixed[j].clone(),
-                Convention::Modified => Frame::identity(),
-            })
-            .collect();
-        let bodies = model
-            .links
+                JointKind::Prismatic => JointValue::Prismatic(sym.length(j)).motion(),
+            }
+        };
+        let bodies = chain
+            .bodies
             .iter()
-            .zip(&link_in_k)
-            .filter_map(|(l, f)| {
-                let inr = l.inertial?;
-                let c = inr.com;
-                let m = inr.mass;
-                let cc = c[0] * c[0] + c[1] * c[1] + c[2] * c[2];
-                let i = core::array::from_fn(|a| {
-                    core::array::from_fn(|b| {
-                        let parallel = if a == b { m * cc } else { 0.0 } - m * c[a] * c[b];
-                        k(inr.inertia[a][b] + parallel)
-                    })
-                });
-                let body = Body {
-                    m: k(m),
-                    h: c.map(|x| k(m * x)),
-                    i,
-                };
-                Some(body.transformed(f))
-            })
+            .filter_map(|b| b.inertial.map(|i| MassMoments::about_origin(&i)))
             .collect();
-        Chain {
-            kinds: model.links.iter().map(|l| l.joint).collect(),
-            t,
-            link_in_k,
+        let motions: Vec<Frame<R>> = (0..chain.dof()).map(motion).collect();
+        RingChain {
+            chain,
+            kinds: chain.bodies.iter().map(|b| b.joint).collect(),
+            t: (0..chain.dof())
+                .map(|j| chain.step(j, motions[j].clone()))
+                .collect(),
+            motions,
+            link_in_k: chain.bodies.iter().map(|b| b.link.to_ring()).collect(),
             bodies,
-            gravity: gravity_in_table_frame(model).map(k),
+            gravity: chain.gravity_in_root().map(k),
         }
     }
 
@@ -244,9 +199,9 @@ impl<R: Ring> Chain<R> {
     }
 
     /// Composite bodies: `Ic_k` = links k..n, in K_k.
-    pub fn composites(&self) -> Vec<Body<R>> {
+    pub fn composites(&self) -> Vec<MassMoments<R>> {
         let n = self.dof();
-        let mut out: Vec<Body<R>> = Vec::with_capacity(n);
+        let mut out: Vec<MassMoments<R>> = Vec::with_capacity(n);
         for j in (0..n).rev() {
             let own = self.bodies[j].clone();
             let c = match out.last() {
@@ -432,28 +387,22 @@ impl<R: Ring> Chain<R> {
         tau
     }
 
-    /// Link frames B_k in the base frame of the table (no base pose, no tool).
-    pub fn link_frames(&self) -> Vec<Frame<R>> {
-        let mut cur = Frame::identity();
+    /// The joint frames, starting from `start` (the root frame's pose: the identity, or
+    /// `P_0` for the world frame), by the model's one walk of the chain.
+    pub fn joint_frames_from(&self, start: Frame<R>) -> Vec<Frame<R>> {
         let mut out = Vec::with_capacity(self.dof());
-        for (t, l) in self.t.iter().zip(&self.link_in_k) {
-            cur = cur.compose(t);
-            out.push(cur.compose(l));
-        }
+        self.chain.walk(
+            start,
+            |k| self.motions[k].clone(),
+            |_, f| out.push(f.clone()),
+        );
         out
     }
 
-    /// Joint frames K_k in the base frame of the table: joint k moves about their z axis
-    /// through their origin.
+    /// Joint frames in the root frame: joint k moves about their z axis through their
+    /// origin.
     pub fn joint_frames(&self) -> Vec<Frame<R>> {
-        let mut cur = Frame::identity();
-        self.t
-            .iter()
-            .map(|t| {
-                cur = cur.compose(t);
-                cur.clone()
-            })
-            .collect()
+        self.joint_frames_from(Frame::identity())
     }
 }
 

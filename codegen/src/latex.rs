@@ -183,14 +183,16 @@ pub fn dynamics_equations(model: &RobotModel, style: &Style) -> Option<String> {
         return None;
     }
     let n = model.dof();
-    let v = vars(model);
+    let structure = model.chain();
+    let chain = structure.view();
+    let v = vars(chain);
     let plain = Basis::joint_angles(n);
     let runs = if style.cumulative {
-        parallel_runs(model)
+        parallel_runs(chain)
     } else {
         plain.clone()
     };
-    let dv = Derivation::new(model);
+    let dv = Derivation::new(chain);
     let d = dv.mass_matrix_polys();
     let c = dv.christoffel_polys();
     let g = dv.gravity_polys();
@@ -248,7 +250,7 @@ pub fn dynamics_equations(model: &RobotModel, style: &Style) -> Option<String> {
     }
     // Arms with a spherical wrist: the decoupled singularity conditions (section 5.6.1).
     let wrist_lines: Option<Vec<String>> =
-        crate::derive::singularity::decoupled_determinants(model).map(|(j11, j22)| {
+        crate::derive::singularity::decoupled_determinants(chain).map(|(j11, j22)| {
             vec![
                 equation("\\det J_{11}".to_string(), &j11),
                 equation("\\det J_{22}".to_string(), &j22),
@@ -363,7 +365,8 @@ mod tests {
     #[test]
     fn printed_mass_matrix_evaluates_to_the_normal_form() {
         let model = puma();
-        let v = vars(&model);
+        let structure = model.chain();
+        let v = vars(structure.view());
         let basis = Basis::joint_angles(6);
         let sym = Symbols {
             vars: &v,
@@ -374,7 +377,9 @@ mod tests {
             digits: 17,
             ..Style::default()
         };
-        let d = Derivation::new(&model).mass_matrix_polys().clone();
+        let d = Derivation::new(structure.view())
+            .mass_matrix_polys()
+            .clone();
         let q = [0.3, -0.7, 1.1, 0.4, -0.9, 2.0];
         let (c, s): (Vec<f64>, Vec<f64>) = q.iter().map(|x: &f64| (x.cos(), x.sin())).unzip();
         let values: Vec<f64> = c.iter().zip(&s).flat_map(|(c, s)| [*c, *s]).collect();

@@ -6,7 +6,7 @@ use crate::derive::{
 };
 use crate::emit::{self, Output, constant};
 use crate::graph::{E, OpCount, SharedGraph};
-use dhgen_model::{JointKind, RobotModel};
+use dhgen_model::{ChainRef, JointKind, RobotModel};
 use proc_macro2::{Ident, Span, TokenStream};
 use quote::{format_ident, quote};
 
@@ -170,9 +170,11 @@ pub fn op_counts(model: &RobotModel) -> Vec<(String, OpCount)> {
 /// Generates the module `vis mod name { ... }` for `model`.
 pub fn generate(model: &RobotModel, vis: TokenStream, name: &Ident, doc: &str) -> Generated {
     let n = model.dof();
+    let structure = model.chain();
+    let chain = structure.view();
     let mut b = Builder {
-        revolute: model
-            .links
+        revolute: chain
+            .bodies
             .iter()
             .map(|l| l.joint == JointKind::Revolute)
             .collect(),
@@ -180,8 +182,7 @@ pub fn generate(model: &RobotModel, vis: TokenStream, name: &Ident, doc: &str) -
     };
 
     // Forward kinematics: the 4×4 homogeneous matrix and the link frames.
-    let g = SharedGraph::default();
-    let f = kinematics::fk(model, &g);
+    let (g, f) = kinematics::fk(chain);
     b.add(
         Method::of_q(
             "fk_matrix",
@@ -193,8 +194,8 @@ pub fn generate(model: &RobotModel, vis: TokenStream, name: &Ident, doc: &str) -
         frame_outputs(&f, quote!(out)),
     );
 
-    let g = SharedGraph::default();
-    let outs = kinematics::frames(model, &g)
+    let (g, frames) = kinematics::frames(chain);
+    let outs = frames
         .iter()
         .enumerate()
         .flat_map(|(i, f)| frame_outputs(f, quote!(out[#i])))
@@ -210,8 +211,8 @@ pub fn generate(model: &RobotModel, vis: TokenStream, name: &Ident, doc: &str) -
         outs,
     );
 
-    let g = SharedGraph::default();
-    let outs = kinematics::jacobian(model, &g)
+    let (g, columns) = kinematics::jacobian(chain);
+    let outs = columns
         .iter()
         .enumerate()
         .flat_map(|(c, col)| {
@@ -233,7 +234,7 @@ pub fn generate(model: &RobotModel, vis: TokenStream, name: &Ident, doc: &str) -
     );
 
     let g = SharedGraph::default();
-    let acc = kinematics::jdot_qdot(model, &g);
+    let acc = kinematics::jdot_qdot(chain, &g);
     b.add(
         Method {
             name: "jdot_qdot",
@@ -247,7 +248,7 @@ pub fn generate(model: &RobotModel, vis: TokenStream, name: &Ident, doc: &str) -
     );
 
     // Arms with a spherical wrist: the decoupled singularity conditions, symbolically.
-    let determinants = singularity::decoupled_determinants(model);
+    let determinants = singularity::decoupled_determinants(chain);
     if let Some((j11, j22)) = &determinants {
         let docs = [
             (
@@ -263,7 +264,7 @@ pub fn generate(model: &RobotModel, vis: TokenStream, name: &Ident, doc: &str) -
         ];
         for (name, poly, doc) in docs {
             let g = SharedGraph::default();
-            let e = crate::derive::polys_to_exprs(std::slice::from_ref(poly), &g, model);
+            let e = crate::derive::polys_to_exprs(std::slice::from_ref(poly), &g, chain);
             b.add(
                 Method::of_q(name, doc, quote!(T), TokenStream::new()),
                 &g,
@@ -275,11 +276,12 @@ pub fn generate(model: &RobotModel, vis: TokenStream, name: &Ident, doc: &str) -
         }
     }
     let spherical = determinants.is_some();
+    let spherical_wrist = chain.spherical_wrist().is_ok();
 
     let dynamics = model.has_dynamics();
     let mut coriolis_direct = false;
     if dynamics {
-        let dv = Derivation::new(model);
+        let dv = Derivation::new(chain);
         let (g, d) = inertia::mass_matrix(&dv);
         b.add(
             Method::of_q(
@@ -313,7 +315,7 @@ pub fn generate(model: &RobotModel, vis: TokenStream, name: &Ident, doc: &str) -
 
         // C straight from the symbols (zero symbols fold away) when that beats contracting
         // the whole n³ array at run time.
-        let cor = christoffel::coriolis_from(model, &g, &c);
+        let cor = christoffel::coriolis_from(n, &g, &c);
         let roots: Vec<_> = cor.iter().map(|e| e.id_in(&g)).collect();
         let direct = crate::graph::count(&g.borrow(), roots).total();
         let symbols = b.ops.last().map_or(0, |(_, c)| c.total());
@@ -358,7 +360,7 @@ pub fn generate(model: &RobotModel, vis: TokenStream, name: &Ident, doc: &str) -
         );
 
         let g = SharedGraph::default();
-        let bias = newton_euler::rnea_exprs(model, &g, true, true);
+        let bias = newton_euler::rnea_exprs(chain, &g, true, true);
         b.add(
             Method {
                 name: "bias_smooth",
@@ -371,7 +373,7 @@ pub fn generate(model: &RobotModel, vis: TokenStream, name: &Ident, doc: &str) -
             vector_outputs(&bias),
         );
     }
-    let state_all = state_new(model, None);
+    let state_all = state_new(chain, None);
     let coriolis_loop = if dynamics && !coriolis_direct {
         quote! {
             /// Coriolis and centrifugal matrix: C_kj = Σ_i c_ijk q̇_i (so Ḋ − 2C is
@@ -420,7 +422,7 @@ pub fn generate(model: &RobotModel, vis: TokenStream, name: &Ident, doc: &str) -
         .map(|(q, names)| {
             let f = format_ident!("for_{}", q);
             let joints = b.joints_of(names);
-            let body = state_new(model, Some(&joints));
+            let body = state_new(chain, Some(&joints));
             // A quantity that reads no joint (a constant) ignores the configuration.
             let q = if joints.is_empty() {
                 format_ident!("_q")
@@ -435,7 +437,7 @@ pub fn generate(model: &RobotModel, vis: TokenStream, name: &Ident, doc: &str) -
             }
         })
         .collect::<Vec<_>>();
-    let coulomb = coulomb(model);
+    let coulomb = coulomb(chain);
     let tau_mut = if coulomb.is_empty() {
         quote!()
     } else {
@@ -550,7 +552,7 @@ pub fn generate(model: &RobotModel, vis: TokenStream, name: &Ident, doc: &str) -
             /// The closed-form inverse kinematics solver of this arm (kinematic decoupling,
             /// section 4.3): build it once and call `solve` for each pose.
             pub fn ik_solver() -> Result<::dhgen::ik::DecoupledIk, ::dhgen::ik::StructureError> {
-                ::dhgen::ik::DecoupledIk::from_arm(&Model)
+                ::dhgen::ik::DecoupledIk::from_chain(CHAIN)
             }
             /// All closed-form inverse kinematics solutions of `pose` (up to 8), each
             /// verified by forward kinematics; empty when the pose is unreachable.
@@ -562,12 +564,7 @@ pub fn generate(model: &RobotModel, vis: TokenStream, name: &Ident, doc: &str) -
         quote!()
     };
     // `sign` (Coulomb friction, with sign(0) = 0) only where some joint has Coulomb friction.
-    let sign_fn = if dynamics
-        && model
-            .links
-            .iter()
-            .any(|l| l.friction.is_some_and(|f| f.coulomb != 0.0))
-    {
+    let sign_fn = if dynamics && chain.bodies.iter().any(|l| l.friction.coulomb != 0.0) {
         quote! {
             fn sign<T: ::dhgen::Real>(x: T) -> T {
                 if x > T::zero() {
@@ -584,11 +581,7 @@ pub fn generate(model: &RobotModel, vis: TokenStream, name: &Ident, doc: &str) -
     };
     let (methods, parts) = (&b.methods, &b.parts);
     let robot_name = &model.name;
-    let limits = model.links.iter().map(|l| match l.limits {
-        Some([lo, hi]) => quote!(Some([#lo, #hi])),
-        None => quote!(None),
-    });
-    let prismatic = model.links.iter().map(|l| l.joint == JointKind::Prismatic);
+    let chain_const = chain_literal(chain);
     let arm_dynamics = if dynamics {
         quote! {
             impl ::dhgen::ArmDynamics for Model {
@@ -684,9 +677,9 @@ pub fn generate(model: &RobotModel, vis: TokenStream, name: &Ident, doc: &str) -
             pub fn jdot_qdot<T: ::dhgen::Real>(q: &[T; DOF], qd: &[T; DOF]) -> na::SVector<T, 6> {
                 State::for_jdot_qdot(q).jdot_qdot(qd)
             }
-            /// Whether the last three axes meet in one point (a spherical wrist): then
-            /// `det_j11`, `det_j22`, `ik` and `ik_solver` exist.
-            pub const SPHERICAL_WRIST: bool = #spherical;
+            /// Whether the last three axes meet in one point (a spherical wrist); for a
+            /// six-joint arm, `det_j11`, `det_j22`, `ik` and `ik_solver` then exist.
+            pub const SPHERICAL_WRIST: bool = #spherical_wrist;
             #wrist_free
             #dyn_free
 
@@ -695,24 +688,22 @@ pub fn generate(model: &RobotModel, vis: TokenStream, name: &Ident, doc: &str) -
             #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
             pub struct Model;
 
-            /// Joint limits `[lower, upper]` per joint, where the description gives them.
-            pub const LIMITS: [Option<[f64; 2]>; DOF] = [#(#limits),*];
-            /// Whether each joint is prismatic.
-            pub const PRISMATIC: [bool; DOF] = [#(#prismatic),*];
+            /// The robot's kinematic structure: fixed transforms, joints (kinds, offsets,
+            /// limits, armature, friction), link frames, mass properties and collision
+            /// capsules. The numbers this module was generated from, for algorithms built on
+            /// the structure (inverse kinematics, planning); see [`::dhgen::ChainRef`].
+            pub const CHAIN: ::dhgen::ChainRef<'static> = #chain_const;
 
             impl ::dhgen::Arm for Model {
                 type Dof = na::Const<DOF>;
+                fn chain(&self) -> ::dhgen::ChainRef<'_> {
+                    CHAIN
+                }
                 fn dof(&self) -> usize {
                     DOF
                 }
                 fn dim(&self) -> na::Const<DOF> {
                     na::Const
-                }
-                fn limits(&self, j: usize) -> Option<[f64; 2]> {
-                    LIMITS.get(j).copied().flatten()
-                }
-                fn is_prismatic(&self, j: usize) -> bool {
-                    PRISMATIC.get(j).copied().unwrap_or(false)
                 }
                 fn fk(&self, q: &na::SVector<f64, DOF>) -> na::Isometry3<f64> {
                     State::for_fk(&(*q).into()).fk()
@@ -742,6 +733,84 @@ pub fn generate(model: &RobotModel, vis: TokenStream, name: &Ident, doc: &str) -
     Generated {
         tokens: unsuffix_indices(tokens),
         ops: b.ops,
+    }
+}
+
+/// `x` as an `f64` literal.
+fn lit(x: f64) -> TokenStream {
+    let l = proc_macro2::Literal::f64_suffixed(x);
+    quote!(#l)
+}
+
+fn frame_literal(f: &dhgen_model::Frame<f64>) -> TokenStream {
+    let rows = f.r.iter().map(|row| {
+        let row = row.iter().map(|x| lit(*x));
+        quote!([#(#row),*])
+    });
+    let p = f.p.iter().map(|x| lit(*x));
+    quote!(::dhgen::model::Frame { r: [#(#rows),*], p: [#(#p),*] })
+}
+
+/// The structure as a `const` expression of `::dhgen::ChainRef<'static>`.
+fn chain_literal(chain: ChainRef<'_>) -> TokenStream {
+    let placements = chain.placements.iter().map(frame_literal);
+    let bodies = chain.bodies.iter().map(|b| {
+        let joint = match b.joint {
+            JointKind::Revolute => quote!(::dhgen::JointKind::Revolute),
+            JointKind::Prismatic => quote!(::dhgen::JointKind::Prismatic),
+        };
+        let offset = lit(b.offset);
+        let limits = match b.limits {
+            Some([lo, hi]) => {
+                let (lo, hi) = (lit(lo), lit(hi));
+                quote!(Some([#lo, #hi]))
+            }
+            None => quote!(None),
+        };
+        let armature = lit(b.armature);
+        let (viscous, coulomb) = (lit(b.friction.viscous), lit(b.friction.coulomb));
+        let link = frame_literal(&b.link);
+        let inertial = match &b.inertial {
+            Some(i) => {
+                let mass = lit(i.mass);
+                let com = i.com.iter().map(|x| lit(*x));
+                let rows = i.inertia.iter().map(|row| {
+                    let row = row.iter().map(|x| lit(*x));
+                    quote!([#(#row),*])
+                });
+                quote!(Some(::dhgen::model::Inertial { mass: #mass, com: [#(#com),*], inertia: [#(#rows),*] }))
+            }
+            None => quote!(None),
+        };
+        let capsule = match b.capsule {
+            Some(r) => {
+                let r = lit(r);
+                quote!(Some(#r))
+            }
+            None => quote!(None),
+        };
+        quote! {
+            ::dhgen::model::Body {
+                joint: #joint,
+                offset: #offset,
+                limits: #limits,
+                armature: #armature,
+                friction: ::dhgen::model::Friction { viscous: #viscous, coulomb: #coulomb },
+                link: #link,
+                inertial: #inertial,
+                capsule: #capsule,
+            }
+        }
+    });
+    let gravity = chain.gravity.iter().map(|x| lit(*x));
+    let base = frame_literal(&chain.base);
+    quote! {
+        ::dhgen::ChainRef {
+            base: #base,
+            placements: &[#(#placements),*],
+            bodies: &[#(#bodies),*],
+            gravity: [#(#gravity),*],
+        }
     }
 }
 
@@ -785,46 +854,41 @@ fn vector_outputs(v: &[E]) -> Vec<Output> {
 }
 
 /// The body of a `State` constructor preparing the given joints (all when `None`).
-fn state_new(model: &RobotModel, joints: Option<&[usize]>) -> TokenStream {
+fn state_new(chain: ChainRef<'_>, joints: Option<&[usize]>) -> TokenStream {
     let used = |j: &usize| joints.is_none_or(|js| js.contains(j));
-    let lines = model
-        .links
+    let lines = chain
+        .bodies
         .iter()
         .enumerate()
         .filter(|(j, _)| used(j))
-        .map(|(j, l)| match l.joint {
-            JointKind::Revolute => {
-                let theta = l.theta.radians();
-                let angle = if theta == 0.0 {
-                    quote!(q[#j])
-                } else {
-                    let k = constant(theta);
-                    quote!(q[#j] + #k)
-                };
-                quote!(let (sj, cj) = ::dhgen::Real::sincos(#angle); s[#j] = sj; c[#j] = cj;)
-            }
-            JointKind::Prismatic => {
-                let k = constant(l.d);
-                quote!(d[#j] = q[#j] + #k;)
+        .map(|(j, b)| {
+            let value = if b.offset == 0.0 {
+                quote!(q[#j])
+            } else {
+                let k = constant(b.offset);
+                quote!(q[#j] + #k)
+            };
+            match b.joint {
+                JointKind::Revolute => {
+                    quote!(let (sj, cj) = ::dhgen::Real::sincos(#value); s[#j] = sj; c[#j] = cj;)
+                }
+                JointKind::Prismatic => quote!(d[#j] = #value;),
             }
         });
     // Only arrays that some line fills are declared `mut` (no warnings in user crates).
-    let revolute = model
-        .links
-        .iter()
-        .enumerate()
-        .any(|(j, l)| used(&j) && l.joint == JointKind::Revolute);
-    let prismatic = model
-        .links
-        .iter()
-        .enumerate()
-        .any(|(j, l)| used(&j) && l.joint == JointKind::Prismatic);
-    let trig = if revolute {
+    let any = |kind: JointKind| {
+        chain
+            .bodies
+            .iter()
+            .enumerate()
+            .any(|(j, b)| used(&j) && b.joint == kind)
+    };
+    let trig = if any(JointKind::Revolute) {
         quote!(let mut c = [T::zero(); DOF]; let mut s = [T::zero(); DOF];)
     } else {
         quote!(let c = [T::zero(); DOF]; let s = [T::zero(); DOF];)
     };
-    let lengths = if prismatic {
+    let lengths = if any(JointKind::Prismatic) {
         quote!(let mut d = [T::zero(); DOF];)
     } else {
         quote!(let d = [T::zero(); DOF];)
@@ -837,14 +901,16 @@ fn state_new(model: &RobotModel, joints: Option<&[usize]>) -> TokenStream {
     }
 }
 
-fn coulomb(model: &RobotModel) -> TokenStream {
-    let lines = model.links.iter().enumerate().filter_map(|(j, l)| {
-        let f = l.friction?;
-        (f.coulomb != 0.0).then(|| {
-            let k = constant(f.coulomb);
+fn coulomb(chain: ChainRef<'_>) -> TokenStream {
+    let lines = chain
+        .bodies
+        .iter()
+        .enumerate()
+        .filter(|(_, b)| b.friction.coulomb != 0.0)
+        .map(|(j, b)| {
+            let k = constant(b.friction.coulomb);
             quote!(tau[#j] += #k * sign(qd[#j]);)
-        })
-    });
+        });
     quote!(#(#lines)*)
 }
 

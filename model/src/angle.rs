@@ -4,6 +4,7 @@
 //! 0 (not 6e-17) both at run time and in the symbolic engine, where an exact zero
 //! removes whole terms from the generated code.
 
+use crate::math;
 use core::f64::consts::PI;
 
 /// An angle in radians, with exact cosine and sine when it is a multiple of 90°.
@@ -19,8 +20,8 @@ impl Angle {
     /// that multiple (so `1.5707963267948966` has an exact cosine of 0).
     pub fn from_radians(rad: f64) -> Angle {
         let turns = rad / (PI / 2.0);
-        let k = turns.round();
-        let quarter = if (rad - k * PI / 2.0).abs() <= 1e-12 && k.abs() < 1e6 {
+        let k = math::round(turns);
+        let quarter = if math::abs(rad - k * PI / 2.0) <= 1e-12 && math::abs(k) < 1e6 {
             Some(match (k as i64).rem_euclid(4) {
                 0 => (1, 0),
                 1 => (0, 1),
@@ -48,7 +49,10 @@ impl Angle {
     pub fn cos_sin(self) -> (f64, f64) {
         match self.quarter {
             Some((c, s)) => (f64::from(c), f64::from(s)),
-            None => (self.rad.cos(), self.rad.sin()),
+            None => {
+                let (s, c) = math::sin_cos(self.rad);
+                (c, s)
+            }
         }
     }
 
@@ -57,6 +61,7 @@ impl Angle {
         self.quarter
     }
 
+    #[cfg(feature = "std")]
     /// Parses the string form: a number with an optional `deg`/`rad` suffix, or an
     /// expression in `pi` such as `pi`, `-pi/2`, `3*pi/4`, `pi/2.5`.
     pub fn parse(text: &str) -> Result<Angle, String> {

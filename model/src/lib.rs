@@ -1,9 +1,10 @@
-//! The robot model of dhgen: the description format, its validation, and the DH
-//! conventions shared by the runtime path and the code generator.
+//! The robot model of dhgen: the description format, its validation, the DH conventions, and
+//! the kinematic structure shared by the runtime path and the code generator.
 //!
 //! Data flows one way: a description (a TOML file via [`RobotModel::from_toml_str`], or the
 //! tokens of `robot!`) becomes a [`raw`] tree, [`validate`] turns the tree into a
-//! [`RobotModel`], and everything downstream reads only the validated model.
+//! [`RobotModel`], [`RobotModel::chain`] factors it into a [`JointChain`] once, and everything
+//! downstream reads the validated model and its chain.
 //!
 //! ```
 //! let robot = dhgen_model::RobotModel::from_toml_str(r#"
@@ -18,82 +19,112 @@
 //! "#).unwrap();
 //! assert_eq!(robot.dof(), 1);
 //! assert!(!robot.has_dynamics());
+//! let chain = robot.chain();
+//! assert_eq!(chain.view().tool_at(&[0.0]).p, [1.0, 0.0, 0.0]);
 //! ```
+//!
+//! Without the default `std` feature the crate is `no_std` and holds only what generated
+//! code needs at run time: the plain-data structure ([`ChainRef`]), frames and angles.
+#![cfg_attr(not(feature = "std"), no_std)]
 
 mod angle;
+pub mod chain;
+mod math;
 mod model;
+#[cfg(feature = "std")]
 pub mod raw;
+#[cfg(feature = "std")]
 pub mod validate;
 
 pub use angle::Angle;
+#[cfg(feature = "std")]
+pub use chain::JointChain;
+pub use chain::{Axis, Body, ChainRef, NotSpherical, SphericalWrist, Twist};
+#[cfg(feature = "std")]
+pub use model::RobotModel;
 pub use model::{
     Collision, Convention, Frame, Friction, Inertial, JointKind, JointValue, Link, Motor, Pose,
-    Ring, RobotModel,
+    Ring,
 };
 
-use std::path::Path;
+#[cfg(feature = "std")]
+pub use load::LoadError;
 
-/// An error reading a description: where (the file, or `<string>`), and what.
-///
-/// A rule violation displays as `file:line:column: link N, field NAME: what is wrong`,
-/// the form editors jump to.
-#[derive(Clone, Debug, PartialEq)]
-pub struct LoadError {
-    /// The file, or `<string>` for in-memory text.
-    pub source: String,
-    /// The TOML syntax error or validation error.
-    pub kind: LoadErrorKind,
-}
+#[cfg(feature = "std")]
+mod load {
+    use crate::{RobotModel, raw, validate};
+    use std::path::Path;
 
-/// What went wrong while loading.
-#[derive(Clone, Debug, PartialEq)]
-pub enum LoadErrorKind {
-    /// The file could not be read.
-    Io(String),
-    /// The text is not valid TOML.
-    Syntax(String),
-    /// The description breaks a rule of the format, at a line and column of the text.
-    Invalid(validate::Error<raw::Position>),
-}
+    /// An error reading a description. Each variant names its `origin` (the file, or
+    /// `<string>` for text in memory); a rule violation displays as
+    /// `file:line:column: link N, field NAME: what is wrong`, the form editors jump to.
+    #[derive(Debug, thiserror::Error)]
+    #[non_exhaustive]
+    pub enum LoadError {
+        /// The file could not be read.
+        #[error("{origin}: cannot read file: {source}")]
+        Io {
+            /// The file.
+            origin: String,
+            /// Why.
+            source: std::io::Error,
+        },
+        /// The text is not valid TOML.
+        #[error("{origin}: invalid TOML: {message}")]
+        Syntax {
+            /// The file, or `<string>`.
+            origin: String,
+            /// The TOML parser's message.
+            message: String,
+        },
+        /// The description breaks a rule of the format, at a line and column of the text.
+        #[error("{origin}:{}: {error}", error.loc)]
+        Invalid {
+            /// The file, or `<string>`.
+            origin: String,
+            /// The rule broken, where, and in which link and field.
+            #[source]
+            error: validate::Error<raw::Position>,
+        },
+    }
 
-impl std::fmt::Display for LoadError {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        match &self.kind {
-            LoadErrorKind::Io(e) => write!(f, "{}: cannot read file: {e}", self.source),
-            LoadErrorKind::Syntax(e) => {
-                write!(f, "{}: invalid TOML: {}", self.source, e.trim_end())
+    impl LoadError {
+        /// The file, or `<string>`.
+        pub fn origin(&self) -> &str {
+            match self {
+                LoadError::Io { origin, .. }
+                | LoadError::Syntax { origin, .. }
+                | LoadError::Invalid { origin, .. } => origin,
             }
-            LoadErrorKind::Invalid(e) => write!(f, "{}:{}: {e}", self.source, e.loc),
         }
     }
-}
 
-impl std::error::Error for LoadError {}
+    impl RobotModel {
+        /// Parses and validates a TOML description.
+        pub fn from_toml_str(text: &str) -> Result<RobotModel, LoadError> {
+            Self::from_toml_named(text, "<string>")
+        }
 
-impl RobotModel {
-    /// Parses and validates a TOML description.
-    pub fn from_toml_str(text: &str) -> Result<RobotModel, LoadError> {
-        Self::from_toml_named(text, "<string>")
-    }
+        /// Reads, parses and validates a TOML description file.
+        pub fn from_toml_file(path: impl AsRef<Path>) -> Result<RobotModel, LoadError> {
+            let path = path.as_ref();
+            let origin = path.display().to_string();
+            match std::fs::read_to_string(path) {
+                Ok(text) => Self::from_toml_named(&text, &origin),
+                Err(source) => Err(LoadError::Io { origin, source }),
+            }
+        }
 
-    /// Reads, parses and validates a TOML description file.
-    pub fn from_toml_file(path: impl AsRef<Path>) -> Result<RobotModel, LoadError> {
-        let path = path.as_ref();
-        let source = path.display().to_string();
-        let text = std::fs::read_to_string(path).map_err(|e| LoadError {
-            source: source.clone(),
-            kind: LoadErrorKind::Io(e.to_string()),
-        })?;
-        Self::from_toml_named(&text, &source)
-    }
-
-    /// Parses and validates TOML text; `source` names it in error messages.
-    pub fn from_toml_named(text: &str, source: &str) -> Result<RobotModel, LoadError> {
-        let err = |kind| LoadError {
-            source: source.to_string(),
-            kind,
-        };
-        let table = raw::from_toml_text(text).map_err(|e| err(LoadErrorKind::Syntax(e)))?;
-        validate::validate(&table, None).map_err(|e| err(LoadErrorKind::Invalid(e)))
+        /// Parses and validates TOML text; `origin` names it in error messages.
+        pub fn from_toml_named(text: &str, origin: &str) -> Result<RobotModel, LoadError> {
+            let table = raw::from_toml_text(text).map_err(|message| LoadError::Syntax {
+                origin: origin.to_string(),
+                message: message.trim_end().to_string(),
+            })?;
+            validate::validate(&table, None).map_err(|error| LoadError::Invalid {
+                origin: origin.to_string(),
+                error,
+            })
+        }
     }
 }

@@ -87,14 +87,15 @@ pub struct Motor {
 }
 
 impl Motor {
-    /// The inertia the motor adds to `D(q)_ii`.
-    pub fn reflected_inertia(&self) -> f64 {
+    /// The armature: the rotor inertia reflected through the gearbox, `Jm·G²`, which the
+    /// motor adds to `D(q)_ii` (Pinocchio's and MuJoCo's name for it).
+    pub fn armature(&self) -> f64 {
         self.inertia * self.gear * self.gear
     }
 }
 
-/// Joint-side friction: `τ_f = viscous·q̇ + coulomb·sign(q̇)`.
-#[derive(Clone, Copy, Debug, PartialEq)]
+/// Joint-side friction: `τ_f = viscous·q̇ + coulomb·sign(q̇)`; the default is none.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Friction {
     /// Viscous coefficient, N·m·s/rad (N·s/m for prismatic joints).
     pub viscous: f64,
@@ -147,6 +148,7 @@ pub struct Link {
 }
 
 /// A validated serial robot: the one model type of dhgen.
+#[cfg(feature = "std")]
 #[derive(Clone, Debug, PartialEq)]
 pub struct RobotModel {
     /// Identifier; also the default module name.
@@ -165,6 +167,7 @@ pub struct RobotModel {
     pub links: Vec<Link>,
 }
 
+#[cfg(feature = "std")]
 impl RobotModel {
     /// Number of joints.
     pub fn dof(&self) -> usize {
@@ -184,6 +187,13 @@ impl RobotModel {
     /// The tool pose, if it is not the identity.
     pub fn tool_pose(&self) -> Option<&Pose> {
         self.tool.as_ref().filter(|p| !p.is_identity())
+    }
+
+    /// The kinematic structure of the robot: its chain of fixed transforms and joint
+    /// motions, with each link's mass properties in its joint's frame. Build it once and
+    /// keep it; see [`JointChain`](crate::JointChain).
+    pub fn chain(&self) -> crate::JointChain {
+        crate::JointChain::from_model(self)
     }
 }
 
@@ -208,7 +218,7 @@ impl Ring for f64 {
 }
 
 /// A rigid transform over a [`Ring`]: rotation `r` (row-major) and translation `p`.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Frame<R> {
     /// Rotation matrix, row-major.
     pub r: [[R; 3]; 3],
@@ -259,6 +269,27 @@ impl<R: Ring> Frame<R> {
         })
     }
 
+    /// The inverse transform: `(Rᵀ, −Rᵀ p)`.
+    pub fn inverse(&self) -> Frame<R> {
+        let r: [[R; 3]; 3] =
+            core::array::from_fn(|i| core::array::from_fn(|j| self.r[j][i].clone()));
+        let p = core::array::from_fn(|i| {
+            -(r[i][0].clone() * self.p[0].clone()
+                + r[i][1].clone() * self.p[1].clone()
+                + r[i][2].clone() * self.p[2].clone())
+        });
+        Frame { r, p }
+    }
+
+    /// Rotates a vector (no translation).
+    pub fn rotate(&self, v: &[R; 3]) -> [R; 3] {
+        core::array::from_fn(|i| {
+            self.r[i][0].clone() * v[0].clone()
+                + self.r[i][1].clone() * v[1].clone()
+                + self.r[i][2].clone() * v[2].clone()
+        })
+    }
+
     /// The z axis (third column of the rotation).
     pub fn z_axis(&self) -> [R; 3] {
         [
@@ -266,6 +297,22 @@ impl<R: Ring> Frame<R> {
             self.r[1][2].clone(),
             self.r[2][2].clone(),
         ]
+    }
+}
+
+impl Frame<f64> {
+    /// The same transform in another ring (each entry a constant there).
+    pub fn to_ring<R: Ring>(&self) -> Frame<R> {
+        Frame {
+            r: self.r.map(|row| row.map(R::from_f64)),
+            p: self.p.map(R::from_f64),
+        }
+    }
+
+    /// True when the rotation is exactly the identity (no rounding tolerance: structural
+    /// zeros and ones of a description are exact).
+    pub fn rotation_is_identity(&self) -> bool {
+        self.r == [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]
     }
 }
 
@@ -282,6 +329,32 @@ pub enum JointValue<R> {
     },
     /// `q` of a prismatic joint.
     Prismatic(R),
+}
+
+impl<R: Ring> JointValue<R> {
+    /// The joint's motion `Z`: `Rz(θ)` from the cosine and sine of a revolute joint's full
+    /// angle, `Tz(d)` from a prismatic joint's full displacement.
+    pub fn motion(self) -> Frame<R> {
+        let (o, i) = (R::from_f64(0.0), R::from_f64(1.0));
+        match self {
+            JointValue::Revolute { cos, sin } => Frame {
+                r: [
+                    [cos.clone(), -sin.clone(), o.clone()],
+                    [sin, cos, o.clone()],
+                    [o.clone(), o.clone(), i],
+                ],
+                p: [o.clone(), o.clone(), o],
+            },
+            JointValue::Prismatic(d) => Frame {
+                r: [
+                    [i.clone(), o.clone(), o.clone()],
+                    [o.clone(), i.clone(), o.clone()],
+                    [o.clone(), o.clone(), i],
+                ],
+                p: [o.clone(), o, d],
+            },
+        }
+    }
 }
 
 impl Link {

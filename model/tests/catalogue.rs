@@ -66,7 +66,7 @@ fn frames(robot: &RobotModel, q: &[f64]) -> Vec<Frame<f64>> {
     assert_eq!(robot.base, None);
     assert_eq!(robot.tool, None);
     let mut t = Frame::identity();
-    let mut out = vec![t.clone()];
+    let mut out = vec![t];
     for (link, &qi) in robot.links.iter().zip(q) {
         let value = match link.joint {
             JointKind::Revolute => JointValue::Revolute {
@@ -76,7 +76,7 @@ fn frames(robot: &RobotModel, q: &[f64]) -> Vec<Frame<f64>> {
             JointKind::Prismatic => JointValue::Prismatic(qi),
         };
         t = t.compose(&link.transform(robot.convention, value));
-        out.push(t.clone());
+        out.push(t);
     }
     out
 }

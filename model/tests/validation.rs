@@ -2,7 +2,7 @@
 //! the message names the file, the line and column, the link (1-based) and the field.
 
 use dhgen_model::raw::{Position, Table, Value};
-use dhgen_model::{LoadErrorKind, RobotModel, validate};
+use dhgen_model::{LoadError, RobotModel, validate};
 
 const FILE: &str = "robots/bad.toml";
 
@@ -52,8 +52,8 @@ fn position_of(text: &str, needle: &str, nth: usize) -> String {
 fn rejection(text: &str) -> (validate::Error<Position>, String) {
     match RobotModel::from_toml_named(text, FILE) {
         Ok(_) => panic!("accepted:\n{text}"),
-        Err(e) => match &e.kind {
-            LoadErrorKind::Invalid(inner) => (inner.clone(), e.to_string()),
+        Err(e) => match &e {
+            LoadError::Invalid { error, .. } => (error.clone(), e.to_string()),
             other => panic!("expected a validation error, got {other:?}:\n{e}"),
         },
     }
@@ -813,7 +813,7 @@ fn field_given_twice() {
 fn toml_syntax_error_names_the_line() {
     let text = robot("", &[LINK, "joint = \"revolute\"\na = 0.5\na = 0.6\n"]);
     let error = RobotModel::from_toml_named(&text, FILE).unwrap_err();
-    assert!(matches!(error.kind, LoadErrorKind::Syntax(_)), "{error}");
+    assert!(matches!(error, LoadError::Syntax { .. }), "{error}");
     let shown = error.to_string();
     assert!(
         shown.starts_with(&format!("{FILE}: invalid TOML")),

@@ -55,8 +55,9 @@
 use crate::rigid::Rigid;
 use crate::rotation::{EulerZyz, wrap_angle};
 use crate::{Arm, ArmAllocator};
-use core::fmt;
-use nalgebra::{DefaultAllocator, Isometry3, Matrix3, OVector, Rotation3, SVector, Vector3};
+use dhgen_model::{ChainRef, JointKind, NotSpherical};
+
+use nalgebra::{DefaultAllocator, Isometry3, Matrix3, Rotation3, SVector, Vector3};
 // Without `std`, f64 has no `sin_cos`, `atan2`, `hypot`...: nalgebra's traits supply them
 // (through libm). With `std` the inherent methods win and the imports go unused.
 #[cfg(not(feature = "std"))]
@@ -69,8 +70,12 @@ pub const VERIFY_TOLERANCE: f64 = 1e-9;
 /// `f · Z(q)`: the frame right-multiplied by the joint motion.
 fn joint(f: &Rigid, prismatic: bool, q: f64) -> Rigid {
     let mut out = *f;
-    let (s, c) = q.sin_cos();
-    out.apply_joint(prismatic, q, (c, s));
+    let kind = if prismatic {
+        JointKind::Prismatic
+    } else {
+        JointKind::Revolute
+    };
+    out.apply_joint(kind, q);
     out
 }
 
@@ -135,28 +140,25 @@ fn solve_monic_quadratic(b: f64, c: f64, scale: f64) -> ([f64; 2], usize) {
 }
 
 /// Why an arm has no closed-form solution here.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, thiserror::Error)]
 #[non_exhaustive]
 pub enum StructureError {
     /// Kinematic decoupling needs exactly six joints.
+    #[error("closed-form IK needs 6 joints with a spherical wrist; this arm has {dof}")]
     NotSixJoints {
         /// The arm's number of joints.
         dof: usize,
     },
-    /// Joint `joint` (1-based, 4..6) is prismatic: a spherical wrist has revolute joints.
-    PrismaticWrist {
-        /// The prismatic wrist joint, 1-based.
-        joint: usize,
-    },
-    /// Two consecutive wrist axes do not meet (their distance is given).
-    WristAxesDoNotIntersect {
-        /// The first of the two axes, 1-based (4 or 5).
-        axis: usize,
-        /// Closest distance of the two axes, or of axis 6 to the centre, m.
-        distance: f64,
-    },
+    /// The last three axes are not a spherical wrist (see
+    /// [`ChainRef::spherical_wrist`](dhgen_model::ChainRef::spherical_wrist)).
+    #[error("no spherical wrist: {0}")]
+    NoSphericalWrist(NotSpherical),
     /// Two consecutive wrist axes are not perpendicular (twist ≠ ±90°), so the wrist is not
     /// a ZYZ Euler wrist.
+    #[error(
+        "wrist axes {axis} and {} are at {angle} rad, not perpendicular (ZYZ wrists only)",
+        axis + 1
+    )]
     WristNotPerpendicular {
         /// The first of the two axes, 1-based (4 or 5).
         axis: usize,
@@ -165,54 +167,19 @@ pub enum StructureError {
     },
     /// The first three joints are not a geometry solved in closed form here (see the module
     /// documentation); `joints` spells their kinds, e.g. `"RPR"`.
+    #[error(
+        "arm joints 1-3 ({}{}{}) have no closed form here: {reason}",
+        joints[0] as char,
+        joints[1] as char,
+        joints[2] as char
+    )]
     UnsupportedArm {
         /// Joint kinds of joints 1..3, `R` or `P`.
         joints: [u8; 3],
         /// What is missing.
         reason: &'static str,
     },
-    /// The arm's joint axes at q = 0 could not be read (a zero or non-finite Jacobian column).
-    InvalidAxis {
-        /// The joint, 1-based.
-        joint: usize,
-    },
 }
-
-impl fmt::Display for StructureError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self {
-            StructureError::NotSixJoints { dof } => write!(
-                f,
-                "closed-form IK needs 6 joints with a spherical wrist; this arm has {dof}"
-            ),
-            StructureError::PrismaticWrist { joint } => write!(
-                f,
-                "joint {joint} is prismatic; a spherical wrist (joints 4-6) must be revolute"
-            ),
-            StructureError::WristAxesDoNotIntersect { axis, distance } => write!(
-                f,
-                "wrist axes {axis} and {} do not meet in the wrist centre (distance {distance:e} m)",
-                axis + 1
-            ),
-            StructureError::WristNotPerpendicular { axis, angle } => write!(
-                f,
-                "wrist axes {axis} and {} are at {angle} rad, not perpendicular (ZYZ wrists only)",
-                axis + 1
-            ),
-            StructureError::UnsupportedArm { joints, reason } => write!(
-                f,
-                "arm joints 1-3 ({}{}{}) have no closed form here: {reason}",
-                joints[0] as char, joints[1] as char, joints[2] as char
-            ),
-            StructureError::InvalidAxis { joint } => {
-                write!(f, "joint {joint}: its axis at q = 0 is zero or not finite")
-            }
-        }
-    }
-}
-
-#[cfg(feature = "std")]
-impl std::error::Error for StructureError {}
 
 /// The arm geometry that [`DecoupledIk`] recognised; see the module documentation.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -405,96 +372,53 @@ impl ArmSolutions {
 }
 
 impl DecoupledIk {
-    /// Builds the solver from the DH table of a validated model (joint offsets, base and tool
+    /// Builds the solver from a validated description (joint offsets, base and tool
     /// included).
     #[cfg(feature = "std")]
     pub fn from_model(model: &dhgen_model::RobotModel) -> Result<DecoupledIk, StructureError> {
-        use dhgen_model::{Convention, JointKind, JointValue};
-        let dof = model.dof();
-        if dof != 6 {
-            return Err(StructureError::NotSixJoints { dof });
-        }
-        let frame = Rigid::from_frame;
-        let base = model
-            .base_pose()
-            .map_or(Rigid::IDENTITY, |p| frame(&p.frame()));
-        let tool = model
-            .tool_pose()
-            .map_or(Rigid::IDENTITY, |p| frame(&p.frame()));
-        let at_zero: [Rigid; 6] = core::array::from_fn(|i| {
-            let link = &model.links[i];
-            let zero = match link.joint {
-                JointKind::Revolute => JointValue::Revolute { cos: 1.0, sin: 0.0 },
-                JointKind::Prismatic => JointValue::Prismatic(0.0),
-            };
-            frame(&link.transform(model.convention, zero))
-        });
-        let chain: [Rigid; 7] = match model.convention {
-            Convention::Standard => core::array::from_fn(|i| match i {
-                0 => base,
-                6 => at_zero[5].compose(&tool),
-                _ => at_zero[i - 1],
-            }),
-            Convention::Modified => core::array::from_fn(|i| match i {
-                0 => base.compose(&at_zero[0]),
-                6 => tool,
-                _ => at_zero[i],
-            }),
-        };
-        let prismatic = core::array::from_fn(|i| model.links[i].joint == JointKind::Prismatic);
-        let limits = core::array::from_fn(|i| model.links[i].limits);
-        Self::from_chain(chain, prismatic, limits)
+        Self::from_chain(model.chain().view())
     }
 
-    /// Builds the solver from any arm, generated or runtime, by reading its joint axes at
-    /// q = 0 from the Jacobian (the axis direction, and for a revolute joint a point on it)
-    /// and its tool pose from forward kinematics; `T(q)` is then the product of the joint
-    /// motions about those axes. Allocation-free for generated arms.
+    /// Builds the solver for any arm, generated or runtime, from the structure it carries
+    /// ([`Arm::chain`]). Allocation-free.
     pub fn from_arm<A: Arm>(arm: &A) -> Result<DecoupledIk, StructureError>
     where
         DefaultAllocator: ArmAllocator<A::Dof>,
     {
-        let dof = arm.dof();
+        Self::from_chain(arm.chain())
+    }
+
+    /// Builds the solver from a kinematic structure.
+    pub fn from_chain(chain: ChainRef<'_>) -> Result<DecoupledIk, StructureError> {
+        let dof = chain.dof();
         if dof != 6 {
             return Err(StructureError::NotSixJoints { dof });
         }
-        let q0 = OVector::<f64, A::Dof>::zeros_generic(arm.dim(), nalgebra::U1);
-        let j = arm.jacobian(&q0);
-        let tip = Rigid::from_isometry(&arm.fk(&q0));
-        let mut axes = [Rigid::IDENTITY; 6];
-        for (i, axis) in axes.iter_mut().enumerate() {
-            let v = Vector3::new(j[(0, i)], j[(1, i)], j[(2, i)]);
-            let w = Vector3::new(j[(3, i)], j[(4, i)], j[(5, i)]);
-            let (z, origin) = if arm.is_prismatic(i) {
-                (v, tip.p)
+        let wrist = chain
+            .spherical_wrist()
+            .map_err(StructureError::NoSphericalWrist)?;
+        // T(q) = P0 Z1(q1 + o1) P1 ⋯: fold each offset into the transform before its joint,
+        // `P_{k} Z_{k+1}(o)`, so that the solver's joint values are the user's.
+        let chain_frames: [Rigid; 7] = core::array::from_fn(|k| {
+            let p = &chain.placements[k];
+            if k < 6 {
+                let z = chain.bodies[k].motion(0.0);
+                Rigid::from_frame(&p.compose(&z))
             } else {
-                // v = z × (p_e − o): the foot of the perpendicular from p_e is p_e − v × z.
-                (w, tip.p - v.cross(&w))
-            };
-            let n = z.norm();
-            if !(n.is_finite() && (n - 1.0).abs() < 1e-6 && origin.iter().all(|x| x.is_finite())) {
-                return Err(StructureError::InvalidAxis { joint: i + 1 });
+                Rigid::from_frame(p)
             }
-            *axis = Rigid::with_z(origin, z / n);
-        }
-        let chain: [Rigid; 7] = core::array::from_fn(|i| match i {
-            0 => axes[0],
-            6 => axes[5].inverse().compose(&tip),
-            _ => axes[i - 1].inverse().compose(&axes[i]),
         });
-        let prismatic = core::array::from_fn(|i| arm.is_prismatic(i));
-        let limits = core::array::from_fn(|i| arm.limits(i));
-        Self::from_chain(chain, prismatic, limits)
+        let prismatic = core::array::from_fn(|i| chain.bodies[i].joint == JointKind::Prismatic);
+        let limits = core::array::from_fn(|i| chain.bodies[i].limits);
+        Self::from_frames(chain_frames, prismatic, limits, Vector3::from(wrist.centre))
     }
 
-    fn from_chain(
+    fn from_frames(
         chain: [Rigid; 7],
         prismatic: [bool; 6],
         limits: [Option<[f64; 2]>; 6],
+        centre: Vector3<f64>,
     ) -> Result<DecoupledIk, StructureError> {
-        if let Some(j) = (3..6).find(|&j| prismatic[j]) {
-            return Err(StructureError::PrismaticWrist { joint: j + 1 });
-        }
         let scale = 1.0 + chain.iter().map(|f| f.p.norm()).sum::<f64>();
         let tol = 1e-9 * scale;
         // Wrist axes in the frame of joint 4 (q4 = q5 = 0).
@@ -509,25 +433,6 @@ impl DecoupledIk {
                     angle: cos.clamp(-1.0, 1.0).acos(),
                 });
             }
-        }
-        // Axis 4 is the z axis; axis 5 passes through f5.p along d5 (perpendicular to z).
-        // Their closest points: on axis 5 at t = −(f5.p · d5), on axis 4 at that point's z.
-        let on5 = f5.p - d5 * f5.p.dot(&d5);
-        let distance45 = on5.xy().norm();
-        if distance45 > tol {
-            return Err(StructureError::WristAxesDoNotIntersect {
-                axis: 4,
-                distance: distance45,
-            });
-        }
-        let centre = Vector3::new(0.0, 0.0, on5.z);
-        let to6 = centre - f6.p;
-        let distance56 = (to6 - d6 * to6.dot(&d6)).norm();
-        if distance56 > tol {
-            return Err(StructureError::WristAxesDoNotIntersect {
-                axis: 5,
-                distance: distance56,
-            });
         }
         // The tool in the frame of joint 4 at q4 = q5 = q6 = 0.
         let wrist_to_tool = chain[4].compose(&chain[5]).compose(&chain[6]);

@@ -1,22 +1,19 @@
-//! Collision geometry: the robot as capsules around its DH segments, obstacles in the world,
-//! distance and closest-point queries (by `parry3d-f64`), and the straight-line local planner.
+//! Collision geometry: the robot as capsules around the segments joining its link frames'
+//! origins, obstacles in the world, distance and closest-point queries (by `parry3d-f64`),
+//! and the straight-line local planner.
 //!
-//! Row i of the description may carry `collision = { radius = r }`: a capsule of radius r
-//! around the segment joining the origins of frames i−1 and i (frame 0 = the base frame, after
-//! the base pose), for either DH convention; see
-//! [`dhgen_model::Collision`] for what that segment is on a modified-DH robot.
+//! Link i of the description may carry `collision = { radius = r }`: a capsule of radius r
+//! around the segment joining the origins of link frames i−1 and i (link frame 0 = the base
+//! frame, after the base pose), for either DH convention; see
+//! [`dhgen_model::Collision`] for what that segment is on a modified-DH robot. The capsules
+//! come with the arm's structure ([`Arm::chain`]), so a generated module carries its own.
 //!
 //! ```
-//! use dhgen::planning::{ArmGeometry, CollisionChecker, Obstacle, Scene};
+//! use dhgen::planning::{CollisionChecker, Obstacle, Scene};
 //! dhgen::robot!(mod planar = "robots/planar_elbow.toml");
 //!
-//! let model = dhgen::model::RobotModel::from_toml_file(
-//!     concat!(env!("CARGO_MANIFEST_DIR"), "/robots/planar_elbow.toml"),
-//! )
-//! .unwrap();
-//! let geometry = ArmGeometry::from_model(&model).unwrap();
 //! let scene = Scene::new(vec![Obstacle::sphere([1.2, 0.6, 0.0], 0.2)]).unwrap();
-//! let mut checker = CollisionChecker::new(&planar::Model, geometry, scene).unwrap();
+//! let mut checker = CollisionChecker::new(&planar::Model, scene).unwrap();
 //!
 //! let stretched = dhgen::nalgebra::SVector::<f64, 2>::new(0.0, 0.0);
 //! // Link 2 runs along the x axis from 1.0 to 1.8; the sphere's surface is 0.4 above it.
@@ -27,8 +24,8 @@
 
 use super::PlanError;
 use crate::{Arm, ArmAllocator, JointVector};
-use dhgen_model::{Convention, Frame, JointKind, JointValue, Link, RobotModel};
-use nalgebra::{DefaultAllocator, Isometry3, Matrix3, Point3, Rotation3, UnitQuaternion};
+use dhgen_model::{ChainRef, Frame, JointKind};
+use nalgebra::{DefaultAllocator, Isometry3, Matrix3, Point3, Rotation3, UnitQuaternion, Vector3};
 use parry3d_f64::math::{Pose, Rotation as ParryRotation, Vector as ParryVector};
 use parry3d_f64::query::{self, ClosestPoints};
 use parry3d_f64::shape::{Ball, Cuboid, Segment, Shape};
@@ -434,104 +431,125 @@ fn body_distance(probe: &Probe, pose: &Pose, body: &Body) -> f64 {
         .map_or(0.0, |d| d.distance - body.inflation)
 }
 
-/// The collision model of an arm: its DH convention, base pose and per-row capsule radii,
-/// taken from its description, with bounds on how fast its points move.
+/// The collision model of an arm, read from its kinematic structure
+/// ([`Arm::chain`]): per link its capsule radius, where the joint axes sit relative to the
+/// link frames, and bounds on how fast the arm's points move.
 #[derive(Clone, Debug, PartialEq)]
-pub struct ArmGeometry {
-    convention: Convention,
+pub struct CollisionModel {
     base: Isometry3<f64>,
-    links: Vec<Link>,
+    joints: Vec<JointKind>,
+    limits: Vec<Option<[f64; 2]>>,
+    /// Joint frame k in link frame k (the inverse of the link frame in the joint frame).
+    joint_in_link: Vec<Isometry3<f64>>,
     radii: Vec<Option<f64>>,
     reach: Vec<f64>,
 }
 
-impl ArmGeometry {
-    /// Reads the `collision` capsules of a validated description.
+impl CollisionModel {
+    /// Reads the collision capsules of an arm's structure.
     ///
-    /// Errors when no row has a capsule (there would be nothing to check), and when a
-    /// prismatic joint has no limits (its link's length, and so how far the links beyond it
-    /// can swing, would be unbounded).
-    pub fn from_model(model: &RobotModel) -> Result<ArmGeometry, PlanError> {
-        if model.links.iter().all(|l| l.collision.is_none()) {
-            return Err(PlanError::InvalidGeometry(format!(
-                "robot `{}` has no `collision = {{ radius = ... }}` on any link",
-                model.name
-            )));
+    /// Errors when no link has a capsule (there would be nothing to check), and when a
+    /// prismatic joint has no limits (how far the links beyond it reach would be unbounded).
+    pub fn from_chain(chain: ChainRef<'_>) -> Result<CollisionModel, PlanError> {
+        if chain.bodies.iter().all(|b| b.capsule.is_none()) {
+            return Err(PlanError::InvalidGeometry(
+                "no link has a collision capsule (`collision = { radius = ... }`)".into(),
+            ));
         }
-        let mut lengths = Vec::with_capacity(model.dof());
-        for (i, link) in model.links.iter().enumerate() {
-            let d_max = match (link.joint, link.limits) {
-                (JointKind::Revolute, _) => link.d.abs(),
-                (JointKind::Prismatic, Some([lo, hi])) => {
-                    (lo + link.d).abs().max((hi + link.d).abs())
+        let n = chain.dof();
+        // Segment k joins the origins of link frames k − 1 and k (link frame −1: the base).
+        // Its length, bounded over the joint's range: with `A` the translation between the
+        // two origins at rest and `b` the link origin in its joint frame, turning the joint
+        // by θ gives `A + R Rz(θ) b`, longest where `Rz(θ) b` lines up with `Rᵀ A`.
+        let mut lengths = Vec::with_capacity(n);
+        for (k, body) in chain.bodies.iter().enumerate() {
+            let (start, placement) = if k == 0 {
+                (chain.base.p, chain.placements[0])
+            } else {
+                // In joint frame k − 1.
+                (chain.bodies[k - 1].link.p, chain.placements[k])
+            };
+            let a: [f64; 3] = core::array::from_fn(|i| placement.p[i] - start[i]);
+            let b = body.link.p;
+            let length = match body.joint {
+                JointKind::Revolute => {
+                    let r = &placement.r;
+                    let u: [f64; 3] =
+                        core::array::from_fn(|i| r[0][i] * a[0] + r[1][i] * a[1] + r[2][i] * a[2]);
+                    let most = u[2] * b[2] + u[0].hypot(u[1]) * b[0].hypot(b[1]);
+                    (dot3(&a, &a) + dot3(&b, &b) + 2.0 * most).max(0.0).sqrt()
                 }
-                (JointKind::Prismatic, None) => {
-                    return Err(PlanError::InvalidGeometry(format!(
-                        "joint {} is prismatic and has no limits; planning needs them to bound \
-                         the length of link {}",
-                        i + 1,
-                        i + 1
-                    )));
+                JointKind::Prismatic => {
+                    let Some([lo, hi]) = body.limits else {
+                        return Err(PlanError::InvalidGeometry(format!(
+                            "joint {} is prismatic and has no limits; planning needs them to \
+                             bound the length of link {}",
+                            k + 1,
+                            k + 1
+                        )));
+                    };
+                    let at = |d: f64| {
+                        let v = placement.point(&[b[0], b[1], b[2] + d + body.offset]);
+                        let w: [f64; 3] = core::array::from_fn(|i| v[i] - start[i]);
+                        dot3(&w, &w).sqrt()
+                    };
+                    at(lo).max(at(hi))
                 }
             };
-            lengths.push(link.a.hypot(d_max));
+            lengths.push(length);
         }
         // How far a point of the robot can move per unit of joint j's motion: 1 for a
         // prismatic joint; for a revolute one, the largest distance from its axis of any
-        // segment it moves. Standard DH: the axis passes through the origin of frame j−1
-        // (0-based j: frame j), segment j reaches |a_j| from it, later segments add their
-        // lengths. Modified DH: the axis passes through the origin of frame j, and only later
-        // segments move.
-        let reach = (0..model.dof())
-            .map(|j| match model.links[j].joint {
+        // segment it moves: its own link origin's distance from the axis, plus the lengths
+        // of the segments beyond (segment j itself is rigid with the link before, or turns
+        // about its start).
+        let reach = chain
+            .bodies
+            .iter()
+            .enumerate()
+            .map(|(j, body)| match body.joint {
                 JointKind::Prismatic => 1.0,
                 JointKind::Revolute => {
-                    let own = match model.convention {
-                        Convention::Standard => model.links[j].a.abs(),
-                        Convention::Modified => 0.0,
-                    };
-                    own + lengths[j + 1..].iter().sum::<f64>()
+                    body.link.p[0].hypot(body.link.p[1]) + lengths[j + 1..].iter().sum::<f64>()
                 }
             })
             .collect();
-        let base = match model.base_pose() {
-            Some(pose) => isometry(&pose.frame::<f64>()),
-            None => Isometry3::identity(),
-        };
-        Ok(ArmGeometry {
-            convention: model.convention,
-            base,
-            links: model.links.clone(),
-            radii: model
-                .links
+        Ok(CollisionModel {
+            base: isometry(&chain.base),
+            joints: chain.bodies.iter().map(|b| b.joint).collect(),
+            limits: chain.bodies.iter().map(|b| b.limits).collect(),
+            joint_in_link: chain
+                .bodies
                 .iter()
-                .map(|l| l.collision.map(|c| c.radius))
+                .map(|b| isometry(&b.link).inverse())
                 .collect(),
+            radii: chain.bodies.iter().map(|b| b.capsule).collect(),
             reach,
         })
     }
 
     /// Number of joints.
     pub fn dof(&self) -> usize {
-        self.links.len()
+        self.joints.len()
     }
 
-    /// The DH convention of the description.
-    pub fn convention(&self) -> Convention {
-        self.convention
-    }
-
-    /// The base pose (frame 0) in the world frame.
+    /// The base link's frame in the world frame.
     pub fn base(&self) -> &Isometry3<f64> {
         &self.base
     }
 
     /// The kind of joint `j` (0-based).
     pub fn joint(&self, j: usize) -> JointKind {
-        self.links[j].joint
+        self.joints[j]
     }
 
-    /// The capsule radius of row `link` (0-based), if it has a capsule.
+    /// Joint `j`'s axis (unit direction and a point on it), given link `j`'s frame.
+    pub fn joint_axis(&self, j: usize, link_frame: &Isometry3<f64>) -> (Vector3<f64>, Point3<f64>) {
+        let joint_frame = link_frame * self.joint_in_link[j];
+        (z_axis(&joint_frame), origin(&joint_frame))
+    }
+
+    /// The capsule radius of link `link` (0-based), if it has a capsule.
     pub fn radius(&self, link: usize) -> Option<f64> {
         self.radii.get(link).copied().flatten()
     }
@@ -574,29 +592,10 @@ impl ArmGeometry {
     pub fn margin(&self, resolution: f64) -> f64 {
         0.5 * self.lipschitz() * resolution
     }
+}
 
-    /// The frame origins `base, base·A1, …` at `q` computed from the description itself,
-    /// to check that an arm is the robot this geometry was read from.
-    fn origins(&self, q: &[f64]) -> Vec<Point3<f64>> {
-        let rotation = self.base.rotation.to_rotation_matrix();
-        let mut frame: Frame<f64> = Frame {
-            r: core::array::from_fn(|i| core::array::from_fn(|j| rotation[(i, j)])),
-            p: self.base.translation.vector.into(),
-        };
-        let mut out = vec![Point3::from(frame.p)];
-        for (link, &qi) in self.links.iter().zip(q) {
-            let value = match link.joint {
-                JointKind::Revolute => JointValue::Revolute {
-                    cos: qi.cos(),
-                    sin: qi.sin(),
-                },
-                JointKind::Prismatic => JointValue::Prismatic(qi),
-            };
-            frame = frame.compose(&link.transform(self.convention, value));
-            out.push(Point3::from(frame.p));
-        }
-        out
-    }
+fn dot3(a: &[f64; 3], b: &[f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
 
 /// The origin of a frame. (Outside the generic impls: there, the `DefaultAllocator` bounds
@@ -640,7 +639,7 @@ where
     DefaultAllocator: ArmAllocator<A::Dof>,
 {
     arm: &'a A,
-    geometry: ArmGeometry,
+    model: CollisionModel,
     scene: Scene,
     /// Frames 0 (base) to n at the last configuration asked about.
     frames: Vec<Isometry3<f64>>,
@@ -651,50 +650,18 @@ impl<'a, A: Arm> CollisionChecker<'a, A>
 where
     DefaultAllocator: ArmAllocator<A::Dof>,
 {
-    /// A checker for `arm` with the collision model `geometry` (read from the same
-    /// description) among the obstacles of `scene`.
-    ///
-    /// Errors when the geometry has another number of joints than the arm, or when the
-    /// arm's frames differ from those of the geometry's description (a geometry read from
-    /// another robot).
-    pub fn new(
-        arm: &'a A,
-        geometry: ArmGeometry,
-        scene: Scene,
-    ) -> Result<CollisionChecker<'a, A>, PlanError> {
-        let n = arm.dof();
-        if geometry.dof() != n {
-            return Err(PlanError::InvalidGeometry(format!(
-                "the geometry has {} links but the arm has {n} joints",
-                geometry.dof()
-            )));
-        }
-        let mut checker = CollisionChecker {
+    /// A checker for `arm` among the obstacles of `scene`, with the collision model read
+    /// from the arm's own structure ([`CollisionModel::from_chain`], whose errors it
+    /// returns).
+    pub fn new(arm: &'a A, scene: Scene) -> Result<CollisionChecker<'a, A>, PlanError> {
+        let model = CollisionModel::from_chain(arm.chain())?;
+        Ok(CollisionChecker {
+            frames: vec![Isometry3::identity(); model.dof() + 1],
             arm,
-            geometry,
+            model,
             scene,
-            frames: vec![Isometry3::identity(); n + 1],
             checks: 0,
-        };
-        // Two configurations: the zero one, and one that moves every joint differently.
-        for pattern in [0.0, 1.0] {
-            let q: Vec<f64> = (0..n)
-                .map(|j| pattern * [0.3, -0.5, 0.7, -0.2, 0.4, -0.6][j % 6])
-                .collect();
-            let expected = checker.geometry.origins(&q);
-            let qv = JointVector::<A>::from_column_slice_generic(arm.dim(), nalgebra::U1, &q);
-            let frames = checker.frames(&qv);
-            for (i, (f, e)) in frames.iter().zip(&expected).enumerate() {
-                let gap = (f.translation.vector - e.coords).norm();
-                if gap > 1e-9 * (1.0 + e.coords.norm()) {
-                    return Err(PlanError::InvalidGeometry(format!(
-                        "frame {i} of the arm is {gap:.3e} m from where the geometry's description \
-                         puts it at q = {q:?}: the geometry belongs to another robot"
-                    )));
-                }
-            }
-        }
-        Ok(checker)
+        })
     }
 
     /// The arm.
@@ -703,8 +670,8 @@ where
     }
 
     /// The collision model of the arm.
-    pub fn geometry(&self) -> &ArmGeometry {
-        &self.geometry
+    pub fn model(&self) -> &CollisionModel {
+        &self.model
     }
 
     /// The obstacles.
@@ -719,11 +686,9 @@ where
 
     /// The range planners sample joint `j` in and keep it in: its limits, or `[−π, π]` for
     /// a revolute joint without limits (a prismatic joint always has limits here: the
-    /// geometry requires them).
+    /// collision model requires them).
     pub fn joint_range(&self, j: usize) -> [f64; 2] {
-        self.geometry.links[j]
-            .limits
-            .unwrap_or([-core::f64::consts::PI, core::f64::consts::PI])
+        self.model.limits[j].unwrap_or([-core::f64::consts::PI, core::f64::consts::PI])
     }
 
     /// Checks that `q` has one finite entry per joint, each within
@@ -762,8 +727,13 @@ where
 
     /// Frames 0 (the base) to n in the world frame at `q` (the tool pose not applied).
     pub fn frames(&mut self, q: &JointVector<A>) -> &[Isometry3<f64>] {
-        self.frames[0] = self.geometry.base;
+        self.frames[0] = self.model.base;
         self.arm.frames_into(q, &mut self.frames[1..]);
+        &self.frames
+    }
+
+    /// The frames [`frames`](Self::frames) computed last.
+    pub fn last_frames(&self) -> &[Isometry3<f64>] {
         &self.frames
     }
 
@@ -776,7 +746,7 @@ where
         self.frames(q);
         (0..self.dof())
             .filter_map(|link| {
-                let radius = self.geometry.radius(link)?;
+                let radius = self.model.radius(link)?;
                 let (a, b) = self.segment(link);
                 Some(LinkCapsule { link, a, b, radius })
             })
@@ -790,7 +760,7 @@ where
         self.frames(q);
         let mut clearance = f64::INFINITY;
         for link in 0..self.dof() {
-            if let Some(radius) = self.geometry.radius(link) {
+            if let Some(radius) = self.model.radius(link) {
                 let (a, b) = self.segment(link);
                 clearance = clearance.min(self.scene.distance_to_segment(&a, &b) - radius);
             }
@@ -804,7 +774,7 @@ where
         self.checks += 1;
         self.frames(q);
         for link in 0..self.dof() {
-            let Some(radius) = self.geometry.radius(link) else {
+            let Some(radius) = self.model.radius(link) else {
                 continue;
             };
             let translation = |f: &Isometry3<f64>| {
@@ -839,11 +809,11 @@ where
 
     /// The straight-line local planner: true when the joint-space segment from `a` to `b`
     /// is free, checked at `resolution` with the safety margin
-    /// [`margin(resolution)`](ArmGeometry::margin), which covers the configurations between
+    /// [`margin(resolution)`](CollisionModel::margin), which covers the configurations between
     /// the samples too.
     ///
     /// The segment is cut into equal steps, as few as keep the
-    /// [`sweep`](ArmGeometry::sweep) of each step within `L·resolution`: no point of the
+    /// [`sweep`](CollisionModel::sweep) of each step within `L·resolution`: no point of the
     /// robot moves more than that between two checked configurations. The steps are then at
     /// most `resolution` long in joint space (Euclidean), and longer where the moving
     /// joints swing little of the robot (a wrist that only turns spheres about their
@@ -857,8 +827,8 @@ where
         b: &JointVector<A>,
         resolution: f64,
     ) -> bool {
-        let margin = self.geometry.margin(resolution);
-        let steps = self.geometry.steps(a.as_slice(), b.as_slice(), resolution);
+        let margin = self.model.margin(resolution);
+        let steps = self.model.steps(a.as_slice(), b.as_slice(), resolution);
         if !self.is_free(a, margin) || !self.is_free(b, margin) {
             return false;
         }

@@ -20,7 +20,7 @@
 //! A configuration is *free* when the clearance between the robot's capsules and the
 //! obstacles exceeds a safety margin `δ = L·r/2`, where `r` is the resolution of the local
 //! planner and `L` is a bound on how far any point of the robot moves per unit of joint
-//! motion ([`ArmGeometry::lipschitz`](crate::planning::ArmGeometry::lipschitz)). The local planner
+//! motion ([`CollisionModel::lipschitz`](crate::planning::CollisionModel::lipschitz)). The local planner
 //! checks a straight motion at samples between which no point of the robot moves more than
 //! `L·r` (so at most `r` apart in joint space), so every configuration between two samples
 //! is within `δ` of one of them in every point of the robot: the whole motion is free, not
@@ -35,7 +35,7 @@ pub mod potential;
 pub mod prm;
 pub mod workspace_field;
 
-pub use collision::{ArmGeometry, CollisionChecker, Obstacle, Scene};
+pub use collision::{CollisionChecker, CollisionModel, Obstacle, Scene};
 pub use cspace_grid::CSpaceGrid;
 pub use potential::{
     CSpaceField, CSpaceObstacles, ConvexCSpaceObstacles, ConvexRegion, DescentParams, FieldPath,
@@ -55,7 +55,7 @@ pub enum PlanError {
         /// What is wrong with it.
         reason: String,
     },
-    /// The robot's collision geometry is missing, malformed, or belongs to another robot.
+    /// The robot's collision geometry is missing or cannot be bounded.
     #[error("collision geometry: {0}")]
     InvalidGeometry(String),
     /// A parameter of a planner is out of its range.

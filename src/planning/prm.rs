@@ -23,19 +23,13 @@
 //! (as long as no time budget cuts the work short).
 //!
 //! ```
-//! use dhgen::planning::{ArmGeometry, CollisionChecker, Obstacle, Prm, PrmConfig, Scene};
+//! use dhgen::planning::{CollisionChecker, Obstacle, Prm, PrmConfig, Scene};
 //! use dhgen::nalgebra::SVector;
 //! dhgen::robot!(mod planar = "robots/planar_elbow.toml");
 //!
-//! let model = dhgen::model::RobotModel::from_toml_file(
-//!     concat!(env!("CARGO_MANIFEST_DIR"), "/robots/planar_elbow.toml"),
-//! )
-//! .unwrap();
 //! // Beyond the reach of link 1 (1 m), so link 2 has to fold to pass it.
 //! let scene = Scene::new(vec![Obstacle::sphere([0.0, 1.4, 0.0], 0.2)]).unwrap();
-//! let mut checker =
-//!     CollisionChecker::new(&planar::Model, ArmGeometry::from_model(&model).unwrap(), scene)
-//!         .unwrap();
+//! let mut checker = CollisionChecker::new(&planar::Model, scene).unwrap();
 //! let mut prm = Prm::new(&mut checker, PrmConfig::default(), 7).unwrap();
 //! let path = prm
 //!     .query(&SVector::from([0.3, 0.2]), &SVector::from([2.8, -0.2]))
@@ -72,7 +66,7 @@ pub struct PrmConfig {
     pub neighbours: usize,
     /// Resolution of the local planner: the largest joint-space distance between two
     /// checked configurations of an edge (> 0). Sets the safety margin, see
-    /// [`ArmGeometry::margin`](super::ArmGeometry::margin).
+    /// [`CollisionModel::margin`](super::CollisionModel::margin).
     pub resolution: f64,
     /// Nodes added per enhancement round (≥ 1).
     pub enhancement_nodes: usize,
@@ -289,7 +283,7 @@ where
             reason: format!("the roadmap supports 1 to {MAX_DOF} joints; the arm has {dof}"),
         })?;
         Ok(Prm {
-            margin: checker.geometry().margin(config.resolution),
+            margin: checker.model().margin(config.resolution),
             ranges: (0..dof).map(|j| checker.joint_range(j)).collect(),
             checker,
             config,

@@ -24,7 +24,7 @@
 //! PUMA 560 whose last origins coincide) feel no attraction; their goal values are reached
 //! by that final motion only.
 
-use super::collision::{origin, z_axis};
+use super::collision::origin;
 use super::potential::{self, Descent, DescentParams, FieldPath};
 use super::{CollisionChecker, PlanError};
 use crate::{Arm, ArmAllocator, JointVector};
@@ -138,14 +138,13 @@ where
 
     /// The frame origins and joint axes at `q`.
     fn update(&mut self, q: &JointVector<A>) {
-        let convention = self.checker.geometry().convention();
-        let frames = self.checker.frames(q);
+        self.checker.frames(q);
+        let (frames, model) = (self.checker.last_frames(), self.checker.model());
         for (o, f) in self.origins.iter_mut().zip(frames) {
             *o = origin(f);
         }
         for (j, axis) in self.axes.iter_mut().enumerate() {
-            let frame = &frames[convention.joint_frame(j)];
-            *axis = (z_axis(frame), origin(frame));
+            *axis = model.joint_axis(j, &frames[j + 1]);
         }
     }
 
@@ -157,9 +156,9 @@ where
         f: &Vector3<f64>,
         torque: &mut [f64],
     ) {
-        let geometry = self.checker.geometry();
+        let model = self.checker.model();
         for (j, (z, o)) in self.axes.iter().enumerate().take(m) {
-            let column = match geometry.joint(j) {
+            let column = match model.joint(j) {
                 JointKind::Revolute => z.cross(&(p - o)),
                 JointKind::Prismatic => *z,
             };
@@ -208,11 +207,11 @@ where
             );
             let mut force = Vector3::from(f);
             // Repulsion of origin m, a ball as wide as the capsules meeting there.
-            let geometry = self.checker.geometry();
-            let radius = geometry
+            let model = self.checker.model();
+            let radius = model
                 .radius(m - 1)
                 .unwrap_or(0.0)
-                .max(geometry.radius(m).unwrap_or(0.0));
+                .max(model.radius(m).unwrap_or(0.0));
             if let Some(p) = self
                 .checker
                 .scene()
@@ -224,7 +223,7 @@ where
         }
         // One floating repulsive point per link capsule.
         for link in 0..n {
-            let Some(radius) = self.checker.geometry().radius(link) else {
+            let Some(radius) = self.checker.model().radius(link) else {
                 continue;
             };
             let (a, b) = (self.origins[link], self.origins[link + 1]);
@@ -274,7 +273,7 @@ where
         goal: &JointVector<A>,
         params: &DescentParams,
     ) -> Result<FieldPath<JointVector<A>>, PlanError> {
-        let margin = self.checker.geometry().margin(self.resolution);
+        let margin = self.checker.model().margin(self.resolution);
         for (which, q) in [("start", start), ("goal", goal)] {
             let bad = |reason| PlanError::InvalidConfiguration { which, reason };
             self.checker

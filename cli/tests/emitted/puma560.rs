@@ -79,118 +79,118 @@ pub mod puma560 {
             let c6: T = self.c[5];
             let s6: T = self.s[5];
             let k0: T = ::dhgen::nalgebra::convert::<f64, T>(0.4318f64);
-            let k1: T = ::dhgen::nalgebra::convert::<f64, T>(0.6718299999999999f64);
-            let k2: T = ::dhgen::nalgebra::convert::<f64, T>(0.15005f64);
+            let k1: T = ::dhgen::nalgebra::convert::<f64, T>(0.15005f64);
+            let k2: T = ::dhgen::nalgebra::convert::<f64, T>(0.6718299999999999f64);
             let k3: T = ::dhgen::nalgebra::convert::<f64, T>(0.0203f64);
-            let t24: T = c1 * c2;
+            let t23: T = c1 * c2;
+            let t30: T = c3 * t23;
+            let t24: T = c1 * s2;
+            let t31: T = s3 * t24;
+            let t33: T = t30 - t31;
+            let t69: T = c4 * t33;
+            let t70: T = s1 * s4;
+            let t72: T = t69 - t70;
+            let t104: T = c5 * t72;
+            let t34: T = s3 * t23;
             let t36: T = c3 * t24;
-            let t25: T = c1 * s2;
-            let t37: T = s3 * t25;
-            let t39: T = t36 - t37;
-            let t76: T = c4 * t39;
-            let t77: T = s1 * s4;
-            let t79: T = t76 - t77;
-            let t108: T = c5 * t79;
-            let t40: T = s3 * t24;
-            let t42: T = c3 * t25;
-            let t44: T = t40 + t42;
-            let t109: T = s5 * t44;
-            let t111: T = t108 - t109;
-            let t135: T = c6 * t111;
-            let t80: T = s4 * t39;
-            let t82: T = s1 * c4;
-            let t84: T = t80 + t82;
-            let t136: T = s6 * t84;
-            let t138: T = t135 - t136;
-            out[(0, 0)] = t138;
-            let t139: T = s6 * t111;
-            let t141: T = c6 * t84;
-            let t143: T = t139 + t141;
-            let t144: T = -t143;
-            out[(0, 1)] = t144;
-            let t112: T = s5 * t79;
-            let t114: T = c5 * t44;
-            let t116: T = t112 + t114;
-            let t117: T = -t116;
-            out[(0, 2)] = t117;
-            let t31: T = t24 * k0;
-            let t64: T = s1 * k2;
-            let t65: T = t31 + t64;
-            let t70: T = t39 * k3;
-            let t96: T = k0 * t44;
-            let t98: T = t70 - t96;
-            let t99: T = t65 + t98;
-            out[(0, 3)] = t99;
-            let t27: T = s1 * c2;
+            let t38: T = t34 + t36;
+            let t105: T = s5 * t38;
+            let t107: T = t104 - t105;
+            let t132: T = c6 * t107;
+            let t73: T = s4 * t33;
+            let t75: T = s1 * c4;
+            let t77: T = t73 + t75;
+            let t133: T = s6 * t77;
+            let t135: T = t132 - t133;
+            out[(0, 0)] = t135;
+            let t136: T = s6 * t107;
+            let t138: T = c6 * t77;
+            let t140: T = t136 + t138;
+            let t141: T = -t140;
+            out[(0, 1)] = t141;
+            let t108: T = s5 * t72;
+            let t110: T = c5 * t38;
+            let t112: T = t108 + t110;
+            let t113: T = -t112;
+            out[(0, 2)] = t113;
+            let t58: T = t23 * k0;
+            let t60: T = s1 * k1;
+            let t61: T = t58 + t60;
+            let t90: T = t33 * k3;
+            let t91: T = t38 * k0;
+            let t93: T = t90 - t91;
+            let t94: T = t61 + t93;
+            out[(0, 3)] = t94;
+            let t26: T = s1 * c2;
+            let t40: T = c3 * t26;
+            let t27: T = s1 * s2;
+            let t41: T = s3 * t27;
+            let t43: T = t40 - t41;
+            let t79: T = c4 * t43;
+            let t80: T = c1 * s4;
+            let t81: T = t79 + t80;
+            let t114: T = c5 * t81;
+            let t44: T = s3 * t26;
             let t46: T = c3 * t27;
-            let t28: T = s1 * s2;
-            let t47: T = s3 * t28;
-            let t49: T = t46 - t47;
-            let t86: T = c4 * t49;
-            let t87: T = c1 * s4;
-            let t88: T = t86 + t87;
-            let t118: T = c5 * t88;
-            let t50: T = s3 * t27;
-            let t52: T = c3 * t28;
-            let t54: T = t50 + t52;
-            let t119: T = s5 * t54;
-            let t121: T = t118 - t119;
-            let t145: T = c6 * t121;
-            let t89: T = s4 * t49;
-            let t91: T = c1 * c4;
-            let t107: T = t89 - t91;
-            let t146: T = s6 * t107;
-            let t148: T = t145 - t146;
-            out[(1, 0)] = t148;
-            let t149: T = s6 * t121;
-            let t151: T = c6 * t107;
-            let t153: T = t149 + t151;
-            let t154: T = -t153;
-            out[(1, 1)] = t154;
-            let t122: T = s5 * t88;
-            let t124: T = c5 * t54;
-            let t126: T = t122 + t124;
-            let t127: T = -t126;
-            out[(1, 2)] = t127;
-            let t32: T = t27 * k0;
-            let t66: T = c1 * k2;
-            let t68: T = t32 - t66;
-            let t72: T = t49 * k3;
-            let t100: T = k0 * t54;
-            let t102: T = t72 - t100;
+            let t48: T = t44 + t46;
+            let t115: T = s5 * t48;
+            let t117: T = t114 - t115;
+            let t142: T = c6 * t117;
+            let t82: T = s4 * t43;
+            let t84: T = c1 * c4;
+            let t124: T = t82 - t84;
+            let t143: T = s6 * t124;
+            let t145: T = t142 - t143;
+            out[(1, 0)] = t145;
+            let t146: T = s6 * t117;
+            let t148: T = c6 * t124;
+            let t150: T = t146 + t148;
+            let t151: T = -t150;
+            out[(1, 1)] = t151;
+            let t118: T = s5 * t81;
+            let t120: T = c5 * t48;
+            let t122: T = t118 + t120;
+            let t123: T = -t122;
+            out[(1, 2)] = t123;
+            let t62: T = t26 * k0;
+            let t63: T = c1 * k1;
+            let t65: T = t62 - t63;
+            let t95: T = t43 * k3;
+            let t96: T = t48 * k0;
+            let t98: T = t95 - t96;
+            let t99: T = t65 + t98;
+            out[(1, 3)] = t99;
+            let t50: T = s2 * c3;
+            let t51: T = c2 * s3;
+            let t52: T = t50 + t51;
+            let t86: T = c4 * t52;
+            let t125: T = c5 * t86;
+            let t55: T = c2 * c3;
+            let t53: T = s2 * s3;
+            let t56: T = t55 - t53;
+            let t126: T = s5 * t56;
+            let t127: T = t125 + t126;
+            let t152: T = c6 * t127;
+            let t87: T = s4 * t52;
+            let t153: T = s6 * t87;
+            let t155: T = t152 - t153;
+            out[(2, 0)] = t155;
+            let t156: T = s6 * t127;
+            let t158: T = c6 * t87;
+            let t160: T = t156 + t158;
+            let t161: T = -t160;
+            out[(2, 1)] = t161;
+            let t130: T = c5 * t56;
+            let t128: T = s5 * t86;
+            let t131: T = t130 - t128;
+            out[(2, 2)] = t131;
+            let t66: T = s2 * k0;
+            let t68: T = t66 + k2;
+            let t100: T = t52 * k3;
+            let t101: T = t56 * k0;
+            let t102: T = t100 + t101;
             let t103: T = t68 + t102;
-            out[(1, 3)] = t103;
-            let t56: T = s2 * c3;
-            let t57: T = c2 * s3;
-            let t58: T = t56 + t57;
-            let t93: T = c4 * t58;
-            let t128: T = c5 * t93;
-            let t61: T = c2 * c3;
-            let t59: T = s2 * s3;
-            let t62: T = t61 - t59;
-            let t129: T = s5 * t62;
-            let t130: T = t128 + t129;
-            let t155: T = c6 * t130;
-            let t94: T = s4 * t58;
-            let t156: T = s6 * t94;
-            let t158: T = t155 - t156;
-            out[(2, 0)] = t158;
-            let t159: T = s6 * t130;
-            let t161: T = c6 * t94;
-            let t163: T = t159 + t161;
-            let t164: T = -t163;
-            out[(2, 1)] = t164;
-            let t133: T = c5 * t62;
-            let t131: T = s5 * t93;
-            let t134: T = t133 - t131;
-            out[(2, 2)] = t134;
-            let t33: T = s2 * k0;
-            let t35: T = t33 + k1;
-            let t74: T = t58 * k3;
-            let t104: T = k0 * t62;
-            let t105: T = t74 + t104;
-            let t106: T = t35 + t105;
-            out[(2, 3)] = t106;
+            out[(2, 3)] = t103;
             out
         }
         ///The link frames in the world frame (base applied, tool not) as homogeneous matrices.
@@ -210,173 +210,173 @@ pub mod puma560 {
             let c6: T = self.c[5];
             let s6: T = self.s[5];
             let k0: T = ::dhgen::nalgebra::convert::<f64, T>(0.4318f64);
-            let k1: T = ::dhgen::nalgebra::convert::<f64, T>(0.6718299999999999f64);
-            let k2: T = ::dhgen::nalgebra::convert::<f64, T>(0.15005f64);
+            let k1: T = ::dhgen::nalgebra::convert::<f64, T>(0.15005f64);
+            let k2: T = ::dhgen::nalgebra::convert::<f64, T>(0.6718299999999999f64);
             let k3: T = ::dhgen::nalgebra::convert::<f64, T>(0.0203f64);
-            let t23: T = -c1;
-            out[0][(1, 2)] = t23;
-            out[1][(1, 2)] = t23;
-            let t24: T = c1 * c2;
-            out[1][(0, 0)] = t24;
-            let t25: T = c1 * s2;
-            let t26: T = -t25;
-            out[1][(0, 1)] = t26;
-            let t31: T = t24 * k0;
-            out[1][(0, 3)] = t31;
-            let t27: T = s1 * c2;
-            out[1][(1, 0)] = t27;
-            let t28: T = s1 * s2;
-            let t29: T = -t28;
-            out[1][(1, 1)] = t29;
-            let t32: T = t27 * k0;
-            out[1][(1, 3)] = t32;
-            let t33: T = s2 * k0;
-            let t35: T = t33 + k1;
-            out[1][(2, 3)] = t35;
-            let t36: T = c3 * t24;
-            let t37: T = s3 * t25;
-            let t39: T = t36 - t37;
-            out[2][(0, 0)] = t39;
+            let t29: T = -c1;
+            out[0][(1, 2)] = t29;
+            out[1][(1, 2)] = t29;
+            let t23: T = c1 * c2;
+            out[1][(0, 0)] = t23;
+            let t24: T = c1 * s2;
+            let t25: T = -t24;
+            out[1][(0, 1)] = t25;
+            let t58: T = t23 * k0;
+            out[1][(0, 3)] = t58;
+            let t26: T = s1 * c2;
+            out[1][(1, 0)] = t26;
+            let t27: T = s1 * s2;
+            let t28: T = -t27;
+            out[1][(1, 1)] = t28;
+            let t62: T = t26 * k0;
+            out[1][(1, 3)] = t62;
+            let t66: T = s2 * k0;
+            let t68: T = t66 + k2;
+            out[1][(2, 3)] = t68;
+            let t30: T = c3 * t23;
+            let t31: T = s3 * t24;
+            let t33: T = t30 - t31;
+            out[2][(0, 0)] = t33;
             let t2: T = -s1;
             out[2][(0, 1)] = t2;
-            let t40: T = s3 * t24;
-            let t42: T = c3 * t25;
-            let t44: T = t40 + t42;
-            let t45: T = -t44;
-            out[2][(0, 2)] = t45;
-            out[3][(0, 1)] = t45;
-            let t64: T = s1 * k2;
-            let t65: T = t31 + t64;
-            let t70: T = t39 * k3;
-            let t71: T = t65 + t70;
-            out[2][(0, 3)] = t71;
+            let t34: T = s3 * t23;
+            let t36: T = c3 * t24;
+            let t38: T = t34 + t36;
+            let t39: T = -t38;
+            out[2][(0, 2)] = t39;
+            out[3][(0, 1)] = t39;
+            let t60: T = s1 * k1;
+            let t61: T = t58 + t60;
+            let t90: T = t33 * k3;
+            let t162: T = t61 + t90;
+            out[2][(0, 3)] = t162;
+            let t40: T = c3 * t26;
+            let t41: T = s3 * t27;
+            let t43: T = t40 - t41;
+            out[2][(1, 0)] = t43;
+            let t44: T = s3 * t26;
             let t46: T = c3 * t27;
-            let t47: T = s3 * t28;
-            let t49: T = t46 - t47;
-            out[2][(1, 0)] = t49;
-            let t50: T = s3 * t27;
-            let t52: T = c3 * t28;
-            let t54: T = t50 + t52;
-            let t55: T = -t54;
-            out[2][(1, 2)] = t55;
-            out[3][(1, 1)] = t55;
-            let t66: T = c1 * k2;
-            let t68: T = t32 - t66;
-            let t72: T = t49 * k3;
-            let t73: T = t68 + t72;
-            out[2][(1, 3)] = t73;
-            let t56: T = s2 * c3;
-            let t57: T = c2 * s3;
-            let t58: T = t56 + t57;
-            out[2][(2, 0)] = t58;
-            let t61: T = c2 * c3;
-            let t59: T = s2 * s3;
-            let t62: T = t61 - t59;
-            out[2][(2, 2)] = t62;
-            out[3][(2, 1)] = t62;
-            let t74: T = t58 * k3;
-            let t75: T = t35 + t74;
-            out[2][(2, 3)] = t75;
-            let t76: T = c4 * t39;
-            let t77: T = s1 * s4;
-            let t79: T = t76 - t77;
-            out[3][(0, 0)] = t79;
-            let t80: T = s4 * t39;
-            let t82: T = s1 * c4;
-            let t84: T = t80 + t82;
-            out[3][(0, 2)] = t84;
-            let t96: T = k0 * t44;
-            let t98: T = t70 - t96;
+            let t48: T = t44 + t46;
+            let t49: T = -t48;
+            out[2][(1, 2)] = t49;
+            out[3][(1, 1)] = t49;
+            let t63: T = c1 * k1;
+            let t65: T = t62 - t63;
+            let t95: T = t43 * k3;
+            let t163: T = t65 + t95;
+            out[2][(1, 3)] = t163;
+            let t50: T = s2 * c3;
+            let t51: T = c2 * s3;
+            let t52: T = t50 + t51;
+            out[2][(2, 0)] = t52;
+            let t55: T = c2 * c3;
+            let t53: T = s2 * s3;
+            let t56: T = t55 - t53;
+            out[2][(2, 2)] = t56;
+            out[3][(2, 1)] = t56;
+            let t100: T = t52 * k3;
+            let t164: T = t68 + t100;
+            out[2][(2, 3)] = t164;
+            let t69: T = c4 * t33;
+            let t70: T = s1 * s4;
+            let t72: T = t69 - t70;
+            out[3][(0, 0)] = t72;
+            let t73: T = s4 * t33;
+            let t75: T = s1 * c4;
+            let t77: T = t73 + t75;
+            out[3][(0, 2)] = t77;
+            let t91: T = t38 * k0;
+            let t93: T = t90 - t91;
+            let t94: T = t61 + t93;
+            out[3][(0, 3)] = t94;
+            out[4][(0, 3)] = t94;
+            out[5][(0, 3)] = t94;
+            let t79: T = c4 * t43;
+            let t80: T = c1 * s4;
+            let t81: T = t79 + t80;
+            out[3][(1, 0)] = t81;
+            let t82: T = s4 * t43;
+            let t84: T = c1 * c4;
+            let t124: T = t82 - t84;
+            out[3][(1, 2)] = t124;
+            let t96: T = t48 * k0;
+            let t98: T = t95 - t96;
             let t99: T = t65 + t98;
-            out[3][(0, 3)] = t99;
-            out[4][(0, 3)] = t99;
-            out[5][(0, 3)] = t99;
-            let t86: T = c4 * t49;
-            let t87: T = c1 * s4;
-            let t88: T = t86 + t87;
-            out[3][(1, 0)] = t88;
-            let t89: T = s4 * t49;
-            let t91: T = c1 * c4;
-            let t107: T = t89 - t91;
-            out[3][(1, 2)] = t107;
-            let t100: T = k0 * t54;
-            let t102: T = t72 - t100;
+            out[3][(1, 3)] = t99;
+            out[4][(1, 3)] = t99;
+            out[5][(1, 3)] = t99;
+            let t86: T = c4 * t52;
+            out[3][(2, 0)] = t86;
+            let t87: T = s4 * t52;
+            out[3][(2, 2)] = t87;
+            let t101: T = t56 * k0;
+            let t102: T = t100 + t101;
             let t103: T = t68 + t102;
-            out[3][(1, 3)] = t103;
-            out[4][(1, 3)] = t103;
-            out[5][(1, 3)] = t103;
-            let t93: T = c4 * t58;
-            out[3][(2, 0)] = t93;
-            let t94: T = s4 * t58;
-            out[3][(2, 2)] = t94;
-            let t104: T = k0 * t62;
-            let t105: T = t74 + t104;
-            let t106: T = t35 + t105;
-            out[3][(2, 3)] = t106;
-            out[4][(2, 3)] = t106;
-            out[5][(2, 3)] = t106;
-            let t108: T = c5 * t79;
-            let t109: T = s5 * t44;
-            let t111: T = t108 - t109;
-            out[4][(0, 0)] = t111;
-            let t85: T = -t84;
-            out[4][(0, 1)] = t85;
-            let t112: T = s5 * t79;
-            let t114: T = c5 * t44;
-            let t116: T = t112 + t114;
-            let t117: T = -t116;
-            out[4][(0, 2)] = t117;
-            out[5][(0, 2)] = t117;
-            let t118: T = c5 * t88;
-            let t119: T = s5 * t54;
-            let t121: T = t118 - t119;
-            out[4][(1, 0)] = t121;
-            let t92: T = t91 - t89;
-            out[4][(1, 1)] = t92;
-            let t122: T = s5 * t88;
-            let t124: T = c5 * t54;
-            let t126: T = t122 + t124;
-            let t127: T = -t126;
-            out[4][(1, 2)] = t127;
-            out[5][(1, 2)] = t127;
-            let t128: T = c5 * t93;
-            let t129: T = s5 * t62;
-            let t130: T = t128 + t129;
-            out[4][(2, 0)] = t130;
-            let t95: T = -t94;
-            out[4][(2, 1)] = t95;
-            let t133: T = c5 * t62;
-            let t131: T = s5 * t93;
-            let t134: T = t133 - t131;
-            out[4][(2, 2)] = t134;
-            out[5][(2, 2)] = t134;
-            let t135: T = c6 * t111;
-            let t136: T = s6 * t84;
-            let t138: T = t135 - t136;
-            out[5][(0, 0)] = t138;
-            let t139: T = s6 * t111;
-            let t141: T = c6 * t84;
-            let t143: T = t139 + t141;
-            let t144: T = -t143;
-            out[5][(0, 1)] = t144;
-            let t145: T = c6 * t121;
-            let t146: T = s6 * t107;
-            let t148: T = t145 - t146;
-            out[5][(1, 0)] = t148;
-            let t149: T = s6 * t121;
-            let t151: T = c6 * t107;
-            let t153: T = t149 + t151;
-            let t154: T = -t153;
-            out[5][(1, 1)] = t154;
-            let t155: T = c6 * t130;
-            let t156: T = s6 * t94;
-            let t158: T = t155 - t156;
-            out[5][(2, 0)] = t158;
-            let t159: T = s6 * t130;
-            let t161: T = c6 * t94;
-            let t163: T = t159 + t161;
-            let t164: T = -t163;
-            out[5][(2, 1)] = t164;
+            out[3][(2, 3)] = t103;
+            out[4][(2, 3)] = t103;
+            out[5][(2, 3)] = t103;
+            let t104: T = c5 * t72;
+            let t105: T = s5 * t38;
+            let t107: T = t104 - t105;
+            out[4][(0, 0)] = t107;
+            let t78: T = -t77;
+            out[4][(0, 1)] = t78;
+            let t108: T = s5 * t72;
+            let t110: T = c5 * t38;
+            let t112: T = t108 + t110;
+            let t113: T = -t112;
+            out[4][(0, 2)] = t113;
+            out[5][(0, 2)] = t113;
+            let t114: T = c5 * t81;
+            let t115: T = s5 * t48;
+            let t117: T = t114 - t115;
+            out[4][(1, 0)] = t117;
+            let t85: T = t84 - t82;
+            out[4][(1, 1)] = t85;
+            let t118: T = s5 * t81;
+            let t120: T = c5 * t48;
+            let t122: T = t118 + t120;
+            let t123: T = -t122;
+            out[4][(1, 2)] = t123;
+            out[5][(1, 2)] = t123;
+            let t125: T = c5 * t86;
+            let t126: T = s5 * t56;
+            let t127: T = t125 + t126;
+            out[4][(2, 0)] = t127;
+            let t88: T = -t87;
+            out[4][(2, 1)] = t88;
+            let t130: T = c5 * t56;
+            let t128: T = s5 * t86;
+            let t131: T = t130 - t128;
+            out[4][(2, 2)] = t131;
+            out[5][(2, 2)] = t131;
+            let t132: T = c6 * t107;
+            let t133: T = s6 * t77;
+            let t135: T = t132 - t133;
+            out[5][(0, 0)] = t135;
+            let t136: T = s6 * t107;
+            let t138: T = c6 * t77;
+            let t140: T = t136 + t138;
+            let t141: T = -t140;
+            out[5][(0, 1)] = t141;
+            let t142: T = c6 * t117;
+            let t143: T = s6 * t124;
+            let t145: T = t142 - t143;
+            out[5][(1, 0)] = t145;
+            let t146: T = s6 * t117;
+            let t148: T = c6 * t124;
+            let t150: T = t146 + t148;
+            let t151: T = -t150;
+            out[5][(1, 1)] = t151;
+            let t152: T = c6 * t127;
+            let t153: T = s6 * t87;
+            let t155: T = t152 - t153;
+            out[5][(2, 0)] = t155;
+            let t156: T = s6 * t127;
+            let t158: T = c6 * t87;
+            let t160: T = t156 + t158;
+            let t161: T = -t160;
+            out[5][(2, 1)] = t161;
             out[0][(0, 0)] = c1;
             out[0][(0, 1)] = ::dhgen::nalgebra::convert::<f64, T>(0f64);
             out[0][(0, 2)] = s1;
@@ -411,117 +411,117 @@ pub mod puma560 {
             let c5: T = self.c[4];
             let s5: T = self.s[4];
             let k0: T = ::dhgen::nalgebra::convert::<f64, T>(0.4318f64);
-            let k1: T = ::dhgen::nalgebra::convert::<f64, T>(0.6718299999999999f64);
-            let k2: T = ::dhgen::nalgebra::convert::<f64, T>(0.15005f64);
+            let k1: T = ::dhgen::nalgebra::convert::<f64, T>(0.15005f64);
+            let k2: T = ::dhgen::nalgebra::convert::<f64, T>(0.6718299999999999f64);
             let k3: T = ::dhgen::nalgebra::convert::<f64, T>(0.0203f64);
-            let t27: T = s1 * c2;
-            let t32: T = t27 * k0;
-            let t66: T = c1 * k2;
-            let t68: T = t32 - t66;
+            let t26: T = s1 * c2;
+            let t62: T = t26 * k0;
+            let t63: T = c1 * k1;
+            let t65: T = t62 - t63;
+            let t40: T = c3 * t26;
+            let t27: T = s1 * s2;
+            let t41: T = s3 * t27;
+            let t43: T = t40 - t41;
+            let t95: T = t43 * k3;
+            let t44: T = s3 * t26;
             let t46: T = c3 * t27;
-            let t28: T = s1 * s2;
-            let t47: T = s3 * t28;
-            let t49: T = t46 - t47;
-            let t72: T = t49 * k3;
-            let t50: T = s3 * t27;
-            let t52: T = c3 * t28;
-            let t54: T = t50 + t52;
-            let t100: T = k0 * t54;
-            let t102: T = t72 - t100;
-            let t103: T = t68 + t102;
-            let t166: T = -t103;
-            out[(0, 0)] = t166;
-            let t24: T = c1 * c2;
-            let t31: T = t24 * k0;
-            let t64: T = s1 * k2;
-            let t65: T = t31 + t64;
-            let t36: T = c3 * t24;
-            let t25: T = c1 * s2;
-            let t37: T = s3 * t25;
-            let t39: T = t36 - t37;
-            let t70: T = t39 * k3;
-            let t40: T = s3 * t24;
-            let t42: T = c3 * t25;
-            let t44: T = t40 + t42;
-            let t96: T = k0 * t44;
-            let t98: T = t70 - t96;
+            let t48: T = t44 + t46;
+            let t96: T = t48 * k0;
+            let t98: T = t95 - t96;
             let t99: T = t65 + t98;
-            out[(1, 0)] = t99;
-            let t33: T = s2 * k0;
-            let t35: T = t33 + k1;
-            let t56: T = s2 * c3;
-            let t57: T = c2 * s3;
-            let t58: T = t56 + t57;
-            let t74: T = t58 * k3;
-            let t61: T = c2 * c3;
-            let t59: T = s2 * s3;
-            let t62: T = t61 - t59;
-            out[(5, 3)] = t62;
-            let t104: T = k0 * t62;
-            let t105: T = t74 + t104;
-            let t106: T = t35 + t105;
-            let t165: T = t106 - k1;
-            let t167: T = c1 * t165;
-            let t168: T = -t167;
-            out[(0, 1)] = t168;
-            let t169: T = s1 * t165;
-            let t170: T = -t169;
-            out[(1, 1)] = t170;
-            let t171: T = s1 * t103;
-            let t172: T = c1 * t99;
-            let t174: T = t171 + t172;
-            out[(2, 1)] = t174;
-            let t23: T = -c1;
-            out[(4, 1)] = t23;
-            out[(4, 2)] = t23;
-            let t177: T = t106 - t35;
-            let t178: T = c1 * t177;
-            let t179: T = -t178;
-            out[(0, 2)] = t179;
-            let t180: T = s1 * t177;
-            let t181: T = -t180;
-            out[(1, 2)] = t181;
-            let t176: T = t103 - t68;
-            let t182: T = s1 * t176;
-            let t175: T = t99 - t65;
-            let t183: T = c1 * t175;
-            let t185: T = t182 + t183;
-            out[(2, 2)] = t185;
-            let t45: T = -t44;
-            out[(3, 3)] = t45;
-            let t55: T = -t54;
-            out[(4, 3)] = t55;
-            let t80: T = s4 * t39;
-            let t82: T = s1 * c4;
-            let t84: T = t80 + t82;
-            out[(3, 4)] = t84;
-            let t89: T = s4 * t49;
-            let t91: T = c1 * c4;
-            let t107: T = t89 - t91;
-            out[(4, 4)] = t107;
-            let t94: T = s4 * t58;
-            out[(5, 4)] = t94;
-            let t76: T = c4 * t39;
-            let t77: T = s1 * s4;
-            let t79: T = t76 - t77;
-            let t112: T = s5 * t79;
-            let t114: T = c5 * t44;
-            let t116: T = t112 + t114;
-            let t117: T = -t116;
-            out[(3, 5)] = t117;
-            let t86: T = c4 * t49;
-            let t87: T = c1 * s4;
-            let t88: T = t86 + t87;
-            let t122: T = s5 * t88;
-            let t124: T = c5 * t54;
-            let t126: T = t122 + t124;
-            let t127: T = -t126;
-            out[(4, 5)] = t127;
-            let t133: T = c5 * t62;
-            let t93: T = c4 * t58;
-            let t131: T = s5 * t93;
-            let t134: T = t133 - t131;
-            out[(5, 5)] = t134;
+            let t163: T = -t99;
+            out[(0, 0)] = t163;
+            let t23: T = c1 * c2;
+            let t58: T = t23 * k0;
+            let t60: T = s1 * k1;
+            let t61: T = t58 + t60;
+            let t30: T = c3 * t23;
+            let t24: T = c1 * s2;
+            let t31: T = s3 * t24;
+            let t33: T = t30 - t31;
+            let t90: T = t33 * k3;
+            let t34: T = s3 * t23;
+            let t36: T = c3 * t24;
+            let t38: T = t34 + t36;
+            let t91: T = t38 * k0;
+            let t93: T = t90 - t91;
+            let t94: T = t61 + t93;
+            out[(1, 0)] = t94;
+            let t66: T = s2 * k0;
+            let t68: T = t66 + k2;
+            let t50: T = s2 * c3;
+            let t51: T = c2 * s3;
+            let t52: T = t50 + t51;
+            let t100: T = t52 * k3;
+            let t55: T = c2 * c3;
+            let t53: T = s2 * s3;
+            let t56: T = t55 - t53;
+            out[(5, 3)] = t56;
+            let t101: T = t56 * k0;
+            let t102: T = t100 + t101;
+            let t103: T = t68 + t102;
+            let t162: T = t103 - k2;
+            let t164: T = c1 * t162;
+            let t165: T = -t164;
+            out[(0, 1)] = t165;
+            let t166: T = s1 * t162;
+            let t167: T = -t166;
+            out[(1, 1)] = t167;
+            let t168: T = s1 * t99;
+            let t169: T = c1 * t94;
+            let t171: T = t168 + t169;
+            out[(2, 1)] = t171;
+            let t29: T = -c1;
+            out[(4, 1)] = t29;
+            out[(4, 2)] = t29;
+            let t174: T = t103 - t68;
+            let t175: T = c1 * t174;
+            let t176: T = -t175;
+            out[(0, 2)] = t176;
+            let t177: T = s1 * t174;
+            let t178: T = -t177;
+            out[(1, 2)] = t178;
+            let t173: T = t99 - t65;
+            let t179: T = s1 * t173;
+            let t172: T = t94 - t61;
+            let t180: T = c1 * t172;
+            let t182: T = t179 + t180;
+            out[(2, 2)] = t182;
+            let t39: T = -t38;
+            out[(3, 3)] = t39;
+            let t49: T = -t48;
+            out[(4, 3)] = t49;
+            let t73: T = s4 * t33;
+            let t75: T = s1 * c4;
+            let t77: T = t73 + t75;
+            out[(3, 4)] = t77;
+            let t82: T = s4 * t43;
+            let t84: T = c1 * c4;
+            let t124: T = t82 - t84;
+            out[(4, 4)] = t124;
+            let t87: T = s4 * t52;
+            out[(5, 4)] = t87;
+            let t69: T = c4 * t33;
+            let t70: T = s1 * s4;
+            let t72: T = t69 - t70;
+            let t108: T = s5 * t72;
+            let t110: T = c5 * t38;
+            let t112: T = t108 + t110;
+            let t113: T = -t112;
+            out[(3, 5)] = t113;
+            let t79: T = c4 * t43;
+            let t80: T = c1 * s4;
+            let t81: T = t79 + t80;
+            let t118: T = s5 * t81;
+            let t120: T = c5 * t48;
+            let t122: T = t118 + t120;
+            let t123: T = -t122;
+            out[(4, 5)] = t123;
+            let t130: T = c5 * t56;
+            let t86: T = c4 * t52;
+            let t128: T = s5 * t86;
+            let t131: T = t130 - t128;
+            out[(5, 5)] = t131;
             out[(2, 0)] = ::dhgen::nalgebra::convert::<f64, T>(0f64);
             out[(3, 0)] = ::dhgen::nalgebra::convert::<f64, T>(0f64);
             out[(4, 0)] = ::dhgen::nalgebra::convert::<f64, T>(0f64);
@@ -651,97 +651,97 @@ pub mod puma560 {
             let t223: T = c1 * s2;
             let t230: T = s3 * t223;
             let t232: T = t229 - t230;
-            let t266: T = c4 * t232;
-            let t267: T = s1 * s4;
-            let t269: T = t266 - t267;
-            let t300: T = c5 * t269;
+            let t264: T = c4 * t232;
+            let t265: T = s1 * s4;
+            let t267: T = t264 - t265;
+            let t298: T = c5 * t267;
             let t233: T = s3 * t222;
             let t235: T = c3 * t223;
             let t237: T = t233 + t235;
-            let t301: T = s5 * t237;
-            let t303: T = t300 - t301;
-            let t328: T = c6 * t303;
-            let t270: T = s4 * t232;
-            let t272: T = s1 * c4;
-            let t274: T = t270 + t272;
-            let t329: T = s6 * t274;
-            let t331: T = t328 - t329;
-            let t358: T = t207 * t331;
+            let t299: T = s5 * t237;
+            let t301: T = t298 - t299;
+            let t326: T = c6 * t301;
+            let t268: T = s4 * t232;
+            let t270: T = s1 * c4;
+            let t272: T = t268 + t270;
+            let t327: T = s6 * t272;
+            let t329: T = t326 - t327;
+            let t356: T = t207 * t329;
             let t208: T = s6 * t172;
             let t210: T = c6 * t143;
             let t212: T = t208 + t210;
-            let t332: T = s6 * t303;
-            let t334: T = c6 * t274;
-            let t336: T = t332 + t334;
-            let t359: T = t212 * t336;
-            let t360: T = t358 + t359;
+            let t330: T = s6 * t301;
+            let t332: T = c6 * t272;
+            let t334: T = t330 + t332;
+            let t357: T = t212 * t334;
+            let t358: T = t356 + t357;
             let t175: T = c5 * t133;
             let t173: T = s5 * t138;
             let t176: T = t175 - t173;
-            let t304: T = s5 * t269;
-            let t306: T = c5 * t237;
-            let t308: T = t304 + t306;
-            let t361: T = t176 * t308;
-            let t363: T = t360 - t361;
-            out[0] = t363;
+            let t302: T = s5 * t267;
+            let t304: T = c5 * t237;
+            let t306: T = t302 + t304;
+            let t359: T = t176 * t306;
+            let t361: T = t358 - t359;
+            out[0] = t361;
             let t225: T = s1 * c2;
             let t239: T = c3 * t225;
             let t226: T = s1 * s2;
             let t240: T = s3 * t226;
             let t242: T = t239 - t240;
-            let t276: T = c4 * t242;
-            let t277: T = c1 * s4;
-            let t278: T = t276 + t277;
-            let t310: T = c5 * t278;
+            let t274: T = c4 * t242;
+            let t275: T = c1 * s4;
+            let t276: T = t274 + t275;
+            let t308: T = c5 * t276;
             let t243: T = s3 * t225;
             let t245: T = c3 * t226;
             let t247: T = t243 + t245;
-            let t311: T = s5 * t247;
-            let t313: T = t310 - t311;
-            let t338: T = c6 * t313;
-            let t279: T = s4 * t242;
-            let t281: T = c1 * c4;
-            let t320: T = t279 - t281;
-            let t339: T = s6 * t320;
-            let t341: T = t338 - t339;
-            let t364: T = t207 * t341;
-            let t342: T = s6 * t313;
-            let t344: T = c6 * t320;
-            let t346: T = t342 + t344;
-            let t365: T = t212 * t346;
-            let t366: T = t364 + t365;
-            let t314: T = s5 * t278;
-            let t316: T = c5 * t247;
-            let t318: T = t314 + t316;
-            let t367: T = t176 * t318;
-            let t369: T = t366 - t367;
-            out[1] = t369;
+            let t309: T = s5 * t247;
+            let t311: T = t308 - t309;
+            let t336: T = c6 * t311;
+            let t277: T = s4 * t242;
+            let t279: T = c1 * c4;
+            let t318: T = t277 - t279;
+            let t337: T = s6 * t318;
+            let t339: T = t336 - t337;
+            let t362: T = t207 * t339;
+            let t340: T = s6 * t311;
+            let t342: T = c6 * t318;
+            let t344: T = t340 + t342;
+            let t363: T = t212 * t344;
+            let t364: T = t362 + t363;
+            let t312: T = s5 * t276;
+            let t314: T = c5 * t247;
+            let t316: T = t312 + t314;
+            let t365: T = t176 * t316;
+            let t367: T = t364 - t365;
+            out[1] = t367;
             let t249: T = s2 * c3;
             let t250: T = c2 * s3;
             let t251: T = t249 + t250;
-            let t283: T = c4 * t251;
-            let t321: T = c5 * t283;
+            let t281: T = c4 * t251;
+            let t319: T = c5 * t281;
             let t254: T = c2 * c3;
             let t252: T = s2 * s3;
             let t255: T = t254 - t252;
-            let t322: T = s5 * t255;
-            let t323: T = t321 + t322;
-            let t348: T = c6 * t323;
-            let t284: T = s4 * t251;
-            let t349: T = s6 * t284;
-            let t351: T = t348 - t349;
-            let t370: T = t207 * t351;
-            let t352: T = s6 * t323;
-            let t354: T = c6 * t284;
-            let t356: T = t352 + t354;
-            let t371: T = t212 * t356;
+            let t320: T = s5 * t255;
+            let t321: T = t319 + t320;
+            let t346: T = c6 * t321;
+            let t282: T = s4 * t251;
+            let t347: T = s6 * t282;
+            let t349: T = t346 - t347;
+            let t368: T = t207 * t349;
+            let t350: T = s6 * t321;
+            let t352: T = c6 * t282;
+            let t354: T = t350 + t352;
+            let t369: T = t212 * t354;
+            let t370: T = t368 + t369;
+            let t324: T = c5 * t255;
+            let t322: T = s5 * t281;
+            let t325: T = t324 - t322;
+            let t371: T = t176 * t325;
             let t372: T = t370 + t371;
-            let t326: T = c5 * t255;
-            let t324: T = s5 * t283;
-            let t327: T = t326 - t324;
-            let t373: T = t176 * t327;
-            let t374: T = t372 + t373;
-            out[2] = t374;
+            out[2] = t372;
             let t105: T = c4 * t92;
             let t99: T = s4 * t36;
             let t101: T = c4 * t88;
@@ -775,7 +775,7 @@ pub mod puma560 {
             let t192: T = t188 + t190;
             let t215: T = qd6 * t192;
             let t219: T = t197 - t215;
-            let t375: T = t219 * t331;
+            let t373: T = t219 * t329;
             let t198: T = s6 * t181;
             let t200: T = c6 * t151;
             let t202: T = t198 + t200;
@@ -784,28 +784,28 @@ pub mod puma560 {
             let t187: T = t184 - t185;
             let t217: T = qd6 * t187;
             let t220: T = t202 + t217;
-            let t376: T = t220 * t336;
-            let t377: T = t375 + t376;
+            let t374: T = t220 * t334;
+            let t375: T = t373 + t374;
             let t164: T = s5 * t150;
             let t166: T = c5 * t93;
             let t168: T = t164 + t166;
             let t179: T = qd5 * t155;
             let t182: T = t168 + t179;
-            let t378: T = t182 * t308;
-            let t379: T = t377 + t378;
-            out[3] = t379;
-            let t380: T = t219 * t341;
-            let t381: T = t220 * t346;
+            let t376: T = t182 * t306;
+            let t377: T = t375 + t376;
+            out[3] = t377;
+            let t378: T = t219 * t339;
+            let t379: T = t220 * t344;
+            let t380: T = t378 + t379;
+            let t381: T = t182 * t316;
             let t382: T = t380 + t381;
-            let t383: T = t182 * t318;
-            let t384: T = t382 + t383;
-            out[4] = t384;
-            let t385: T = t219 * t351;
-            let t386: T = t220 * t356;
-            let t387: T = t385 + t386;
-            let t388: T = t182 * t327;
-            let t390: T = t387 - t388;
-            out[5] = t390;
+            out[4] = t382;
+            let t383: T = t219 * t349;
+            let t384: T = t220 * t354;
+            let t385: T = t383 + t384;
+            let t386: T = t182 * t325;
+            let t388: T = t385 - t386;
+            out[5] = t388;
             out
         }
         ///det J11: zero at arm singularities (section 5.6.1; Jacobian about the wrist centre).
@@ -866,16 +866,16 @@ pub mod puma560 {
             let k3: T = ::dhgen::nalgebra::convert::<f64, T>(-0.00011692799999999998f64);
             let k4: T = ::dhgen::nalgebra::convert::<f64, T>(0.00011692799999999998f64);
             let k5: T = ::dhgen::nalgebra::convert::<f64, T>(-0.0024871679999999997f64);
-            let k6: T = ::dhgen::nalgebra::convert::<f64, T>(-0.3239198455000001f64);
+            let k6: T = ::dhgen::nalgebra::convert::<f64, T>(-0.3239198455f64);
             let k7: T = ::dhgen::nalgebra::convert::<f64, T>(0.00040432f64);
             let k8: T = ::dhgen::nalgebra::convert::<f64, T>(0.0024871679999999997f64);
             let k9: T = ::dhgen::nalgebra::convert::<f64, T>(-0.022546398000000002f64);
             let k10: T = ::dhgen::nalgebra::convert::<f64, T>(0.02191385f64);
             let k11: T = ::dhgen::nalgebra::convert::<f64, T>(-0.7697525880000002f64);
-            let k12: T = ::dhgen::nalgebra::convert::<f64, T>(0.014198399999999993f64);
+            let k12: T = ::dhgen::nalgebra::convert::<f64, T>(0.0141984f64);
             let k13: T = ::dhgen::nalgebra::convert::<f64, T>(1.6018612019999998f64);
             let k14: T = ::dhgen::nalgebra::convert::<f64, T>(-0.0003021600000000001f64);
-            let k15: T = ::dhgen::nalgebra::convert::<f64, T>(1.877443089125001f64);
+            let k15: T = ::dhgen::nalgebra::convert::<f64, T>(1.877443089125f64);
             let s4: T = self.s[3];
             let k16: T = ::dhgen::nalgebra::convert::<f64, T>(0.0008642879999999998f64);
             let k17: T = ::dhgen::nalgebra::convert::<f64, T>(-0.0012435839999999998f64);
@@ -888,13 +888,13 @@ pub mod puma560 {
             let k21: T = ::dhgen::nalgebra::convert::<f64, T>(0.0004321439999999999f64);
             let k22: T = ::dhgen::nalgebra::convert::<f64, T>(-0.13848166650000002f64);
             let k23: T = ::dhgen::nalgebra::convert::<f64, T>(-0.0038075187499999994f64);
-            let k24: T = ::dhgen::nalgebra::convert::<f64, T>(0.6903913435000002f64);
+            let k24: T = ::dhgen::nalgebra::convert::<f64, T>(0.6903913435f64);
             let k25: T = ::dhgen::nalgebra::convert::<f64, T>(0.023750999999999998f64);
             let k26: T = ::dhgen::nalgebra::convert::<f64, T>(0.0018421599999999998f64);
             let k27: T = ::dhgen::nalgebra::convert::<f64, T>(0.00064216f64);
             let k28: T = ::dhgen::nalgebra::convert::<f64, T>(0.00004f64);
             let k29: T = ::dhgen::nalgebra::convert::<f64, T>(0.7697525880000002f64);
-            let k30: T = ::dhgen::nalgebra::convert::<f64, T>(2.1071040725000003f64);
+            let k30: T = ::dhgen::nalgebra::convert::<f64, T>(2.1071040725f64);
             let k31: T = ::dhgen::nalgebra::convert::<f64, T>(0.3848762940000001f64);
             let k32: T = ::dhgen::nalgebra::convert::<f64, T>(0.35899007050000004f64);
             let k33: T = ::dhgen::nalgebra::convert::<f64, T>(0.010956925f64);
@@ -1300,7 +1300,7 @@ pub mod puma560 {
             let s5: T = self.s[4];
             let k2: T = ::dhgen::nalgebra::convert::<f64, T>(0.00011692799999999998f64);
             let k3: T = ::dhgen::nalgebra::convert::<f64, T>(-0.0024871679999999997f64);
-            let k4: T = ::dhgen::nalgebra::convert::<f64, T>(-0.3239198455000001f64);
+            let k4: T = ::dhgen::nalgebra::convert::<f64, T>(-0.3239198455f64);
             let k5: T = ::dhgen::nalgebra::convert::<f64, T>(0.00040432f64);
             let k6: T = ::dhgen::nalgebra::convert::<f64, T>(0.022546398000000002f64);
             let k7: T = ::dhgen::nalgebra::convert::<f64, T>(0.0012435839999999998f64);
@@ -1308,12 +1308,12 @@ pub mod puma560 {
             let k9: T = ::dhgen::nalgebra::convert::<f64, T>(-0.0012435839999999998f64);
             let k10: T = ::dhgen::nalgebra::convert::<f64, T>(0.010956925f64);
             let k11: T = ::dhgen::nalgebra::convert::<f64, T>(1.6018612019999998f64);
-            let k12: T = ::dhgen::nalgebra::convert::<f64, T>(0.014198399999999993f64);
+            let k12: T = ::dhgen::nalgebra::convert::<f64, T>(0.0141984f64);
             let k13: T = ::dhgen::nalgebra::convert::<
                 f64,
                 T,
             >(-0.00005846399999999999f64);
-            let k14: T = ::dhgen::nalgebra::convert::<f64, T>(-0.018372398999999998f64);
+            let k14: T = ::dhgen::nalgebra::convert::<f64, T>(-0.018372399f64);
             let k15: T = ::dhgen::nalgebra::convert::<f64, T>(-0.3848762940000001f64);
             let k16: T = ::dhgen::nalgebra::convert::<f64, T>(0.00005846399999999999f64);
             let k17: T = ::dhgen::nalgebra::convert::<f64, T>(-0.011273199000000001f64);
@@ -1321,10 +1321,10 @@ pub mod puma560 {
             let k18: T = ::dhgen::nalgebra::convert::<f64, T>(-0.0003021600000000001f64);
             let k19: T = ::dhgen::nalgebra::convert::<f64, T>(0.0004321439999999999f64);
             let k20: T = ::dhgen::nalgebra::convert::<f64, T>(0.0024871679999999997f64);
-            let k21: T = ::dhgen::nalgebra::convert::<f64, T>(0.3239198455000001f64);
+            let k21: T = ::dhgen::nalgebra::convert::<f64, T>(0.3239198455f64);
             let k22: T = ::dhgen::nalgebra::convert::<f64, T>(-0.022546398000000002f64);
             let k23: T = ::dhgen::nalgebra::convert::<f64, T>(-0.010956925f64);
-            let k24: T = ::dhgen::nalgebra::convert::<f64, T>(0.018372398999999998f64);
+            let k24: T = ::dhgen::nalgebra::convert::<f64, T>(0.018372399f64);
             let k25: T = ::dhgen::nalgebra::convert::<f64, T>(0.0007699999999999999f64);
             let k26: T = ::dhgen::nalgebra::convert::<f64, T>(0.00022f64);
             let k27: T = ::dhgen::nalgebra::convert::<f64, T>(0.00002f64);
@@ -1334,7 +1334,7 @@ pub mod puma560 {
             let k31: T = ::dhgen::nalgebra::convert::<f64, T>(-0.0038075187499999994f64);
             let k32: T = ::dhgen::nalgebra::convert::<f64, T>(0.13848166650000002f64);
             let k33: T = ::dhgen::nalgebra::convert::<f64, T>(0.023750999999999998f64);
-            let k34: T = ::dhgen::nalgebra::convert::<f64, T>(0.6903913435000002f64);
+            let k34: T = ::dhgen::nalgebra::convert::<f64, T>(0.6903913435f64);
             let t52: T = c4 * s5;
             w[0] = t52;
             let t54: T = k7 * t52;
@@ -2042,7 +2042,7 @@ pub mod puma560 {
             let s5: T = self.s[4];
             let k2: T = ::dhgen::nalgebra::convert::<f64, T>(0.00011692799999999998f64);
             let k3: T = ::dhgen::nalgebra::convert::<f64, T>(-0.0024871679999999997f64);
-            let k4: T = ::dhgen::nalgebra::convert::<f64, T>(-0.3239198455000001f64);
+            let k4: T = ::dhgen::nalgebra::convert::<f64, T>(-0.3239198455f64);
             let k5: T = ::dhgen::nalgebra::convert::<f64, T>(0.00040432f64);
             let k6: T = ::dhgen::nalgebra::convert::<f64, T>(0.022546398000000002f64);
             let k7: T = ::dhgen::nalgebra::convert::<f64, T>(0.0012435839999999998f64);
@@ -2050,22 +2050,22 @@ pub mod puma560 {
             let k9: T = ::dhgen::nalgebra::convert::<f64, T>(-0.0012435839999999998f64);
             let k10: T = ::dhgen::nalgebra::convert::<f64, T>(0.010956925f64);
             let k11: T = ::dhgen::nalgebra::convert::<f64, T>(1.6018612019999998f64);
-            let k12: T = ::dhgen::nalgebra::convert::<f64, T>(0.014198399999999993f64);
+            let k12: T = ::dhgen::nalgebra::convert::<f64, T>(0.0141984f64);
             let k13: T = ::dhgen::nalgebra::convert::<
                 f64,
                 T,
             >(-0.00005846399999999999f64);
-            let k14: T = ::dhgen::nalgebra::convert::<f64, T>(-0.018372398999999998f64);
+            let k14: T = ::dhgen::nalgebra::convert::<f64, T>(-0.018372399f64);
             let k15: T = ::dhgen::nalgebra::convert::<f64, T>(-0.3848762940000001f64);
             let k16: T = ::dhgen::nalgebra::convert::<f64, T>(0.00005846399999999999f64);
             let s4: T = self.s[3];
             let k17: T = ::dhgen::nalgebra::convert::<f64, T>(-0.0003021600000000001f64);
             let k18: T = ::dhgen::nalgebra::convert::<f64, T>(0.0004321439999999999f64);
             let k19: T = ::dhgen::nalgebra::convert::<f64, T>(0.0024871679999999997f64);
-            let k20: T = ::dhgen::nalgebra::convert::<f64, T>(0.3239198455000001f64);
+            let k20: T = ::dhgen::nalgebra::convert::<f64, T>(0.3239198455f64);
             let k21: T = ::dhgen::nalgebra::convert::<f64, T>(-0.022546398000000002f64);
             let k22: T = ::dhgen::nalgebra::convert::<f64, T>(-0.010956925f64);
-            let k23: T = ::dhgen::nalgebra::convert::<f64, T>(0.018372398999999998f64);
+            let k23: T = ::dhgen::nalgebra::convert::<f64, T>(0.018372399f64);
             let k24: T = ::dhgen::nalgebra::convert::<f64, T>(0.0007699999999999999f64);
             let k25: T = ::dhgen::nalgebra::convert::<f64, T>(0.00022f64);
             let k26: T = ::dhgen::nalgebra::convert::<f64, T>(0.00002f64);
@@ -2074,7 +2074,7 @@ pub mod puma560 {
             let k29: T = ::dhgen::nalgebra::convert::<f64, T>(-0.0038075187499999994f64);
             let k30: T = ::dhgen::nalgebra::convert::<f64, T>(0.13848166650000002f64);
             let k31: T = ::dhgen::nalgebra::convert::<f64, T>(0.023750999999999998f64);
-            let k32: T = ::dhgen::nalgebra::convert::<f64, T>(0.6903913435000002f64);
+            let k32: T = ::dhgen::nalgebra::convert::<f64, T>(0.6903913435f64);
             let k33: T = ::dhgen::nalgebra::convert::<f64, T>(-0.00107216f64);
             let qd1: T = qd[0];
             let qd2: T = qd[1];
@@ -2855,19 +2855,9 @@ pub mod puma560 {
             &self,
             qd: &[T; DOF],
             qdd: &[T; DOF],
-            w: &mut [T; 47],
+            w: &mut [T; 46],
             out: &mut na::SVector<T, DOF>,
         ) {
-            let c2: T = self.c[1];
-            let s2: T = self.s[1];
-            let c3: T = self.c[2];
-            let s3: T = self.s[2];
-            let c4: T = self.c[3];
-            let s4: T = self.s[3];
-            let c5: T = self.c[4];
-            let s5: T = self.s[4];
-            let c6: T = self.c[5];
-            let s6: T = self.s[5];
             let qd1: T = qd[0];
             let qd2: T = qd[1];
             let qd3: T = qd[2];
@@ -2880,81 +2870,86 @@ pub mod puma560 {
             let qdd4: T = qdd[3];
             let qdd5: T = qdd[4];
             let qdd6: T = qdd[5];
+            let c2: T = self.c[1];
+            let s2: T = self.s[1];
+            let c3: T = self.c[2];
+            let s3: T = self.s[2];
+            let c4: T = self.c[3];
+            let s4: T = self.s[3];
+            let c5: T = self.c[4];
+            let s5: T = self.s[4];
+            let c6: T = self.c[5];
+            let s6: T = self.s[5];
             let k0: T = ::dhgen::nalgebra::convert::<f64, T>(9.81f64);
             let k1: T = ::dhgen::nalgebra::convert::<f64, T>(0.15005f64);
             let k2: T = ::dhgen::nalgebra::convert::<f64, T>(0.4318f64);
             let k3: T = ::dhgen::nalgebra::convert::<f64, T>(0.0203f64);
             let k4: T = ::dhgen::nalgebra::convert::<f64, T>(0.35f64);
             let k5: T = ::dhgen::nalgebra::convert::<f64, T>(3.9585f64);
-            let k6: T = ::dhgen::nalgebra::convert::<f64, T>(1.0311851500000007f64);
-            let k7: T = ::dhgen::nalgebra::convert::<f64, T>(0.007099199999999993f64);
-            let k8: T = ::dhgen::nalgebra::convert::<f64, T>(0.26917800000000014f64);
-            let k9: T = ::dhgen::nalgebra::convert::<f64, T>(0.0070992f64);
-            let k10: T = ::dhgen::nalgebra::convert::<f64, T>(1.5050163500000004f64);
-            let k11: T = ::dhgen::nalgebra::convert::<f64, T>(0.023750999999999998f64);
-            let k12: T = ::dhgen::nalgebra::convert::<f64, T>(0.023751f64);
-            let k13: T = ::dhgen::nalgebra::convert::<f64, T>(0.6200840000000003f64);
-            let k14: T = ::dhgen::nalgebra::convert::<f64, T>(0.06767999999999999f64);
-            let k15: T = ::dhgen::nalgebra::convert::<f64, T>(0.336f64);
-            let k16: T = ::dhgen::nalgebra::convert::<f64, T>(0.09047428800000003f64);
-            let k17: T = ::dhgen::nalgebra::convert::<
-                f64,
-                T,
-            >(0.0000000000000000008673617379884035f64);
-            let k18: T = ::dhgen::nalgebra::convert::<f64, T>(0.013454288000000003f64);
-            let k19: T = ::dhgen::nalgebra::convert::<f64, T>(0.0047376f64);
-            let k20: T = ::dhgen::nalgebra::convert::<f64, T>(0.10952f64);
-            let k21: T = ::dhgen::nalgebra::convert::<f64, T>(0.82f64);
-            let k22: T = ::dhgen::nalgebra::convert::<f64, T>(0.015579999999999998f64);
-            let k23: T = ::dhgen::nalgebra::convert::<f64, T>(0.00209602f64);
-            let k24: T = ::dhgen::nalgebra::convert::<f64, T>(0.0013f64);
-            let k25: T = ::dhgen::nalgebra::convert::<f64, T>(0.34f64);
-            let k26: T = ::dhgen::nalgebra::convert::<f64, T>(0.0003f64);
-            let k27: T = ::dhgen::nalgebra::convert::<f64, T>(0.0004f64);
-            let k28: T = ::dhgen::nalgebra::convert::<f64, T>(0.09f64);
-            let k29: T = ::dhgen::nalgebra::convert::<f64, T>(0.0028799999999999997f64);
-            let k30: T = ::dhgen::nalgebra::convert::<f64, T>(0.00024216f64);
-            let k31: T = ::dhgen::nalgebra::convert::<f64, T>(0.00004f64);
+            let k6: T = ::dhgen::nalgebra::convert::<f64, T>(1.0311851499999998f64);
+            let k7: T = ::dhgen::nalgebra::convert::<f64, T>(0.0070992f64);
+            let k8: T = ::dhgen::nalgebra::convert::<f64, T>(0.26917800000000003f64);
+            let k9: T = ::dhgen::nalgebra::convert::<f64, T>(1.50501635f64);
+            let k10: T = ::dhgen::nalgebra::convert::<f64, T>(0.023750999999999998f64);
+            let k11: T = ::dhgen::nalgebra::convert::<f64, T>(0.023751f64);
+            let k12: T = ::dhgen::nalgebra::convert::<f64, T>(0.620084f64);
+            let k13: T = ::dhgen::nalgebra::convert::<f64, T>(0.06767999999999999f64);
+            let k14: T = ::dhgen::nalgebra::convert::<f64, T>(0.336f64);
+            let k15: T = ::dhgen::nalgebra::convert::<f64, T>(0.090474288f64);
+            let k16: T = ::dhgen::nalgebra::convert::<f64, T>(0.013454287999999998f64);
+            let k17: T = ::dhgen::nalgebra::convert::<f64, T>(0.0047376f64);
+            let k18: T = ::dhgen::nalgebra::convert::<f64, T>(0.10951999999999999f64);
+            let k19: T = ::dhgen::nalgebra::convert::<f64, T>(0.82f64);
+            let k20: T = ::dhgen::nalgebra::convert::<f64, T>(0.015579999999999998f64);
+            let k21: T = ::dhgen::nalgebra::convert::<f64, T>(0.00209602f64);
+            let k22: T = ::dhgen::nalgebra::convert::<f64, T>(0.0013f64);
+            let k23: T = ::dhgen::nalgebra::convert::<f64, T>(0.34f64);
+            let k24: T = ::dhgen::nalgebra::convert::<f64, T>(0.0003f64);
+            let k25: T = ::dhgen::nalgebra::convert::<f64, T>(0.0004f64);
+            let k26: T = ::dhgen::nalgebra::convert::<f64, T>(0.09f64);
+            let k27: T = ::dhgen::nalgebra::convert::<f64, T>(0.0028799999999999997f64);
+            let k28: T = ::dhgen::nalgebra::convert::<f64, T>(0.00024216f64);
+            let k29: T = ::dhgen::nalgebra::convert::<f64, T>(0.00004f64);
             let t245: T = qdd1 * k4;
             w[0] = t245;
-            let t37: T = s2 * qdd1;
-            let t36: T = c2 * qd1;
+            let t37: T = qdd1 * s2;
+            let t36: T = qd1 * c2;
             w[1] = t36;
             let t42: T = qd2 * t36;
             let t45: T = t37 + t42;
             w[2] = t45;
-            let t319: T = t45 * k6;
-            let t38: T = c2 * qdd1;
-            let t35: T = s2 * qd1;
+            let t317: T = t45 * k6;
+            let t38: T = qdd1 * c2;
+            let t35: T = qd1 * s2;
             w[3] = t35;
             let t43: T = qd2 * t35;
             let t46: T = t38 - t43;
             w[4] = t46;
-            let t320: T = t46 * k7;
-            let t322: T = t319 - t320;
-            let t323: T = qdd2 * k8;
-            let t325: T = t322 - t323;
-            let t317: T = qd2 * k13;
-            let t308: T = t35 * k8;
-            let t312: T = t36 * k12;
-            let t314: T = t308 + t312;
-            let t318: T = t317 - t314;
-            w[5] = t318;
-            let t341: T = t36 * t318;
-            let t301: T = t36 * k10;
-            let t298: T = t35 * k9;
-            let t302: T = t301 - t298;
-            let t305: T = qd2 * k11;
-            let t307: T = t302 - t305;
-            w[6] = t307;
-            let t342: T = qd2 * t307;
-            let t343: T = t341 - t342;
-            let t350: T = t325 + t343;
+            let t318: T = t46 * k7;
+            let t320: T = t317 - t318;
+            let t321: T = qdd2 * k8;
+            let t323: T = t320 - t321;
+            let t315: T = qd2 * k12;
+            let t306: T = t35 * k8;
+            let t310: T = t36 * k11;
+            let t312: T = t306 + t310;
+            let t316: T = t315 - t312;
+            w[5] = t316;
+            let t339: T = t36 * t316;
+            let t299: T = t36 * k9;
+            let t296: T = t35 * k7;
+            let t300: T = t299 - t296;
+            let t303: T = qd2 * k10;
+            let t305: T = t300 - t303;
+            w[6] = t305;
+            let t340: T = qd2 * t305;
+            let t341: T = t339 - t340;
+            let t348: T = t323 + t341;
             let t41: T = c2 * k0;
             w[7] = t41;
-            let t353: T = t41 * k5;
-            let t359: T = t350 - t353;
-            w[8] = t359;
+            let t351: T = t41 * k5;
+            let t357: T = t348 - t351;
+            w[8] = t357;
             let t54: T = c3 * t45;
             let t55: T = s3 * t46;
             let t56: T = t54 + t55;
@@ -2965,33 +2960,21 @@ pub mod puma560 {
             let t101: T = qd3 * t53;
             let t104: T = t56 + t101;
             w[10] = t104;
-            let t417: T = t104 * k16;
-            let t59: T = c3 * t46;
-            let t57: T = s3 * t45;
-            let t60: T = t59 - t57;
-            let t47: T = c3 * t35;
-            let t48: T = s3 * t36;
-            let t49: T = t47 + t48;
-            w[11] = t49;
-            let t102: T = qd3 * t49;
-            let t105: T = t60 - t102;
-            w[12] = t105;
-            let t418: T = t105 * k17;
-            let t420: T = t417 - t418;
+            let t410: T = t104 * k15;
             let t99: T = qd2 + qd3;
-            w[13] = t99;
-            let t415: T = t99 * k20;
-            let t412: T = t53 * k19;
-            let t416: T = t415 - t412;
-            w[14] = t416;
-            let t429: T = t53 * t416;
-            let t406: T = t53 * k18;
-            let t409: T = t99 * k19;
-            let t411: T = t406 - t409;
-            w[15] = t411;
-            let t430: T = t99 * t411;
-            let t431: T = t429 - t430;
-            let t438: T = t420 + t431;
+            w[11] = t99;
+            let t408: T = t99 * k18;
+            let t405: T = t53 * k17;
+            let t409: T = t408 - t405;
+            w[12] = t409;
+            let t419: T = t53 * t409;
+            let t399: T = t53 * k16;
+            let t402: T = t99 * k17;
+            let t404: T = t399 - t402;
+            w[13] = t404;
+            let t420: T = t99 * t404;
+            let t421: T = t419 - t420;
+            let t428: T = t410 + t421;
             let t72: T = qd2 * k2;
             let t73: T = t35 * k1;
             let t74: T = t72 - t73;
@@ -3001,8 +2984,8 @@ pub mod puma560 {
             let t88: T = t86 - t87;
             let t67: T = t46 * k2;
             let t91: T = t88 - t67;
-            w[16] = t91;
-            let t441: T = t91 * k15;
+            w[14] = t91;
+            let t431: T = t91 * k14;
             let t64: T = qdd2 * k2;
             let t65: T = t45 * k1;
             let t66: T = t64 - t65;
@@ -3014,7 +2997,7 @@ pub mod puma560 {
             let t90: T = t70 + t85;
             let t97: T = c3 * t90;
             let t40: T = s2 * k0;
-            w[17] = t40;
+            w[15] = t40;
             let t62: T = t46 * k1;
             let t69: T = t40 + t62;
             let t77: T = t36 * t75;
@@ -3023,34 +3006,38 @@ pub mod puma560 {
             let t89: T = t69 - t80;
             let t95: T = s3 * t89;
             let t98: T = t97 - t95;
-            w[18] = t98;
-            let t442: T = t98 * k14;
-            let t443: T = t441 - t442;
-            let t447: T = t438 + t443;
+            w[16] = t98;
+            let t432: T = t98 * k13;
+            let t433: T = t431 - t432;
+            let t437: T = t428 + t433;
             let t116: T = c4 * t104;
             let t100: T = qdd2 + qdd3;
-            w[19] = t100;
+            w[17] = t100;
             let t117: T = s4 * t100;
             let t119: T = t116 - t117;
+            let t47: T = c3 * t35;
+            let t48: T = s3 * t36;
+            let t49: T = t47 + t48;
+            w[18] = t49;
             let t110: T = s4 * t49;
             let t112: T = c4 * t99;
             let t114: T = t110 + t112;
-            w[20] = t114;
+            w[19] = t114;
             let t169: T = qd4 * t114;
             let t173: T = t119 - t169;
-            let t486: T = t173 * k23;
+            let t476: T = t173 * k21;
             let t167: T = qd4 + t53;
-            let t482: T = t114 * k23;
-            w[21] = t482;
-            let t492: T = t167 * t482;
-            let t485: T = t167 * k24;
-            let t490: T = t114 * t485;
-            let t494: T = t492 - t490;
-            let t503: T = t486 + t494;
+            let t472: T = t114 * k21;
+            w[20] = t472;
+            let t482: T = t167 * t472;
+            let t475: T = t167 * k22;
+            let t480: T = t114 * t475;
+            let t484: T = t482 - t480;
+            let t493: T = t476 + t484;
             let t92: T = c3 * t89;
             let t93: T = s3 * t90;
             let t94: T = t92 + t93;
-            w[22] = t94;
+            w[21] = t94;
             let t126: T = k2 * t100;
             let t133: T = t94 - t126;
             let t139: T = t49 * k2;
@@ -3063,6 +3050,12 @@ pub mod puma560 {
             let t154: T = t133 + t144;
             let t161: T = s4 * t154;
             let t130: T = k2 * t104;
+            let t59: T = c3 * t46;
+            let t57: T = s3 * t45;
+            let t60: T = t59 - t57;
+            let t102: T = qd3 * t49;
+            let t105: T = t60 - t102;
+            w[22] = t105;
             let t131: T = t105 * k3;
             let t132: T = t130 - t131;
             let t135: T = t91 + t132;
@@ -3073,8 +3066,8 @@ pub mod puma560 {
             let t156: T = t135 + t153;
             let t163: T = c4 * t156;
             let t165: T = t161 + t163;
-            let t506: T = t165 * k22;
-            let t509: T = t503 + t506;
+            let t496: T = t165 * k20;
+            let t499: T = t493 + t496;
             let t183: T = c5 * t173;
             let t168: T = qdd4 + t105;
             w[23] = t168;
@@ -3089,14 +3082,14 @@ pub mod puma560 {
             let t182: T = t181 - t179;
             let t199: T = qd5 * t182;
             let t202: T = t185 + t199;
-            let t520: T = t202 * k26;
+            let t510: T = t202 * k24;
             let t197: T = qd5 + t114;
-            let t519: T = t197 * k27;
-            let t523: T = t182 * t519;
-            let t517: T = t182 * k26;
-            let t524: T = t197 * t517;
-            let t525: T = t523 - t524;
-            let t532: T = t520 + t525;
+            let t509: T = t197 * k25;
+            let t513: T = t182 * t509;
+            let t507: T = t182 * k24;
+            let t514: T = t197 * t507;
+            let t515: T = t513 - t514;
+            let t522: T = t510 + t515;
             let t214: T = c6 * t202;
             let t120: T = s4 * t104;
             let t122: T = c4 * t100;
@@ -3115,14 +3108,14 @@ pub mod puma560 {
             w[25] = t212;
             let t236: T = qd6 * t212;
             let t240: T = t217 - t236;
-            let t571: T = t240 * k30;
+            let t561: T = t240 * k28;
             let t234: T = qd6 + t182;
-            let t567: T = t212 * k30;
-            let t577: T = t234 * t567;
-            let t570: T = t234 * k31;
-            let t575: T = t212 * t570;
-            let t579: T = t577 - t575;
-            let t588: T = t571 + t579;
+            let t557: T = t212 * k28;
+            let t567: T = t234 * t557;
+            let t560: T = t234 * k29;
+            let t565: T = t212 * t560;
+            let t569: T = t567 - t565;
+            let t578: T = t561 + t569;
             let t157: T = c4 * t154;
             let t158: T = s4 * t156;
             let t160: T = t157 - t158;
@@ -3140,137 +3133,140 @@ pub mod puma560 {
             let t228: T = s6 * t192;
             let t230: T = c6 * t165;
             let t232: T = t228 + t230;
-            let t591: T = t232 * k29;
-            let t594: T = t588 + t591;
-            let t603: T = c6 * t594;
+            let t581: T = t232 * k27;
+            let t584: T = t578 + t581;
+            let t593: T = c6 * t584;
             let t204: T = c6 * t178;
             let t205: T = s6 * t197;
             let t207: T = t204 - t205;
             w[28] = t207;
-            let t566: T = t207 * k30;
-            let t580: T = t234 * t566;
-            let t581: T = t207 * t570;
-            let t582: T = t580 - t581;
+            let t556: T = t207 * k28;
+            let t570: T = t234 * t556;
+            let t571: T = t207 * t560;
+            let t572: T = t570 - t571;
             let t218: T = s6 * t202;
             let t220: T = c6 * t198;
             let t222: T = t218 + t220;
             let t238: T = qd6 * t207;
             let t241: T = t222 + t238;
-            let t572: T = t241 * k30;
-            let t589: T = t582 - t572;
+            let t562: T = t241 * k28;
+            let t579: T = t572 - t562;
             let t224: T = c6 * t192;
             let t225: T = s6 * t165;
             let t227: T = t224 - t225;
-            let t593: T = t227 * k29;
-            let t595: T = t589 + t593;
-            let t604: T = s6 * t595;
-            let t606: T = t603 - t604;
-            let t613: T = t532 + t606;
-            w[29] = t613;
-            let t627: T = c5 * t613;
+            let t583: T = t227 * k27;
+            let t585: T = t579 + t583;
+            let t594: T = s6 * t585;
+            let t596: T = t593 - t594;
+            let t603: T = t522 + t596;
+            w[29] = t603;
+            let t617: T = c5 * t603;
             let t188: T = c5 * t168;
             let t186: T = s5 * t173;
             let t189: T = t188 - t186;
             let t200: T = qd5 * t178;
             let t203: T = t189 - t200;
-            let t521: T = t203 * k26;
-            let t516: T = t178 * k26;
-            let t526: T = t197 * t516;
-            let t527: T = t178 * t519;
-            let t528: T = t526 - t527;
-            let t533: T = t521 + t528;
+            let t511: T = t203 * k24;
+            let t506: T = t178 * k24;
+            let t516: T = t197 * t506;
+            let t517: T = t178 * t509;
+            let t518: T = t516 - t517;
+            let t523: T = t511 + t518;
             let t235: T = qdd6 + t203;
-            let t574: T = t235 * k31;
-            let t585: T = t212 * t566;
-            let t583: T = t207 * t567;
-            let t587: T = t585 - t583;
-            let t590: T = t574 + t587;
-            out[5] = t590;
-            let t614: T = t533 + t590;
-            w[30] = t614;
-            let t628: T = s5 * t614;
-            let t630: T = t627 - t628;
-            let t635: T = t509 + t630;
-            w[31] = t635;
-            let t649: T = c4 * t635;
-            let t481: T = t109 * k23;
-            w[32] = t481;
-            let t495: T = t167 * t481;
-            let t496: T = t109 * t485;
-            let t497: T = t495 - t496;
-            let t487: T = t174 * k23;
-            let t504: T = t497 - t487;
-            let t508: T = t160 * k22;
-            let t510: T = t504 + t508;
-            let t607: T = s6 * t594;
-            let t609: T = c6 * t595;
-            let t611: T = t607 + t609;
-            w[33] = t611;
-            let t522: T = t198 * k27;
-            let t529: T = t178 * t517;
-            let t530: T = t182 * t516;
-            let t531: T = t529 - t530;
-            let t534: T = t522 + t531;
-            w[34] = t534;
-            let t631: T = t611 - t534;
-            let t636: T = t510 + t631;
-            w[35] = t636;
-            let t650: T = s4 * t636;
-            let t652: T = t649 - t650;
-            let t659: T = t447 + t652;
-            w[36] = t659;
-            let t452: T = t165 * k21;
-            let t458: T = t173 * k22;
-            let t461: T = t452 + t458;
-            let t463: T = t114 * k22;
-            w[37] = t463;
-            let t469: T = t167 * t463;
-            let t477: T = t461 + t469;
-            let t514: T = t165 * k25;
-            let t537: T = t232 * k28;
-            let t543: T = t240 * k29;
-            let t546: T = t537 + t543;
-            let t548: T = t212 * k29;
-            w[38] = t548;
-            let t554: T = t234 * t548;
-            let t562: T = t546 + t554;
-            w[39] = t562;
-            let t601: T = c6 * t562;
-            let t536: T = t227 * k28;
-            let t541: T = t241 * k29;
-            let t545: T = t536 - t541;
-            let t550: T = t207 * k29;
-            w[40] = t550;
-            let t552: T = t234 * t550;
-            let t561: T = t545 + t552;
-            let t599: T = s6 * t561;
-            let t602: T = t601 - t599;
-            let t618: T = t514 + t602;
-            let t639: T = t477 + t618;
-            w[41] = t639;
-            let t647: T = c4 * t639;
-            w[42] = t647;
-            let t451: T = t160 * k21;
-            let t456: T = t174 * k22;
-            let t460: T = t451 - t456;
-            let t465: T = t109 * k22;
-            w[43] = t465;
-            let t467: T = t167 * t465;
-            let t476: T = t460 + t467;
-            w[44] = t476;
-            let t512: T = t192 * k25;
-            w[45] = t512;
-            let t596: T = c6 * t561;
-            w[46] = t596;
+            let t564: T = t235 * k29;
+            let t575: T = t212 * t556;
+            let t573: T = t207 * t557;
+            let t577: T = t575 - t573;
+            let t580: T = t564 + t577;
+            out[5] = t580;
+            let t604: T = t523 + t580;
+            w[30] = t604;
+            let t618: T = s5 * t604;
+            let t620: T = t617 - t618;
+            let t625: T = t499 + t620;
+            w[31] = t625;
+            let t639: T = c4 * t625;
+            let t471: T = t109 * k21;
+            w[32] = t471;
+            let t485: T = t167 * t471;
+            let t486: T = t109 * t475;
+            let t487: T = t485 - t486;
+            let t477: T = t174 * k21;
+            let t494: T = t487 - t477;
+            let t498: T = t160 * k20;
+            let t500: T = t494 + t498;
+            let t597: T = s6 * t584;
+            let t599: T = c6 * t585;
+            let t601: T = t597 + t599;
+            w[33] = t601;
+            let t512: T = t198 * k25;
+            let t519: T = t178 * t507;
+            let t520: T = t182 * t506;
+            let t521: T = t519 - t520;
+            let t524: T = t512 + t521;
+            w[34] = t524;
+            let t621: T = t601 - t524;
+            let t626: T = t500 + t621;
+            w[35] = t626;
+            let t640: T = s4 * t626;
+            let t642: T = t639 - t640;
+            let t649: T = t437 + t642;
+            w[36] = t649;
+            let t442: T = t165 * k19;
+            let t448: T = t173 * k20;
+            let t451: T = t442 + t448;
+            let t453: T = t114 * k20;
+            w[37] = t453;
+            let t459: T = t167 * t453;
+            let t467: T = t451 + t459;
+            let t504: T = t165 * k23;
+            let t527: T = t232 * k26;
+            let t533: T = t240 * k27;
+            let t536: T = t527 + t533;
+            let t538: T = t212 * k27;
+            w[38] = t538;
+            let t544: T = t234 * t538;
+            let t552: T = t536 + t544;
+            let t591: T = c6 * t552;
+            let t526: T = t227 * k26;
+            let t531: T = t241 * k27;
+            let t535: T = t526 - t531;
+            let t540: T = t207 * k27;
+            w[39] = t540;
+            let t542: T = t234 * t540;
+            let t551: T = t535 + t542;
+            let t589: T = s6 * t551;
+            let t592: T = t591 - t589;
+            let t608: T = t504 + t592;
+            let t629: T = t467 + t608;
+            w[40] = t629;
+            let t637: T = c4 * t629;
+            w[41] = t637;
+            let t441: T = t160 * k19;
+            let t446: T = t174 * k20;
+            let t450: T = t441 - t446;
+            let t455: T = t109 * k20;
+            w[42] = t455;
+            let t457: T = t167 * t455;
+            let t466: T = t450 + t457;
+            w[43] = t466;
+            let t502: T = t192 * k23;
+            w[44] = t502;
+            let t586: T = c6 * t551;
+            let t587: T = s6 * t552;
+            let t588: T = t586 + t587;
+            w[45] = t588;
         }
         #[inline(never)]
         fn inverse_dynamics_smooth_part1(
             &self,
             qd: &[T; DOF],
             qdd: &[T; DOF],
-            w: &mut [T; 47],
+            w: &mut [T; 46],
             out: &mut na::SVector<T, DOF>,
         ) {
+            let qd2: T = qd[1];
+            let qdd2: T = qdd[1];
             let c2: T = self.c[1];
             let s2: T = self.s[1];
             let c3: T = self.c[2];
@@ -3279,28 +3275,25 @@ pub mod puma560 {
             let s4: T = self.s[3];
             let c5: T = self.c[4];
             let s5: T = self.s[4];
-            let s6: T = self.s[5];
-            let qd2: T = qd[1];
-            let qdd2: T = qdd[1];
             let t35: T = w[3];
             let t36: T = w[1];
-            let t40: T = w[17];
+            let t40: T = w[15];
             let t41: T = w[7];
             let t45: T = w[2];
             let t46: T = w[4];
-            let t49: T = w[11];
+            let t49: T = w[18];
             let t53: T = w[9];
             let k0: T = ::dhgen::nalgebra::convert::<f64, T>(0.15005f64);
             let k1: T = ::dhgen::nalgebra::convert::<f64, T>(0.4318f64);
-            let t91: T = w[16];
-            let t94: T = w[22];
-            let t98: T = w[18];
-            let t99: T = w[13];
-            let t100: T = w[19];
+            let t91: T = w[14];
+            let t94: T = w[21];
+            let t98: T = w[16];
+            let t99: T = w[11];
+            let t100: T = w[17];
             let t104: T = w[10];
-            let t105: T = w[12];
+            let t105: T = w[22];
             let t109: T = w[24];
-            let t114: T = w[20];
+            let t114: T = w[19];
             let k2: T = ::dhgen::nalgebra::convert::<f64, T>(0.0203f64);
             let t155: T = w[27];
             let t160: T = w[26];
@@ -3310,221 +3303,211 @@ pub mod puma560 {
             let t245: T = w[0];
             let k3: T = ::dhgen::nalgebra::convert::<f64, T>(3.9585f64);
             let k4: T = ::dhgen::nalgebra::convert::<f64, T>(0.10439999999999999f64);
-            let k5: T = ::dhgen::nalgebra::convert::<f64, T>(1.1831999999999994f64);
-            let k6: T = ::dhgen::nalgebra::convert::<f64, T>(1.0311851500000007f64);
-            let k7: T = ::dhgen::nalgebra::convert::<f64, T>(0.007099199999999993f64);
-            let k8: T = ::dhgen::nalgebra::convert::<f64, T>(0.26917800000000014f64);
-            let k9: T = ::dhgen::nalgebra::convert::<f64, T>(0.0070992f64);
-            let k10: T = ::dhgen::nalgebra::convert::<f64, T>(1.5050163500000004f64);
-            let k11: T = ::dhgen::nalgebra::convert::<f64, T>(0.023750999999999998f64);
-            let t307: T = w[6];
-            let k12: T = ::dhgen::nalgebra::convert::<f64, T>(0.023751f64);
-            let k13: T = ::dhgen::nalgebra::convert::<f64, T>(0.6200840000000003f64);
-            let t318: T = w[5];
-            let t359: T = w[8];
-            let k14: T = ::dhgen::nalgebra::convert::<f64, T>(4.8f64);
-            let k15: T = ::dhgen::nalgebra::convert::<f64, T>(0.06767999999999999f64);
-            let k16: T = ::dhgen::nalgebra::convert::<f64, T>(0.336f64);
-            let k17: T = ::dhgen::nalgebra::convert::<f64, T>(0.09047428800000003f64);
-            let k18: T = ::dhgen::nalgebra::convert::<
-                f64,
-                T,
-            >(0.0000000000000000008673617379884035f64);
-            let k19: T = ::dhgen::nalgebra::convert::<f64, T>(0.013454288000000003f64);
-            let k20: T = ::dhgen::nalgebra::convert::<f64, T>(0.0047376f64);
-            let t411: T = w[15];
-            let k21: T = ::dhgen::nalgebra::convert::<f64, T>(0.10952f64);
-            let t416: T = w[14];
-            let k22: T = ::dhgen::nalgebra::convert::<f64, T>(0.82f64);
-            let t463: T = w[37];
-            let t465: T = w[43];
-            let t476: T = w[44];
-            let t481: T = w[32];
-            let t482: T = w[21];
-            let k23: T = ::dhgen::nalgebra::convert::<f64, T>(0.0013f64);
-            let k24: T = ::dhgen::nalgebra::convert::<f64, T>(0.34f64);
-            let t512: T = w[45];
-            let t534: T = w[34];
-            let k25: T = ::dhgen::nalgebra::convert::<f64, T>(0.09f64);
-            let t548: T = w[38];
-            let t550: T = w[40];
-            let t562: T = w[39];
-            let t596: T = w[46];
-            let t611: T = w[33];
-            let t613: T = w[29];
-            let t614: T = w[30];
-            let t635: T = w[31];
-            let t636: T = w[35];
-            let t639: T = w[41];
-            let t647: T = w[42];
-            let t659: T = w[36];
-            let t597: T = s6 * t562;
-            let t598: T = t596 + t597;
-            let t616: T = t512 + t598;
-            let t619: T = c5 * t616;
+            let k5: T = ::dhgen::nalgebra::convert::<f64, T>(1.1832f64);
+            let k6: T = ::dhgen::nalgebra::convert::<f64, T>(1.0311851499999998f64);
+            let k7: T = ::dhgen::nalgebra::convert::<f64, T>(0.0070992f64);
+            let k8: T = ::dhgen::nalgebra::convert::<f64, T>(0.26917800000000003f64);
+            let k9: T = ::dhgen::nalgebra::convert::<f64, T>(1.50501635f64);
+            let k10: T = ::dhgen::nalgebra::convert::<f64, T>(0.023750999999999998f64);
+            let t305: T = w[6];
+            let k11: T = ::dhgen::nalgebra::convert::<f64, T>(0.023751f64);
+            let k12: T = ::dhgen::nalgebra::convert::<f64, T>(0.620084f64);
+            let t316: T = w[5];
+            let t357: T = w[8];
+            let k13: T = ::dhgen::nalgebra::convert::<f64, T>(4.8f64);
+            let k14: T = ::dhgen::nalgebra::convert::<f64, T>(0.06767999999999999f64);
+            let k15: T = ::dhgen::nalgebra::convert::<f64, T>(0.336f64);
+            let k16: T = ::dhgen::nalgebra::convert::<f64, T>(0.090474288f64);
+            let k17: T = ::dhgen::nalgebra::convert::<f64, T>(0.013454287999999998f64);
+            let k18: T = ::dhgen::nalgebra::convert::<f64, T>(0.0047376f64);
+            let t404: T = w[13];
+            let k19: T = ::dhgen::nalgebra::convert::<f64, T>(0.10951999999999999f64);
+            let t409: T = w[12];
+            let k20: T = ::dhgen::nalgebra::convert::<f64, T>(0.82f64);
+            let t453: T = w[37];
+            let t455: T = w[42];
+            let t466: T = w[43];
+            let t471: T = w[32];
+            let t472: T = w[20];
+            let k21: T = ::dhgen::nalgebra::convert::<f64, T>(0.0013f64);
+            let k22: T = ::dhgen::nalgebra::convert::<f64, T>(0.34f64);
+            let t502: T = w[44];
+            let t524: T = w[34];
+            let k23: T = ::dhgen::nalgebra::convert::<f64, T>(0.09f64);
+            let t538: T = w[38];
+            let t540: T = w[39];
+            let t588: T = w[45];
+            let t601: T = w[33];
+            let t603: T = w[29];
+            let t604: T = w[30];
+            let t625: T = w[31];
+            let t626: T = w[35];
+            let t629: T = w[40];
+            let t637: T = w[41];
+            let t649: T = w[36];
+            let t606: T = t502 + t588;
+            let t609: T = c5 * t606;
             let t195: T = c5 * t155;
             let t193: T = s5 * t160;
             let t196: T = t195 - t193;
-            let t513: T = t196 * k24;
-            let t539: T = t196 * k25;
-            let t556: T = t207 * t550;
-            let t558: T = t212 * t548;
-            let t559: T = t556 + t558;
-            let t564: T = t539 - t559;
-            let t617: T = t513 + t564;
-            let t620: T = s5 * t617;
-            let t622: T = t619 - t620;
-            let t638: T = t476 + t622;
-            let t645: T = s4 * t638;
-            let t648: T = t647 - t645;
-            let t662: T = k1 * t648;
-            let t668: T = t659 + t662;
-            let t681: T = c3 * t668;
-            let t421: T = t105 * k19;
-            let t422: T = t100 * k20;
-            let t424: T = t421 - t422;
-            let t399: T = t49 * k17;
-            let t402: T = t53 * k18;
-            let t404: T = t399 - t402;
-            let t432: T = t99 * t404;
-            let t433: T = t49 * t416;
-            let t434: T = t432 - t433;
-            let t439: T = t424 + t434;
-            let t444: T = t94 * k15;
-            let t448: T = t439 + t444;
-            let t489: T = t168 * k23;
-            let t500: T = t114 * t481;
-            let t498: T = t109 * t482;
-            let t502: T = t500 - t498;
-            let t505: T = t489 + t502;
-            let t632: T = s5 * t613;
-            let t633: T = c5 * t614;
-            let t634: T = t632 + t633;
-            let t637: T = t505 + t634;
-            out[3] = t637;
-            let t660: T = t448 + t637;
-            let t663: T = k2 * t648;
-            let t669: T = t660 - t663;
-            let t682: T = s3 * t669;
-            let t684: T = t681 - t682;
-            let t688: T = t359 + t684;
-            let t363: T = t94 * k14;
-            let t367: T = t105 * k15;
-            let t369: T = t100 * k16;
-            let t370: T = t367 - t369;
-            let t374: T = t363 + t370;
-            let t382: T = t49 * k16;
-            let t383: T = t53 * t382;
+            let t503: T = t196 * k22;
+            let t529: T = t196 * k23;
+            let t546: T = t207 * t540;
+            let t548: T = t212 * t538;
+            let t549: T = t546 + t548;
+            let t554: T = t529 - t549;
+            let t607: T = t503 + t554;
+            let t610: T = s5 * t607;
+            let t612: T = t609 - t610;
+            let t628: T = t466 + t612;
+            let t635: T = s4 * t628;
+            let t638: T = t637 - t635;
+            let t652: T = k1 * t638;
+            let t658: T = t649 + t652;
+            let t671: T = c3 * t658;
+            let t411: T = t105 * k17;
+            let t412: T = t100 * k18;
+            let t414: T = t411 - t412;
+            let t397: T = t49 * k16;
+            let t422: T = t99 * t397;
+            let t423: T = t49 * t409;
+            let t424: T = t422 - t423;
+            let t429: T = t414 + t424;
+            let t434: T = t94 * k14;
+            let t438: T = t429 + t434;
+            let t479: T = t168 * k21;
+            let t490: T = t114 * t471;
+            let t488: T = t109 * t472;
+            let t492: T = t490 - t488;
+            let t495: T = t479 + t492;
+            let t622: T = s5 * t603;
+            let t623: T = c5 * t604;
+            let t624: T = t622 + t623;
+            let t627: T = t495 + t624;
+            out[3] = t627;
+            let t650: T = t438 + t627;
+            let t653: T = k2 * t638;
+            let t659: T = t650 - t653;
+            let t672: T = s3 * t659;
+            let t674: T = t671 - t672;
+            let t678: T = t357 + t674;
+            let t361: T = t94 * k13;
+            let t365: T = t105 * k14;
+            let t367: T = t100 * k15;
+            let t368: T = t365 - t367;
+            let t372: T = t361 + t368;
             let t380: T = t49 * k15;
-            let t384: T = t99 * t380;
-            let t386: T = t383 + t384;
-            let t395: T = t374 + t386;
-            let t642: T = c4 * t638;
-            let t643: T = s4 * t639;
-            let t644: T = t642 + t643;
-            let t671: T = t395 + t644;
-            let t678: T = s3 * t671;
-            let t364: T = t98 * k14;
-            let t371: T = t104 * k15;
-            let t375: T = t364 - t371;
-            let t377: T = t53 * k15;
-            let t378: T = t99 * k16;
-            let t379: T = t377 - t378;
-            let t387: T = t99 * t379;
-            let t388: T = t49 * t382;
-            let t389: T = t387 - t388;
-            let t396: T = t375 + t389;
-            let t454: T = t155 * k22;
-            let t471: T = t109 * t465;
-            let t473: T = t114 * t463;
-            let t474: T = t471 + t473;
-            let t479: T = t454 - t474;
-            let t624: T = s5 * t616;
-            let t625: T = c5 * t617;
-            let t626: T = t624 + t625;
-            let t641: T = t479 + t626;
-            let t672: T = t396 + t641;
-            let t679: T = c3 * t672;
-            let t680: T = t678 + t679;
-            let t691: T = k0 * t680;
-            let t697: T = t688 - t691;
-            let t716: T = s2 * t697;
-            let t328: T = t46 * k10;
-            let t326: T = t45 * k9;
-            let t329: T = t328 - t326;
-            let t330: T = qdd2 * k11;
-            let t332: T = t329 - t330;
+            let t381: T = t53 * t380;
+            let t378: T = t49 * k14;
+            let t382: T = t99 * t378;
+            let t384: T = t381 + t382;
+            let t393: T = t372 + t384;
+            let t632: T = c4 * t628;
+            let t633: T = s4 * t629;
+            let t634: T = t632 + t633;
+            let t661: T = t393 + t634;
+            let t668: T = s3 * t661;
+            let t362: T = t98 * k13;
+            let t369: T = t104 * k14;
+            let t373: T = t362 - t369;
+            let t375: T = t53 * k14;
+            let t376: T = t99 * k15;
+            let t377: T = t375 - t376;
+            let t385: T = t99 * t377;
+            let t386: T = t49 * t380;
+            let t387: T = t385 - t386;
+            let t394: T = t373 + t387;
+            let t444: T = t155 * k20;
+            let t461: T = t109 * t455;
+            let t463: T = t114 * t453;
+            let t464: T = t461 + t463;
+            let t469: T = t444 - t464;
+            let t614: T = s5 * t606;
+            let t615: T = c5 * t607;
+            let t616: T = t614 + t615;
+            let t631: T = t469 + t616;
+            let t662: T = t394 + t631;
+            let t669: T = c3 * t662;
+            let t670: T = t668 + t669;
+            let t681: T = k0 * t670;
+            let t687: T = t678 - t681;
+            let t706: T = s2 * t687;
+            let t326: T = t46 * k9;
+            let t324: T = t45 * k7;
+            let t327: T = t326 - t324;
+            let t328: T = qdd2 * k10;
+            let t330: T = t327 - t328;
             let t285: T = t35 * k6;
             let t288: T = t36 * k7;
             let t290: T = t285 - t288;
             let t293: T = qd2 * k8;
             let t295: T = t290 - t293;
-            let t344: T = qd2 * t295;
-            let t345: T = t35 * t318;
-            let t346: T = t344 - t345;
-            let t351: T = t332 + t346;
-            let t355: T = t40 * k3;
-            let t360: T = t351 + t355;
-            let t685: T = s3 * t668;
-            let t686: T = c3 * t669;
-            let t687: T = t685 + t686;
-            let t689: T = t360 + t687;
-            let t674: T = c3 * t671;
-            let t675: T = s3 * t672;
-            let t677: T = t674 - t675;
-            let t693: T = k0 * t677;
-            let t365: T = t91 * k14;
-            let t373: T = t104 * k16;
-            let t376: T = t365 + t373;
-            let t390: T = t49 * t380;
-            let t392: T = t53 * t379;
-            let t393: T = t390 + t392;
-            let t397: T = t376 - t393;
-            let t673: T = t397 + t648;
-            let t694: T = k1 * t673;
-            let t695: T = t693 - t694;
-            let t698: T = t689 + t695;
-            let t717: T = c2 * t698;
-            let t718: T = t716 + t717;
-            let t719: T = t245 + t718;
-            out[0] = t719;
-            let t339: T = qdd2 * k13;
-            let t333: T = t45 * k8;
-            let t335: T = t46 * k12;
-            let t337: T = t333 + t335;
-            let t340: T = t339 - t337;
-            let t347: T = t35 * t307;
-            let t348: T = t36 * t295;
-            let t349: T = t347 - t348;
-            let t352: T = t340 + t349;
-            let t356: T = t41 * k5;
-            let t357: T = t40 * k4;
-            let t358: T = t356 - t357;
-            let t361: T = t352 + t358;
-            let t427: T = t100 * k21;
-            let t425: T = t105 * k20;
-            let t428: T = t427 - t425;
-            let t435: T = t49 * t411;
-            let t436: T = t53 * t404;
-            let t437: T = t435 - t436;
-            let t440: T = t428 + t437;
-            let t445: T = t94 * k16;
-            let t449: T = t440 - t445;
-            let t653: T = s4 * t635;
-            let t655: T = c4 * t636;
-            let t657: T = t653 + t655;
-            let t661: T = t449 - t657;
-            let t665: T = k2 * t641;
-            let t666: T = k1 * t644;
-            let t667: T = t665 - t666;
-            let t670: T = t661 + t667;
-            out[2] = t670;
-            let t690: T = t361 + t670;
-            let t696: T = k1 * t680;
-            let t699: T = t690 + t696;
-            out[1] = t699;
-            let t615: T = t534 - t611;
-            out[4] = t615;
+            let t342: T = qd2 * t295;
+            let t343: T = t35 * t316;
+            let t344: T = t342 - t343;
+            let t349: T = t330 + t344;
+            let t353: T = t40 * k3;
+            let t358: T = t349 + t353;
+            let t675: T = s3 * t658;
+            let t676: T = c3 * t659;
+            let t677: T = t675 + t676;
+            let t679: T = t358 + t677;
+            let t664: T = c3 * t661;
+            let t665: T = s3 * t662;
+            let t667: T = t664 - t665;
+            let t683: T = k0 * t667;
+            let t363: T = t91 * k13;
+            let t371: T = t104 * k15;
+            let t374: T = t363 + t371;
+            let t388: T = t49 * t378;
+            let t390: T = t53 * t377;
+            let t391: T = t388 + t390;
+            let t395: T = t374 - t391;
+            let t663: T = t395 + t638;
+            let t684: T = k1 * t663;
+            let t685: T = t683 - t684;
+            let t688: T = t679 + t685;
+            let t707: T = c2 * t688;
+            let t708: T = t706 + t707;
+            let t709: T = t245 + t708;
+            out[0] = t709;
+            let t337: T = qdd2 * k12;
+            let t331: T = t45 * k8;
+            let t333: T = t46 * k11;
+            let t335: T = t331 + t333;
+            let t338: T = t337 - t335;
+            let t345: T = t35 * t305;
+            let t346: T = t36 * t295;
+            let t347: T = t345 - t346;
+            let t350: T = t338 + t347;
+            let t354: T = t41 * k5;
+            let t355: T = t40 * k4;
+            let t356: T = t354 - t355;
+            let t359: T = t350 + t356;
+            let t417: T = t100 * k19;
+            let t415: T = t105 * k18;
+            let t418: T = t417 - t415;
+            let t425: T = t49 * t404;
+            let t426: T = t53 * t397;
+            let t427: T = t425 - t426;
+            let t430: T = t418 + t427;
+            let t435: T = t94 * k15;
+            let t439: T = t430 - t435;
+            let t643: T = s4 * t625;
+            let t645: T = c4 * t626;
+            let t647: T = t643 + t645;
+            let t651: T = t439 - t647;
+            let t655: T = k2 * t631;
+            let t656: T = k1 * t634;
+            let t657: T = t655 - t656;
+            let t660: T = t651 + t657;
+            out[2] = t660;
+            let t680: T = t359 + t660;
+            let t686: T = k1 * t670;
+            let t689: T = t680 + t686;
+            out[1] = t689;
+            let t605: T = t524 - t601;
+            out[4] = t605;
         }
         fn inverse_dynamics_smooth(
             &self,
@@ -3532,7 +3515,7 @@ pub mod puma560 {
             qdd: &[T; DOF],
         ) -> na::SVector<T, DOF> {
             let mut out: na::SVector<T, DOF> = na::SVector::zeros();
-            let mut w = [T::zero(); 47];
+            let mut w = [T::zero(); 46];
             self.inverse_dynamics_smooth_part0(qd, qdd, &mut w, &mut out);
             self.inverse_dynamics_smooth_part1(qd, qdd, &mut w, &mut out);
             out
@@ -3541,9 +3524,15 @@ pub mod puma560 {
         fn bias_smooth_part0(
             &self,
             qd: &[T; DOF],
-            w: &mut [T; 38],
+            w: &mut [T; 40],
             out: &mut na::SVector<T, DOF>,
         ) {
+            let qd1: T = qd[0];
+            let qd2: T = qd[1];
+            let qd3: T = qd[2];
+            let qd4: T = qd[3];
+            let qd5: T = qd[4];
+            let qd6: T = qd[5];
             let c2: T = self.c[1];
             let s2: T = self.s[1];
             let c3: T = self.c[2];
@@ -3554,78 +3543,67 @@ pub mod puma560 {
             let s5: T = self.s[4];
             let c6: T = self.c[5];
             let s6: T = self.s[5];
-            let qd1: T = qd[0];
-            let qd2: T = qd[1];
-            let qd3: T = qd[2];
-            let qd4: T = qd[3];
-            let qd5: T = qd[4];
-            let qd6: T = qd[5];
             let k0: T = ::dhgen::nalgebra::convert::<f64, T>(9.81f64);
             let k1: T = ::dhgen::nalgebra::convert::<f64, T>(0.15005f64);
             let k2: T = ::dhgen::nalgebra::convert::<f64, T>(0.4318f64);
             let k3: T = ::dhgen::nalgebra::convert::<f64, T>(0.0203f64);
             let k4: T = ::dhgen::nalgebra::convert::<f64, T>(3.9585f64);
-            let k5: T = ::dhgen::nalgebra::convert::<f64, T>(1.0311851500000007f64);
-            let k6: T = ::dhgen::nalgebra::convert::<f64, T>(0.007099199999999993f64);
-            let k7: T = ::dhgen::nalgebra::convert::<f64, T>(0.26917800000000014f64);
-            let k8: T = ::dhgen::nalgebra::convert::<f64, T>(0.0070992f64);
-            let k9: T = ::dhgen::nalgebra::convert::<f64, T>(1.5050163500000004f64);
-            let k10: T = ::dhgen::nalgebra::convert::<f64, T>(0.023750999999999998f64);
-            let k11: T = ::dhgen::nalgebra::convert::<f64, T>(0.023751f64);
-            let k12: T = ::dhgen::nalgebra::convert::<f64, T>(0.6200840000000003f64);
-            let k13: T = ::dhgen::nalgebra::convert::<f64, T>(0.06767999999999999f64);
-            let k14: T = ::dhgen::nalgebra::convert::<f64, T>(0.336f64);
-            let k15: T = ::dhgen::nalgebra::convert::<f64, T>(0.09047428800000003f64);
-            let k16: T = ::dhgen::nalgebra::convert::<
-                f64,
-                T,
-            >(0.0000000000000000008673617379884035f64);
-            let k17: T = ::dhgen::nalgebra::convert::<f64, T>(0.013454288000000003f64);
-            let k18: T = ::dhgen::nalgebra::convert::<f64, T>(0.0047376f64);
-            let k19: T = ::dhgen::nalgebra::convert::<f64, T>(0.10952f64);
-            let k20: T = ::dhgen::nalgebra::convert::<f64, T>(0.82f64);
-            let k21: T = ::dhgen::nalgebra::convert::<f64, T>(0.015579999999999998f64);
-            let k22: T = ::dhgen::nalgebra::convert::<f64, T>(0.00209602f64);
-            let k23: T = ::dhgen::nalgebra::convert::<f64, T>(0.0013f64);
-            let k24: T = ::dhgen::nalgebra::convert::<f64, T>(0.34f64);
-            let k25: T = ::dhgen::nalgebra::convert::<f64, T>(0.0003f64);
-            let k26: T = ::dhgen::nalgebra::convert::<f64, T>(0.0004f64);
-            let k27: T = ::dhgen::nalgebra::convert::<f64, T>(0.09f64);
-            let k28: T = ::dhgen::nalgebra::convert::<f64, T>(0.0028799999999999997f64);
-            let k29: T = ::dhgen::nalgebra::convert::<f64, T>(0.00024216f64);
-            let k30: T = ::dhgen::nalgebra::convert::<f64, T>(0.00004f64);
-            let t30: T = c2 * qd1;
+            let k5: T = ::dhgen::nalgebra::convert::<f64, T>(1.0311851499999998f64);
+            let k6: T = ::dhgen::nalgebra::convert::<f64, T>(0.0070992f64);
+            let k7: T = ::dhgen::nalgebra::convert::<f64, T>(0.26917800000000003f64);
+            let k8: T = ::dhgen::nalgebra::convert::<f64, T>(1.50501635f64);
+            let k9: T = ::dhgen::nalgebra::convert::<f64, T>(0.023750999999999998f64);
+            let k10: T = ::dhgen::nalgebra::convert::<f64, T>(0.023751f64);
+            let k11: T = ::dhgen::nalgebra::convert::<f64, T>(0.620084f64);
+            let k12: T = ::dhgen::nalgebra::convert::<f64, T>(0.06767999999999999f64);
+            let k13: T = ::dhgen::nalgebra::convert::<f64, T>(0.336f64);
+            let k14: T = ::dhgen::nalgebra::convert::<f64, T>(0.090474288f64);
+            let k15: T = ::dhgen::nalgebra::convert::<f64, T>(0.013454287999999998f64);
+            let k16: T = ::dhgen::nalgebra::convert::<f64, T>(0.0047376f64);
+            let k17: T = ::dhgen::nalgebra::convert::<f64, T>(0.10951999999999999f64);
+            let k18: T = ::dhgen::nalgebra::convert::<f64, T>(0.82f64);
+            let k19: T = ::dhgen::nalgebra::convert::<f64, T>(0.015579999999999998f64);
+            let k20: T = ::dhgen::nalgebra::convert::<f64, T>(0.00209602f64);
+            let k21: T = ::dhgen::nalgebra::convert::<f64, T>(0.0013f64);
+            let k22: T = ::dhgen::nalgebra::convert::<f64, T>(0.34f64);
+            let k23: T = ::dhgen::nalgebra::convert::<f64, T>(0.0003f64);
+            let k24: T = ::dhgen::nalgebra::convert::<f64, T>(0.0004f64);
+            let k25: T = ::dhgen::nalgebra::convert::<f64, T>(0.09f64);
+            let k26: T = ::dhgen::nalgebra::convert::<f64, T>(0.0028799999999999997f64);
+            let k27: T = ::dhgen::nalgebra::convert::<f64, T>(0.00024216f64);
+            let k28: T = ::dhgen::nalgebra::convert::<f64, T>(0.00004f64);
+            let t30: T = qd1 * c2;
             w[0] = t30;
             let t34: T = qd2 * t30;
             w[1] = t34;
-            let t300: T = t34 * k5;
-            let t29: T = s2 * qd1;
+            let t298: T = t34 * k5;
+            let t29: T = qd1 * s2;
             w[2] = t29;
             let t35: T = qd2 * t29;
             w[3] = t35;
-            let t301: T = t35 * k6;
-            let t303: T = t300 + t301;
-            let t298: T = qd2 * k12;
-            let t289: T = t29 * k7;
-            let t293: T = t30 * k11;
-            let t295: T = t289 + t293;
-            let t299: T = t298 - t295;
-            w[4] = t299;
-            let t315: T = t30 * t299;
-            let t282: T = t30 * k9;
-            let t279: T = t29 * k8;
-            let t283: T = t282 - t279;
-            let t286: T = qd2 * k10;
-            let t288: T = t283 - t286;
-            w[5] = t288;
-            let t316: T = qd2 * t288;
-            let t317: T = t315 - t316;
-            let t324: T = t303 + t317;
+            let t299: T = t35 * k6;
+            let t301: T = t298 + t299;
+            let t296: T = qd2 * k11;
+            let t287: T = t29 * k7;
+            let t291: T = t30 * k10;
+            let t293: T = t287 + t291;
+            let t297: T = t296 - t293;
+            w[4] = t297;
+            let t313: T = t30 * t297;
+            let t280: T = t30 * k8;
+            let t277: T = t29 * k6;
+            let t281: T = t280 - t277;
+            let t284: T = qd2 * k9;
+            let t286: T = t281 - t284;
+            w[5] = t286;
+            let t314: T = qd2 * t286;
+            let t315: T = t313 - t314;
+            let t322: T = t301 + t315;
             let t33: T = c2 * k0;
             w[6] = t33;
-            let t327: T = t33 * k4;
-            let t333: T = t324 - t327;
-            w[7] = t333;
+            let t325: T = t33 * k4;
+            let t331: T = t322 - t325;
+            w[7] = t331;
             let t44: T = c3 * t34;
             let t45: T = s3 * t35;
             let t47: T = t44 - t45;
@@ -3636,33 +3614,21 @@ pub mod puma560 {
             let t93: T = qd3 * t43;
             let t96: T = t47 + t93;
             w[9] = t96;
-            let t390: T = t96 * k15;
-            let t48: T = s3 * t34;
-            let t50: T = c3 * t35;
-            let t52: T = t48 + t50;
-            let t37: T = c3 * t29;
-            let t38: T = s3 * t30;
-            let t39: T = t37 + t38;
-            w[10] = t39;
-            let t94: T = qd3 * t39;
-            let t97: T = t52 + t94;
-            w[11] = t97;
-            let t391: T = t97 * k16;
-            let t393: T = t390 + t391;
+            let t383: T = t96 * k14;
             let t92: T = qd2 + qd3;
-            w[12] = t92;
-            let t388: T = t92 * k19;
-            let t385: T = t43 * k18;
-            let t389: T = t388 - t385;
-            w[13] = t389;
-            let t398: T = t43 * t389;
-            let t379: T = t43 * k17;
-            let t382: T = t92 * k18;
-            let t384: T = t379 - t382;
-            w[14] = t384;
-            let t399: T = t92 * t384;
-            let t400: T = t398 - t399;
-            let t407: T = t393 + t400;
+            w[10] = t92;
+            let t381: T = t92 * k17;
+            let t378: T = t43 * k16;
+            let t382: T = t381 - t378;
+            w[11] = t382;
+            let t388: T = t43 * t382;
+            let t372: T = t43 * k15;
+            let t375: T = t92 * k16;
+            let t377: T = t372 - t375;
+            w[12] = t377;
+            let t389: T = t92 * t377;
+            let t390: T = t388 - t389;
+            let t397: T = t383 + t390;
             let t60: T = t35 * k2;
             let t65: T = qd2 * k2;
             let t66: T = t29 * k1;
@@ -3672,8 +3638,8 @@ pub mod puma560 {
             let t80: T = t30 * t64;
             let t81: T = t79 - t80;
             let t84: T = t60 + t81;
-            w[15] = t84;
-            let t410: T = t84 * k14;
+            w[13] = t84;
+            let t400: T = t84 * k13;
             let t57: T = t34 * k1;
             let t63: T = t33 - t57;
             let t75: T = qd2 * t64;
@@ -3683,7 +3649,7 @@ pub mod puma560 {
             let t83: T = t63 + t78;
             let t90: T = c3 * t83;
             let t32: T = s2 * k0;
-            w[16] = t32;
+            w[14] = t32;
             let t55: T = t35 * k1;
             let t62: T = t32 - t55;
             let t70: T = t30 * t68;
@@ -3692,30 +3658,34 @@ pub mod puma560 {
             let t82: T = t62 - t73;
             let t88: T = s3 * t82;
             let t91: T = t90 - t88;
-            w[17] = t91;
-            let t411: T = t91 * k13;
-            let t412: T = t410 - t411;
-            let t416: T = t407 + t412;
+            w[15] = t91;
+            let t401: T = t91 * k12;
+            let t402: T = t400 - t401;
+            let t406: T = t397 + t402;
             let t109: T = c4 * t96;
+            let t37: T = c3 * t29;
+            let t38: T = s3 * t30;
+            let t39: T = t37 + t38;
+            w[16] = t39;
             let t103: T = s4 * t39;
             let t105: T = c4 * t92;
             let t107: T = t103 + t105;
-            w[18] = t107;
+            w[17] = t107;
             let t150: T = qd4 * t107;
             let t154: T = t109 - t150;
-            let t455: T = t154 * k22;
+            let t445: T = t154 * k20;
             let t149: T = qd4 + t43;
-            let t451: T = t107 * k22;
-            w[19] = t451;
-            let t462: T = t149 * t451;
-            let t454: T = t149 * k23;
-            let t460: T = t107 * t454;
-            let t464: T = t462 - t460;
-            let t473: T = t455 + t464;
+            let t441: T = t107 * k20;
+            w[18] = t441;
+            let t452: T = t149 * t441;
+            let t444: T = t149 * k21;
+            let t450: T = t107 * t444;
+            let t454: T = t452 - t450;
+            let t463: T = t445 + t454;
             let t85: T = c3 * t82;
             let t86: T = s3 * t83;
             let t87: T = t85 + t86;
-            w[20] = t87;
+            w[19] = t87;
             let t121: T = t39 * k2;
             let t122: T = t43 * k3;
             let t123: T = t121 - t122;
@@ -3726,6 +3696,12 @@ pub mod puma560 {
             let t136: T = t87 + t126;
             let t143: T = s4 * t136;
             let t112: T = k2 * t96;
+            let t48: T = s3 * t34;
+            let t50: T = c3 * t35;
+            let t52: T = t48 + t50;
+            let t94: T = qd3 * t39;
+            let t97: T = t52 + t94;
+            w[20] = t97;
             let t114: T = t97 * k3;
             let t116: T = t112 + t114;
             let t117: T = t84 + t116;
@@ -3736,8 +3712,8 @@ pub mod puma560 {
             let t138: T = t117 + t135;
             let t145: T = c4 * t138;
             let t147: T = t143 + t145;
-            let t476: T = t147 * k21;
-            let t479: T = t473 + t476;
+            let t466: T = t147 * k19;
+            let t469: T = t463 + t466;
             let t164: T = c5 * t154;
             let t165: T = s5 * t97;
             let t167: T = t164 - t165;
@@ -3750,14 +3726,14 @@ pub mod puma560 {
             let t163: T = t162 - t160;
             let t182: T = qd5 * t163;
             let t185: T = t167 + t182;
-            let t490: T = t185 * k25;
+            let t480: T = t185 * k23;
             let t181: T = qd5 + t107;
-            let t489: T = t181 * k26;
-            let t494: T = t163 * t489;
-            let t487: T = t163 * k25;
-            let t495: T = t181 * t487;
-            let t496: T = t494 - t495;
-            let t503: T = t490 + t496;
+            let t479: T = t181 * k24;
+            let t484: T = t163 * t479;
+            let t477: T = t163 * k23;
+            let t485: T = t181 * t477;
+            let t486: T = t484 - t485;
+            let t493: T = t480 + t486;
             let t198: T = c6 * t185;
             let t110: T = s4 * t96;
             let t152: T = qd4 * t102;
@@ -3772,14 +3748,14 @@ pub mod puma560 {
             let t196: T = t192 + t194;
             let t219: T = qd6 * t196;
             let t223: T = t201 - t219;
-            let t542: T = t223 * k29;
+            let t532: T = t223 * k27;
             let t218: T = qd6 + t163;
-            let t538: T = t196 * k29;
-            let t549: T = t218 * t538;
-            let t541: T = t218 * k30;
-            let t547: T = t196 * t541;
-            let t551: T = t549 - t547;
-            let t560: T = t542 + t551;
+            let t528: T = t196 * k27;
+            let t539: T = t218 * t528;
+            let t531: T = t218 * k28;
+            let t537: T = t196 * t531;
+            let t541: T = t539 - t537;
+            let t550: T = t532 + t541;
             let t139: T = c4 * t136;
             let t140: T = s4 * t138;
             let t142: T = t139 - t140;
@@ -3794,152 +3770,157 @@ pub mod puma560 {
             let t212: T = s6 * t176;
             let t214: T = c6 * t147;
             let t216: T = t212 + t214;
-            let t563: T = t216 * k28;
-            let t566: T = t560 + t563;
-            let t575: T = c6 * t566;
+            let t553: T = t216 * k26;
+            let t556: T = t550 + t553;
+            let t565: T = c6 * t556;
             let t188: T = c6 * t159;
             let t189: T = s6 * t181;
             let t191: T = t188 - t189;
-            let t537: T = t191 * k29;
-            let t552: T = t218 * t537;
-            let t553: T = t191 * t541;
-            let t554: T = t552 - t553;
+            let t527: T = t191 * k27;
+            let t542: T = t218 * t527;
+            let t543: T = t191 * t531;
+            let t544: T = t542 - t543;
             let t202: T = s6 * t185;
             let t204: T = c6 * t155;
             let t206: T = t202 + t204;
             let t221: T = qd6 * t191;
             let t224: T = t206 + t221;
-            let t543: T = t224 * k29;
-            let t561: T = t554 - t543;
+            let t533: T = t224 * k27;
+            let t551: T = t544 - t533;
             let t208: T = c6 * t176;
             let t209: T = s6 * t147;
             let t211: T = t208 - t209;
-            let t565: T = t211 * k28;
-            let t567: T = t561 + t565;
-            let t576: T = s6 * t567;
-            let t578: T = t575 - t576;
-            let t585: T = t503 + t578;
-            w[23] = t585;
-            let t599: T = c5 * t585;
-            let t486: T = t159 * k25;
-            let t497: T = t181 * t486;
-            let t498: T = t159 * t489;
-            let t499: T = t497 - t498;
+            let t555: T = t211 * k26;
+            let t557: T = t551 + t555;
+            let t566: T = s6 * t557;
+            let t568: T = t565 - t566;
+            let t575: T = t493 + t568;
+            w[23] = t575;
+            let t589: T = c5 * t575;
+            let t476: T = t159 * k23;
+            let t487: T = t181 * t476;
+            let t488: T = t159 * t479;
+            let t489: T = t487 - t488;
             let t168: T = s5 * t154;
             let t170: T = c5 * t97;
             let t172: T = t168 + t170;
             let t183: T = qd5 * t159;
             let t186: T = t172 + t183;
-            let t491: T = t186 * k25;
-            let t504: T = t499 - t491;
-            let t557: T = t196 * t537;
-            let t555: T = t191 * t538;
-            let t559: T = t557 - t555;
-            let t545: T = t186 * k30;
-            let t562: T = t559 - t545;
-            out[5] = t562;
-            let t586: T = t504 + t562;
-            w[24] = t586;
-            let t600: T = s5 * t586;
-            let t602: T = t599 - t600;
-            let t607: T = t479 + t602;
-            w[25] = t607;
-            let t621: T = c4 * t607;
-            let t450: T = t102 * k22;
-            w[26] = t450;
-            let t465: T = t149 * t450;
-            let t466: T = t102 * t454;
-            let t467: T = t465 - t466;
-            let t456: T = t155 * k22;
-            let t474: T = t467 - t456;
-            let t478: T = t142 * k21;
-            let t480: T = t474 + t478;
-            let t579: T = s6 * t566;
-            let t581: T = c6 * t567;
-            let t583: T = t579 + t581;
-            w[27] = t583;
-            let t493: T = t155 * k26;
-            let t500: T = t159 * t487;
-            let t501: T = t163 * t486;
-            let t502: T = t500 - t501;
-            let t505: T = t493 + t502;
-            w[28] = t505;
-            let t603: T = t583 - t505;
-            let t608: T = t480 + t603;
-            w[29] = t608;
-            let t622: T = s4 * t608;
-            let t624: T = t621 - t622;
-            let t631: T = t416 + t624;
-            let t421: T = t147 * k20;
-            let t427: T = t154 * k21;
-            let t430: T = t421 + t427;
-            let t432: T = t107 * k21;
-            w[30] = t432;
-            let t438: T = t149 * t432;
-            let t446: T = t430 + t438;
-            let t484: T = t147 * k24;
-            let t508: T = t216 * k27;
-            let t514: T = t223 * k28;
-            let t517: T = t508 + t514;
-            let t519: T = t196 * k28;
-            let t525: T = t218 * t519;
-            let t533: T = t517 + t525;
-            let t573: T = c6 * t533;
-            let t507: T = t211 * k27;
-            let t512: T = t224 * k28;
-            let t516: T = t507 - t512;
-            let t521: T = t191 * k28;
-            let t523: T = t218 * t521;
-            let t532: T = t516 + t523;
-            let t571: T = s6 * t532;
-            let t574: T = t573 - t571;
-            let t590: T = t484 + t574;
-            let t611: T = t446 + t590;
-            w[31] = t611;
-            let t619: T = c4 * t611;
-            let t420: T = t142 * k20;
-            let t425: T = t155 * k21;
-            let t429: T = t420 - t425;
-            let t434: T = t102 * k21;
-            w[32] = t434;
-            let t436: T = t149 * t434;
-            let t445: T = t429 + t436;
-            let t482: T = t176 * k24;
-            let t568: T = c6 * t532;
-            let t569: T = s6 * t533;
-            let t570: T = t568 + t569;
-            let t588: T = t482 + t570;
-            w[33] = t588;
-            let t591: T = c5 * t588;
+            let t481: T = t186 * k23;
+            let t494: T = t489 - t481;
+            let t547: T = t196 * t527;
+            let t545: T = t191 * t528;
+            let t549: T = t547 - t545;
+            let t535: T = t186 * k28;
+            let t552: T = t549 - t535;
+            out[5] = t552;
+            let t576: T = t494 + t552;
+            w[24] = t576;
+            let t590: T = s5 * t576;
+            let t592: T = t589 - t590;
+            let t597: T = t469 + t592;
+            w[25] = t597;
+            let t611: T = c4 * t597;
+            let t440: T = t102 * k20;
+            w[26] = t440;
+            let t455: T = t149 * t440;
+            let t456: T = t102 * t444;
+            let t457: T = t455 - t456;
+            let t446: T = t155 * k20;
+            let t464: T = t457 - t446;
+            let t468: T = t142 * k19;
+            let t470: T = t464 + t468;
+            let t569: T = s6 * t556;
+            let t571: T = c6 * t557;
+            let t573: T = t569 + t571;
+            w[27] = t573;
+            let t483: T = t155 * k24;
+            let t490: T = t159 * t477;
+            let t491: T = t163 * t476;
+            let t492: T = t490 - t491;
+            let t495: T = t483 + t492;
+            w[28] = t495;
+            let t593: T = t573 - t495;
+            let t598: T = t470 + t593;
+            w[29] = t598;
+            let t612: T = s4 * t598;
+            let t614: T = t611 - t612;
+            let t621: T = t406 + t614;
+            let t411: T = t147 * k18;
+            let t417: T = t154 * k19;
+            let t420: T = t411 + t417;
+            let t422: T = t107 * k19;
+            w[30] = t422;
+            let t428: T = t149 * t422;
+            let t436: T = t420 + t428;
+            let t474: T = t147 * k22;
+            let t498: T = t216 * k25;
+            let t504: T = t223 * k26;
+            let t507: T = t498 + t504;
+            let t509: T = t196 * k26;
+            let t515: T = t218 * t509;
+            let t523: T = t507 + t515;
+            let t563: T = c6 * t523;
+            let t497: T = t211 * k25;
+            let t502: T = t224 * k26;
+            let t506: T = t497 - t502;
+            let t511: T = t191 * k26;
+            let t513: T = t218 * t511;
+            let t522: T = t506 + t513;
+            let t561: T = s6 * t522;
+            let t564: T = t563 - t561;
+            let t580: T = t474 + t564;
+            let t601: T = t436 + t580;
+            w[31] = t601;
+            let t609: T = c4 * t601;
+            let t410: T = t142 * k18;
+            let t415: T = t155 * k19;
+            let t419: T = t410 - t415;
+            let t424: T = t102 * k19;
+            w[32] = t424;
+            let t426: T = t149 * t424;
+            let t435: T = t419 + t426;
+            let t472: T = t176 * k22;
+            let t558: T = c6 * t522;
+            let t559: T = s6 * t523;
+            let t560: T = t558 + t559;
+            let t578: T = t472 + t560;
+            w[33] = t578;
+            let t581: T = c5 * t578;
             let t179: T = c5 * t137;
             let t177: T = s5 * t142;
             let t180: T = t179 - t177;
-            let t483: T = t180 * k24;
-            let t510: T = t180 * k27;
-            let t527: T = t191 * t521;
-            let t529: T = t196 * t519;
-            let t530: T = t527 + t529;
-            let t535: T = t510 - t530;
-            let t589: T = t483 + t535;
-            w[34] = t589;
-            let t592: T = s5 * t589;
-            let t594: T = t591 - t592;
-            let t610: T = t445 + t594;
-            w[35] = t610;
-            let t617: T = s4 * t610;
-            let t620: T = t619 - t617;
-            w[36] = t620;
-            let t634: T = k2 * t620;
-            let t640: T = t631 + t634;
-            w[37] = t640;
+            let t473: T = t180 * k22;
+            let t500: T = t180 * k25;
+            let t517: T = t191 * t511;
+            let t519: T = t196 * t509;
+            let t520: T = t517 + t519;
+            let t525: T = t500 - t520;
+            let t579: T = t473 + t525;
+            w[34] = t579;
+            let t582: T = s5 * t579;
+            let t584: T = t581 - t582;
+            let t600: T = t435 + t584;
+            w[35] = t600;
+            let t607: T = s4 * t600;
+            let t610: T = t609 - t607;
+            w[36] = t610;
+            let t624: T = k2 * t610;
+            let t630: T = t621 + t624;
+            w[37] = t630;
+            let t643: T = c3 * t630;
+            w[38] = t643;
+            let t370: T = t39 * k14;
+            w[39] = t370;
         }
         #[inline(never)]
         fn bias_smooth_part1(
             &self,
             qd: &[T; DOF],
-            w: &mut [T; 38],
+            w: &mut [T; 40],
             out: &mut na::SVector<T, DOF>,
         ) {
+            let qd2: T = qd[1];
             let c2: T = self.c[1];
             let s2: T = self.s[1];
             let c3: T = self.c[2];
@@ -3948,208 +3929,199 @@ pub mod puma560 {
             let s4: T = self.s[3];
             let c5: T = self.c[4];
             let s5: T = self.s[4];
-            let qd2: T = qd[1];
             let t29: T = w[2];
             let t30: T = w[0];
-            let t32: T = w[16];
+            let t32: T = w[14];
             let t33: T = w[6];
             let t34: T = w[1];
             let t35: T = w[3];
-            let t39: T = w[10];
+            let t39: T = w[16];
             let t43: T = w[8];
             let k0: T = ::dhgen::nalgebra::convert::<f64, T>(0.15005f64);
             let k1: T = ::dhgen::nalgebra::convert::<f64, T>(0.4318f64);
-            let t84: T = w[15];
-            let t87: T = w[20];
-            let t91: T = w[17];
-            let t92: T = w[12];
+            let t84: T = w[13];
+            let t87: T = w[19];
+            let t91: T = w[15];
+            let t92: T = w[10];
             let t96: T = w[9];
-            let t97: T = w[11];
+            let t97: T = w[20];
             let t102: T = w[21];
-            let t107: T = w[18];
+            let t107: T = w[17];
             let k2: T = ::dhgen::nalgebra::convert::<f64, T>(0.0203f64);
             let t137: T = w[22];
             let k3: T = ::dhgen::nalgebra::convert::<f64, T>(3.9585f64);
             let k4: T = ::dhgen::nalgebra::convert::<f64, T>(0.10439999999999999f64);
-            let k5: T = ::dhgen::nalgebra::convert::<f64, T>(1.1831999999999994f64);
-            let k6: T = ::dhgen::nalgebra::convert::<f64, T>(1.0311851500000007f64);
-            let k7: T = ::dhgen::nalgebra::convert::<f64, T>(0.007099199999999993f64);
-            let k8: T = ::dhgen::nalgebra::convert::<f64, T>(0.26917800000000014f64);
-            let k9: T = ::dhgen::nalgebra::convert::<f64, T>(0.0070992f64);
-            let k10: T = ::dhgen::nalgebra::convert::<f64, T>(1.5050163500000004f64);
-            let t288: T = w[5];
-            let k11: T = ::dhgen::nalgebra::convert::<f64, T>(0.023751f64);
-            let t299: T = w[4];
-            let t333: T = w[7];
-            let k12: T = ::dhgen::nalgebra::convert::<f64, T>(4.8f64);
-            let k13: T = ::dhgen::nalgebra::convert::<f64, T>(0.06767999999999999f64);
-            let k14: T = ::dhgen::nalgebra::convert::<f64, T>(0.336f64);
-            let k15: T = ::dhgen::nalgebra::convert::<f64, T>(0.09047428800000003f64);
-            let k16: T = ::dhgen::nalgebra::convert::<
-                f64,
-                T,
-            >(0.0000000000000000008673617379884035f64);
-            let k17: T = ::dhgen::nalgebra::convert::<f64, T>(0.013454288000000003f64);
-            let k18: T = ::dhgen::nalgebra::convert::<f64, T>(0.0047376f64);
-            let t384: T = w[14];
-            let t389: T = w[13];
-            let k19: T = ::dhgen::nalgebra::convert::<f64, T>(0.82f64);
-            let t432: T = w[30];
-            let t434: T = w[32];
-            let t450: T = w[26];
-            let t451: T = w[19];
-            let k20: T = ::dhgen::nalgebra::convert::<f64, T>(0.0013f64);
-            let t505: T = w[28];
-            let t583: T = w[27];
-            let t585: T = w[23];
-            let t586: T = w[24];
-            let t588: T = w[33];
-            let t589: T = w[34];
-            let t607: T = w[25];
-            let t608: T = w[29];
-            let t610: T = w[35];
-            let t611: T = w[31];
-            let t620: T = w[36];
-            let t640: T = w[37];
-            let t653: T = c3 * t640;
-            let t372: T = t39 * k15;
-            let t375: T = t43 * k16;
-            let t377: T = t372 - t375;
-            let t401: T = t92 * t377;
-            let t402: T = t39 * t389;
-            let t403: T = t401 - t402;
-            let t394: T = t97 * k17;
-            let t408: T = t403 - t394;
-            let t413: T = t87 * k13;
-            let t417: T = t408 + t413;
-            let t470: T = t107 * t450;
-            let t468: T = t102 * t451;
-            let t472: T = t470 - t468;
-            let t458: T = t97 * k20;
-            let t475: T = t472 - t458;
-            let t604: T = s5 * t585;
-            let t605: T = c5 * t586;
-            let t606: T = t604 + t605;
-            let t609: T = t475 + t606;
-            out[3] = t609;
-            let t632: T = t417 + t609;
-            let t635: T = k2 * t620;
-            let t641: T = t632 - t635;
-            let t654: T = s3 * t641;
-            let t656: T = t653 - t654;
-            let t660: T = t333 + t656;
-            let t337: T = t87 * k12;
-            let t341: T = t97 * k13;
-            let t347: T = t337 - t341;
-            let t355: T = t39 * k14;
-            let t356: T = t43 * t355;
+            let k5: T = ::dhgen::nalgebra::convert::<f64, T>(1.1832f64);
+            let k6: T = ::dhgen::nalgebra::convert::<f64, T>(1.0311851499999998f64);
+            let k7: T = ::dhgen::nalgebra::convert::<f64, T>(0.0070992f64);
+            let k8: T = ::dhgen::nalgebra::convert::<f64, T>(0.26917800000000003f64);
+            let k9: T = ::dhgen::nalgebra::convert::<f64, T>(1.50501635f64);
+            let t286: T = w[5];
+            let k10: T = ::dhgen::nalgebra::convert::<f64, T>(0.023751f64);
+            let t297: T = w[4];
+            let t331: T = w[7];
+            let k11: T = ::dhgen::nalgebra::convert::<f64, T>(4.8f64);
+            let k12: T = ::dhgen::nalgebra::convert::<f64, T>(0.06767999999999999f64);
+            let k13: T = ::dhgen::nalgebra::convert::<f64, T>(0.336f64);
+            let t370: T = w[39];
+            let k14: T = ::dhgen::nalgebra::convert::<f64, T>(0.013454287999999998f64);
+            let k15: T = ::dhgen::nalgebra::convert::<f64, T>(0.0047376f64);
+            let t377: T = w[12];
+            let t382: T = w[11];
+            let k16: T = ::dhgen::nalgebra::convert::<f64, T>(0.82f64);
+            let t422: T = w[30];
+            let t424: T = w[32];
+            let t440: T = w[26];
+            let t441: T = w[18];
+            let k17: T = ::dhgen::nalgebra::convert::<f64, T>(0.0013f64);
+            let t495: T = w[28];
+            let t573: T = w[27];
+            let t575: T = w[23];
+            let t576: T = w[24];
+            let t578: T = w[33];
+            let t579: T = w[34];
+            let t597: T = w[25];
+            let t598: T = w[29];
+            let t600: T = w[35];
+            let t601: T = w[31];
+            let t610: T = w[36];
+            let t630: T = w[37];
+            let t643: T = w[38];
+            let t391: T = t92 * t370;
+            let t392: T = t39 * t382;
+            let t393: T = t391 - t392;
+            let t384: T = t97 * k14;
+            let t398: T = t393 - t384;
+            let t403: T = t87 * k12;
+            let t407: T = t398 + t403;
+            let t460: T = t107 * t440;
+            let t458: T = t102 * t441;
+            let t462: T = t460 - t458;
+            let t448: T = t97 * k17;
+            let t465: T = t462 - t448;
+            let t594: T = s5 * t575;
+            let t595: T = c5 * t576;
+            let t596: T = t594 + t595;
+            let t599: T = t465 + t596;
+            out[3] = t599;
+            let t622: T = t407 + t599;
+            let t625: T = k2 * t610;
+            let t631: T = t622 - t625;
+            let t644: T = s3 * t631;
+            let t646: T = t643 - t644;
+            let t650: T = t331 + t646;
+            let t335: T = t87 * k11;
+            let t339: T = t97 * k12;
+            let t345: T = t335 - t339;
             let t353: T = t39 * k13;
-            let t357: T = t92 * t353;
-            let t359: T = t356 + t357;
-            let t368: T = t347 + t359;
-            let t614: T = c4 * t610;
-            let t615: T = s4 * t611;
-            let t616: T = t614 + t615;
-            let t643: T = t368 + t616;
-            let t650: T = s3 * t643;
-            let t338: T = t91 * k12;
-            let t343: T = t96 * k13;
-            let t348: T = t338 - t343;
-            let t350: T = t43 * k13;
-            let t351: T = t92 * k14;
-            let t352: T = t350 - t351;
-            let t360: T = t92 * t352;
-            let t361: T = t39 * t355;
-            let t362: T = t360 - t361;
-            let t369: T = t348 + t362;
-            let t423: T = t137 * k19;
-            let t440: T = t102 * t434;
-            let t442: T = t107 * t432;
-            let t443: T = t440 + t442;
-            let t448: T = t423 - t443;
-            let t596: T = s5 * t588;
-            let t597: T = c5 * t589;
-            let t598: T = t596 + t597;
-            let t613: T = t448 + t598;
-            let t644: T = t369 + t613;
-            let t651: T = c3 * t644;
-            let t652: T = t650 + t651;
-            let t663: T = k0 * t652;
-            let t669: T = t660 - t663;
-            let t688: T = s2 * t669;
+            let t354: T = t43 * t353;
+            let t351: T = t39 * k12;
+            let t355: T = t92 * t351;
+            let t357: T = t354 + t355;
+            let t366: T = t345 + t357;
+            let t604: T = c4 * t600;
+            let t605: T = s4 * t601;
+            let t606: T = t604 + t605;
+            let t633: T = t366 + t606;
+            let t640: T = s3 * t633;
+            let t336: T = t91 * k11;
+            let t341: T = t96 * k12;
+            let t346: T = t336 - t341;
+            let t348: T = t43 * k12;
+            let t349: T = t92 * k13;
+            let t350: T = t348 - t349;
+            let t358: T = t92 * t350;
+            let t359: T = t39 * t353;
+            let t360: T = t358 - t359;
+            let t367: T = t346 + t360;
+            let t413: T = t137 * k16;
+            let t430: T = t102 * t424;
+            let t432: T = t107 * t422;
+            let t433: T = t430 + t432;
+            let t438: T = t413 - t433;
+            let t586: T = s5 * t578;
+            let t587: T = c5 * t579;
+            let t588: T = t586 + t587;
+            let t603: T = t438 + t588;
+            let t634: T = t367 + t603;
+            let t641: T = c3 * t634;
+            let t642: T = t640 + t641;
+            let t653: T = k0 * t642;
+            let t659: T = t650 - t653;
+            let t678: T = s2 * t659;
             let t266: T = t29 * k6;
             let t269: T = t30 * k7;
             let t271: T = t266 - t269;
             let t274: T = qd2 * k8;
             let t276: T = t271 - t274;
-            let t318: T = qd2 * t276;
-            let t319: T = t29 * t299;
-            let t320: T = t318 - t319;
-            let t304: T = t34 * k9;
-            let t306: T = t35 * k10;
-            let t308: T = t304 + t306;
-            let t325: T = t320 - t308;
-            let t329: T = t32 * k3;
-            let t334: T = t325 + t329;
-            let t657: T = s3 * t640;
-            let t658: T = c3 * t641;
-            let t659: T = t657 + t658;
-            let t661: T = t334 + t659;
-            let t646: T = c3 * t643;
-            let t647: T = s3 * t644;
-            let t649: T = t646 - t647;
-            let t665: T = k0 * t649;
-            let t339: T = t84 * k12;
-            let t346: T = t96 * k14;
-            let t349: T = t339 + t346;
-            let t363: T = t39 * t353;
-            let t365: T = t43 * t352;
-            let t366: T = t363 + t365;
-            let t370: T = t349 - t366;
-            let t645: T = t370 + t620;
-            let t666: T = k1 * t645;
-            let t667: T = t665 - t666;
-            let t670: T = t661 + t667;
-            let t689: T = c2 * t670;
-            let t690: T = t688 + t689;
-            out[0] = t690;
-            let t312: T = t35 * k11;
-            let t310: T = t34 * k8;
-            let t314: T = t312 - t310;
-            let t321: T = t29 * t288;
-            let t322: T = t30 * t276;
-            let t323: T = t321 - t322;
-            let t326: T = t314 + t323;
-            let t330: T = t33 * k5;
-            let t331: T = t32 * k4;
-            let t332: T = t330 - t331;
-            let t335: T = t326 + t332;
-            let t396: T = t97 * k18;
-            let t404: T = t39 * t384;
-            let t405: T = t43 * t377;
-            let t406: T = t404 - t405;
-            let t409: T = t396 + t406;
-            let t414: T = t87 * k14;
-            let t418: T = t409 - t414;
-            let t625: T = s4 * t607;
-            let t627: T = c4 * t608;
-            let t629: T = t625 + t627;
-            let t633: T = t418 - t629;
-            let t637: T = k2 * t613;
-            let t638: T = k1 * t616;
-            let t639: T = t637 - t638;
-            let t642: T = t633 + t639;
-            out[2] = t642;
-            let t662: T = t335 + t642;
-            let t668: T = k1 * t652;
-            let t671: T = t662 + t668;
-            out[1] = t671;
-            let t587: T = t505 - t583;
-            out[4] = t587;
+            let t316: T = qd2 * t276;
+            let t317: T = t29 * t297;
+            let t318: T = t316 - t317;
+            let t302: T = t34 * k7;
+            let t304: T = t35 * k9;
+            let t306: T = t302 + t304;
+            let t323: T = t318 - t306;
+            let t327: T = t32 * k3;
+            let t332: T = t323 + t327;
+            let t647: T = s3 * t630;
+            let t648: T = c3 * t631;
+            let t649: T = t647 + t648;
+            let t651: T = t332 + t649;
+            let t636: T = c3 * t633;
+            let t637: T = s3 * t634;
+            let t639: T = t636 - t637;
+            let t655: T = k0 * t639;
+            let t337: T = t84 * k11;
+            let t344: T = t96 * k13;
+            let t347: T = t337 + t344;
+            let t361: T = t39 * t351;
+            let t363: T = t43 * t350;
+            let t364: T = t361 + t363;
+            let t368: T = t347 - t364;
+            let t635: T = t368 + t610;
+            let t656: T = k1 * t635;
+            let t657: T = t655 - t656;
+            let t660: T = t651 + t657;
+            let t679: T = c2 * t660;
+            let t680: T = t678 + t679;
+            out[0] = t680;
+            let t310: T = t35 * k10;
+            let t308: T = t34 * k8;
+            let t312: T = t310 - t308;
+            let t319: T = t29 * t286;
+            let t320: T = t30 * t276;
+            let t321: T = t319 - t320;
+            let t324: T = t312 + t321;
+            let t328: T = t33 * k5;
+            let t329: T = t32 * k4;
+            let t330: T = t328 - t329;
+            let t333: T = t324 + t330;
+            let t386: T = t97 * k15;
+            let t394: T = t39 * t377;
+            let t395: T = t43 * t370;
+            let t396: T = t394 - t395;
+            let t399: T = t386 + t396;
+            let t404: T = t87 * k13;
+            let t408: T = t399 - t404;
+            let t615: T = s4 * t597;
+            let t617: T = c4 * t598;
+            let t619: T = t615 + t617;
+            let t623: T = t408 - t619;
+            let t627: T = k2 * t603;
+            let t628: T = k1 * t606;
+            let t629: T = t627 - t628;
+            let t632: T = t623 + t629;
+            out[2] = t632;
+            let t652: T = t333 + t632;
+            let t658: T = k1 * t642;
+            let t661: T = t652 + t658;
+            out[1] = t661;
+            let t577: T = t495 - t573;
+            out[4] = t577;
         }
         fn bias_smooth(&self, qd: &[T; DOF]) -> na::SVector<T, DOF> {
             let mut out: na::SVector<T, DOF> = na::SVector::zeros();
-            let mut w = [T::zero(); 38];
+            let mut w = [T::zero(); 40];
             self.bias_smooth_part0(qd, &mut w, &mut out);
             self.bias_smooth_part1(qd, &mut w, &mut out);
             out
@@ -4418,8 +4390,8 @@ pub mod puma560 {
     ) -> na::SVector<T, 6> {
         State::for_jdot_qdot(q).jdot_qdot(qd)
     }
-    /// Whether the last three axes meet in one point (a spherical wrist): then
-    /// `det_j11`, `det_j22`, `ik` and `ik_solver` exist.
+    /// Whether the last three axes meet in one point (a spherical wrist); for a
+    /// six-joint arm, `det_j11`, `det_j22`, `ik` and `ik_solver` then exist.
     pub const SPHERICAL_WRIST: bool = true;
     /// det J11 (Jacobian about the wrist centre): zero at arm singularities.
     #[must_use]
@@ -4434,7 +4406,7 @@ pub mod puma560 {
     /// The closed-form inverse kinematics solver of this arm (kinematic decoupling,
     /// section 4.3): build it once and call `solve` for each pose.
     pub fn ik_solver() -> Result<::dhgen::ik::DecoupledIk, ::dhgen::ik::StructureError> {
-        ::dhgen::ik::DecoupledIk::from_arm(&Model)
+        ::dhgen::ik::DecoupledIk::from_chain(CHAIN)
     }
     /// All closed-form inverse kinematics solutions of `pose` (up to 8), each
     /// verified by forward kinematics; empty when the pose is unreachable.
@@ -4500,30 +4472,203 @@ pub mod puma560 {
     /// once for every robot (inverse kinematics, planners, controllers).
     #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
     pub struct Model;
-    /// Joint limits `[lower, upper]` per joint, where the description gives them.
-    pub const LIMITS: [Option<[f64; 2]>; DOF] = [
-        Some([-2.792526803190927f64, 2.792526803190927f64]),
-        Some([-0.7853981633974483f64, 3.9269908169872414f64]),
-        Some([-3.9269908169872414f64, 0.7853981633974483f64]),
-        Some([-1.9198621771937625f64, 2.9670597283903604f64]),
-        Some([-1.7453292519943295f64, 1.7453292519943295f64]),
-        Some([-4.642575810304916f64, 4.642575810304916f64]),
-    ];
-    /// Whether each joint is prismatic.
-    pub const PRISMATIC: [bool; DOF] = [false, false, false, false, false, false];
+    /// The robot's kinematic structure: fixed transforms, joints (kinds, offsets,
+    /// limits, armature, friction), link frames, mass properties and collision
+    /// capsules. The numbers this module was generated from, for algorithms built on
+    /// the structure (inverse kinematics, planning); see [`::dhgen::ChainRef`].
+    pub const CHAIN: ::dhgen::ChainRef<'static> = ::dhgen::ChainRef {
+        base: ::dhgen::model::Frame {
+            r: [[1f64, 0f64, 0f64], [0f64, 1f64, 0f64], [0f64, 0f64, 1f64]],
+            p: [0f64, 0f64, 0f64],
+        },
+        placements: &[
+            ::dhgen::model::Frame {
+                r: [[1f64, 0f64, 0f64], [0f64, 1f64, 0f64], [0f64, 0f64, 1f64]],
+                p: [0f64, 0f64, 0.6718299999999999f64],
+            },
+            ::dhgen::model::Frame {
+                r: [[1f64, 0f64, 0f64], [0f64, 0f64, -1f64], [0f64, 1f64, 0f64]],
+                p: [0f64, 0f64, 0f64],
+            },
+            ::dhgen::model::Frame {
+                r: [[1f64, 0f64, 0f64], [0f64, 1f64, 0f64], [0f64, 0f64, 1f64]],
+                p: [0.4318f64, 0f64, 0.15005f64],
+            },
+            ::dhgen::model::Frame {
+                r: [[1f64, 0f64, 0f64], [0f64, 0f64, 1f64], [0f64, -1f64, 0f64]],
+                p: [0.0203f64, 0.4318f64, 0f64],
+            },
+            ::dhgen::model::Frame {
+                r: [[1f64, 0f64, 0f64], [0f64, 0f64, -1f64], [0f64, 1f64, 0f64]],
+                p: [0f64, 0f64, 0f64],
+            },
+            ::dhgen::model::Frame {
+                r: [[1f64, 0f64, 0f64], [0f64, 0f64, 1f64], [0f64, -1f64, 0f64]],
+                p: [0f64, 0f64, 0f64],
+            },
+            ::dhgen::model::Frame {
+                r: [[1f64, 0f64, 0f64], [0f64, 1f64, 0f64], [0f64, 0f64, 1f64]],
+                p: [0f64, 0f64, 0f64],
+            },
+        ],
+        bodies: &[
+            ::dhgen::model::Body {
+                joint: ::dhgen::JointKind::Revolute,
+                offset: 0f64,
+                limits: Some([-2.792526803190927f64, 2.792526803190927f64]),
+                armature: 0f64,
+                friction: ::dhgen::model::Friction {
+                    viscous: 0f64,
+                    coulomb: 0f64,
+                },
+                link: ::dhgen::model::Frame {
+                    r: [[1f64, -0f64, 0f64], [0f64, 0f64, -1f64], [0f64, 1f64, 0f64]],
+                    p: [0f64, 0f64, 0f64],
+                },
+                inertial: Some(::dhgen::model::Inertial {
+                    mass: 0f64,
+                    com: [0f64, 0f64, 0f64],
+                    inertia: [
+                        [0f64, 0f64, 0f64],
+                        [0f64, 0f64, 0f64],
+                        [0f64, 0f64, 0.35f64],
+                    ],
+                }),
+                capsule: Some(0.1f64),
+            },
+            ::dhgen::model::Body {
+                joint: ::dhgen::JointKind::Revolute,
+                offset: 0f64,
+                limits: Some([-0.7853981633974483f64, 3.9269908169872414f64]),
+                armature: 0f64,
+                friction: ::dhgen::model::Friction {
+                    viscous: 0f64,
+                    coulomb: 0f64,
+                },
+                link: ::dhgen::model::Frame {
+                    r: [[1f64, -0f64, 0f64], [0f64, 1f64, -0f64], [0f64, 0f64, 1f64]],
+                    p: [0.4318f64, 0f64, 0f64],
+                },
+                inertial: Some(::dhgen::model::Inertial {
+                    mass: 17.4f64,
+                    com: [0.068f64, 0.006f64, 0.2275f64],
+                    inertia: [
+                        [0.13f64, 0f64, 0f64],
+                        [0f64, 0.524f64, 0f64],
+                        [0f64, 0f64, 0.539f64],
+                    ],
+                }),
+                capsule: Some(0.08f64),
+            },
+            ::dhgen::model::Body {
+                joint: ::dhgen::JointKind::Revolute,
+                offset: 0f64,
+                limits: Some([-3.9269908169872414f64, 0.7853981633974483f64]),
+                armature: 0f64,
+                friction: ::dhgen::model::Friction {
+                    viscous: 0f64,
+                    coulomb: 0f64,
+                },
+                link: ::dhgen::model::Frame {
+                    r: [[1f64, -0f64, -0f64], [0f64, 0f64, 1f64], [0f64, -1f64, 0f64]],
+                    p: [0.0203f64, 0f64, 0f64],
+                },
+                inertial: Some(::dhgen::model::Inertial {
+                    mass: 4.8f64,
+                    com: [0f64, 0.07f64, 0.0141f64],
+                    inertia: [
+                        [0.066f64, 0f64, 0f64],
+                        [0f64, 0.0125f64, 0f64],
+                        [0f64, 0f64, 0.086f64],
+                    ],
+                }),
+                capsule: Some(0.06f64),
+            },
+            ::dhgen::model::Body {
+                joint: ::dhgen::JointKind::Revolute,
+                offset: 0f64,
+                limits: Some([-1.9198621771937625f64, 2.9670597283903604f64]),
+                armature: 0f64,
+                friction: ::dhgen::model::Friction {
+                    viscous: 0f64,
+                    coulomb: 0f64,
+                },
+                link: ::dhgen::model::Frame {
+                    r: [[1f64, -0f64, 0f64], [0f64, 0f64, -1f64], [0f64, 1f64, 0f64]],
+                    p: [0f64, 0f64, 0f64],
+                },
+                inertial: Some(::dhgen::model::Inertial {
+                    mass: 0.82f64,
+                    com: [0f64, 0f64, 0.019f64],
+                    inertia: [
+                        [0.0018f64, 0f64, 0f64],
+                        [0f64, 0.0018f64, 0f64],
+                        [0f64, 0f64, 0.0013f64],
+                    ],
+                }),
+                capsule: Some(0.05f64),
+            },
+            ::dhgen::model::Body {
+                joint: ::dhgen::JointKind::Revolute,
+                offset: 0f64,
+                limits: Some([-1.7453292519943295f64, 1.7453292519943295f64]),
+                armature: 0f64,
+                friction: ::dhgen::model::Friction {
+                    viscous: 0f64,
+                    coulomb: 0f64,
+                },
+                link: ::dhgen::model::Frame {
+                    r: [[1f64, -0f64, -0f64], [0f64, 0f64, 1f64], [0f64, -1f64, 0f64]],
+                    p: [0f64, 0f64, 0f64],
+                },
+                inertial: Some(::dhgen::model::Inertial {
+                    mass: 0.34f64,
+                    com: [0f64, 0f64, 0f64],
+                    inertia: [
+                        [0.0003f64, 0f64, 0f64],
+                        [0f64, 0.0003f64, 0f64],
+                        [0f64, 0f64, 0.0004f64],
+                    ],
+                }),
+                capsule: Some(0.05f64),
+            },
+            ::dhgen::model::Body {
+                joint: ::dhgen::JointKind::Revolute,
+                offset: 0f64,
+                limits: Some([-4.642575810304916f64, 4.642575810304916f64]),
+                armature: 0f64,
+                friction: ::dhgen::model::Friction {
+                    viscous: 0f64,
+                    coulomb: 0f64,
+                },
+                link: ::dhgen::model::Frame {
+                    r: [[1f64, -0f64, 0f64], [0f64, 1f64, -0f64], [0f64, 0f64, 1f64]],
+                    p: [0f64, 0f64, 0f64],
+                },
+                inertial: Some(::dhgen::model::Inertial {
+                    mass: 0.09f64,
+                    com: [0f64, 0f64, 0.032f64],
+                    inertia: [
+                        [0.00015f64, 0f64, 0f64],
+                        [0f64, 0.00015f64, 0f64],
+                        [0f64, 0f64, 0.00004f64],
+                    ],
+                }),
+                capsule: Some(0.04f64),
+            },
+        ],
+        gravity: [0f64, 0f64, -9.81f64],
+    };
     impl ::dhgen::Arm for Model {
         type Dof = na::Const<DOF>;
+        fn chain(&self) -> ::dhgen::ChainRef<'_> {
+            CHAIN
+        }
         fn dof(&self) -> usize {
             DOF
         }
         fn dim(&self) -> na::Const<DOF> {
             na::Const
-        }
-        fn limits(&self, j: usize) -> Option<[f64; 2]> {
-            LIMITS.get(j).copied().flatten()
-        }
-        fn is_prismatic(&self, j: usize) -> bool {
-            PRISMATIC.get(j).copied().unwrap_or(false)
         }
         fn fk(&self, q: &na::SVector<f64, DOF>) -> na::Isometry3<f64> {
             State::for_fk(&(*q).into()).fk()

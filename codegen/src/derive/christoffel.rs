@@ -4,12 +4,12 @@
 use super::Derivation;
 use crate::graph::{E, SharedGraph};
 use crate::poly::Poly;
-use dhgen_model::RobotModel;
+use dhgen_model::ChainRef;
 
 /// `c[i][j][k]` in the normal form (motor inertia is constant and drops out).
-pub fn christoffel_polys(model: &RobotModel, d: &[Vec<Poly>]) -> Vec<Vec<Vec<Poly>>> {
-    let n = model.dof();
-    let v = super::vars(model);
+pub fn christoffel_polys(chain: ChainRef<'_>, d: &[Vec<Poly>]) -> Vec<Vec<Vec<Poly>>> {
+    let n = chain.dof();
+    let v = super::vars(chain);
     // dd[m][a][b] = ∂d_ab/∂q_m; D is symmetric, so only a <= b is differentiated.
     let dd: Vec<Vec<Vec<Poly>>> = (0..n)
         .map(|m| {
@@ -41,21 +41,20 @@ pub fn christoffel_polys(model: &RobotModel, d: &[Vec<Poly>]) -> Vec<Vec<Vec<Pol
 /// differentiated exactly, or the composite-rigid-body recursion differentiated by dual
 /// numbers, whichever is cheaper.
 pub fn christoffel(dv: &Derivation<'_>) -> (SharedGraph, Vec<E>) {
-    let model = dv.model;
-    let mut candidates = vec![christoffel_dual(model)];
+    let mut candidates = vec![christoffel_dual(dv.chain)];
     if dv.normal_form_is_small() {
-        let g = SharedGraph::default();
-        let e = dv.christoffel_exprs(&g);
-        candidates.push((g, e));
+        let graph = SharedGraph::default();
+        let e = dv.christoffel_exprs(&graph);
+        candidates.push((graph, e));
     }
     super::cheapest(candidates)
 }
 
-fn christoffel_dual(model: &RobotModel) -> (SharedGraph, Vec<E>) {
-    let n = model.dof();
-    let g = SharedGraph::default();
-    let chain = crate::chain::Chain::new(model, &crate::dual::DualSymbols { graph: &g, n });
-    let d = chain.mass_matrix();
+fn christoffel_dual(chain: ChainRef<'_>) -> (SharedGraph, Vec<E>) {
+    let n = chain.dof();
+    let graph = SharedGraph::default();
+    let duals = crate::chain::RingChain::new(chain, &crate::dual::DualSymbols { graph: &graph, n });
+    let d = duals.mass_matrix();
     let dd = |m: usize, a: usize, b: usize| d[a][b].partial(m);
     let mut out = Vec::with_capacity(n * n * n);
     for i in 0..n {
@@ -66,14 +65,13 @@ fn christoffel_dual(model: &RobotModel) -> (SharedGraph, Vec<E>) {
             }
         }
     }
-    (g, out)
+    (graph, out)
 }
 
 /// `C(q, q̇)` row-major, `C_kj = Σ_i c_ijk q̇_i`, over the given Christoffel expressions.
-pub fn coriolis_from(model: &RobotModel, g: &SharedGraph, c: &[E]) -> Vec<E> {
-    let n = model.dof();
+pub fn coriolis_from(n: usize, graph: &SharedGraph, c: &[E]) -> Vec<E> {
     let qd: Vec<E> = (0..n)
-        .map(|i| E::sym(g, crate::graph::Sym::Qd(i)))
+        .map(|i| E::sym(graph, crate::graph::Sym::Qd(i)))
         .collect();
     (0..n * n)
         .map(|idx| {

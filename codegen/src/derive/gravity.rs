@@ -3,11 +3,11 @@
 use super::Derivation;
 use crate::graph::{E, SharedGraph};
 use crate::poly::Poly;
-use dhgen_model::RobotModel;
+use dhgen_model::ChainRef;
 
 /// g(q) in the normal form.
-pub fn gravity_polys(model: &RobotModel) -> Vec<Poly> {
-    super::poly_chain(model)
+pub fn gravity_polys(chain: ChainRef<'_>) -> Vec<Poly> {
+    super::poly_chain(chain)
         .gravity_torques()
         .into_iter()
         .map(|p| p.poly)
@@ -17,14 +17,14 @@ pub fn gravity_polys(model: &RobotModel) -> Vec<Poly> {
 /// g(q) as expressions, whichever derivation is cheaper.
 pub fn gravity(dv: &Derivation<'_>) -> (SharedGraph, Vec<E>) {
     let expanded = {
-        let g = SharedGraph::default();
-        let e = dv.gravity_exprs(&g);
-        (g, e)
+        let graph = SharedGraph::default();
+        let e = dv.gravity_exprs(&graph);
+        (graph, e)
     };
     let recursive = {
-        let g = SharedGraph::default();
-        let e = super::graph_chain(dv.model, &g).gravity_torques();
-        (g, e)
+        let graph = SharedGraph::default();
+        let e = super::graph_chain(dv.chain, &graph).gravity_torques();
+        (graph, e)
     };
     super::cheapest(vec![expanded, recursive])
 }

@@ -4,43 +4,44 @@
 use super::Derivation;
 use crate::graph::{E, SharedGraph};
 use crate::poly::Poly;
-use dhgen_model::RobotModel;
+use dhgen_model::ChainRef;
 
 /// D(q) in the normal form, motor inertia included (row-major).
-pub fn mass_matrix_polys(model: &RobotModel) -> Vec<Vec<Poly>> {
-    let mut d: Vec<Vec<Poly>> = super::poly_chain(model)
+pub fn mass_matrix_polys(chain: ChainRef<'_>) -> Vec<Vec<Poly>> {
+    let mut d: Vec<Vec<Poly>> = super::poly_chain(chain)
         .mass_matrix()
         .into_iter()
         .map(|row| row.into_iter().map(|p| p.poly).collect())
         .collect();
-    add_motors(model, &mut d, |p, x| *p = p.clone().add_constant(x));
+    add_armature(chain, &mut d, |p, x| *p = p.clone().add_constant(x));
     d
 }
 
-pub(crate) fn add_motors<X>(model: &RobotModel, d: &mut [Vec<X>], add: impl Fn(&mut X, f64)) {
-    for (i, l) in model.links.iter().enumerate() {
-        if let Some(m) = l.motor {
-            add(&mut d[i][i], m.reflected_inertia());
+/// Adds each joint's armature to the diagonal.
+pub(crate) fn add_armature<X>(chain: ChainRef<'_>, d: &mut [Vec<X>], add: impl Fn(&mut X, f64)) {
+    for (i, b) in chain.bodies.iter().enumerate() {
+        if b.armature != 0.0 {
+            add(&mut d[i][i], b.armature);
         }
     }
 }
 
 /// D(q) as expressions (row-major, n×n), whichever derivation is cheaper.
 pub fn mass_matrix(dv: &Derivation<'_>) -> (SharedGraph, Vec<E>) {
-    let model = dv.model;
-    let n = model.dof();
+    let chain = dv.chain;
+    let n = chain.dof();
     let expanded = {
-        let g = SharedGraph::default();
-        let e = dv.mass_matrix_exprs(&g);
-        (g, e)
+        let graph = SharedGraph::default();
+        let e = dv.mass_matrix_exprs(&graph);
+        (graph, e)
     };
     let recursive = {
-        let g = SharedGraph::default();
-        let mut d = super::graph_chain(model, &g).mass_matrix();
-        add_motors(model, &mut d, |e, x| *e = e.clone() + E::K(x));
+        let graph = SharedGraph::default();
+        let mut d = super::graph_chain(chain, &graph).mass_matrix();
+        add_armature(chain, &mut d, |e, x| *e = e.clone() + E::K(x));
         let e: Vec<E> = d.into_iter().flatten().collect();
         debug_assert_eq!(e.len(), n * n);
-        (g, e)
+        (graph, e)
     };
     super::cheapest(vec![expanded, recursive])
 }

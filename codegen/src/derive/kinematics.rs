@@ -1,105 +1,141 @@
 //! Forward kinematics and the geometric Jacobian, kept as a product chain: each frame is
-//! the previous one times a sparse link transform, so exact zeros and ones of the DH
-//! table remove their multiplications.
+//! the previous one times a sparse joint step, so exact zeros and ones of the description
+//! remove their multiplications.
+//!
+//! `P_0` (the base, and the constant part of the first joint) can be multiplied in first, so
+//! that the walk starts from it, or last, onto each frame of a walk from the root frame: a
+//! dense `P_0` is cheaper last, a sparse one first. Both are built; the cheaper is kept.
 
 use crate::chain::{V3, cross};
-use crate::graph::{E, SharedGraph};
-use dhgen_model::{Frame, RobotModel};
+use crate::graph::{E, SharedGraph, count};
+use dhgen_model::{ChainRef, Frame, JointKind};
 
-/// The n link frames in the world frame (base applied, tool not).
-pub fn frames(model: &RobotModel, g: &SharedGraph) -> Vec<Frame<E>> {
-    let chain = super::graph_chain(model, g);
-    let base = model.base_pose().map(|b| b.frame::<E>());
-    chain
-        .link_frames()
-        .into_iter()
-        .map(|f| match &base {
-            Some(b) => b.compose(&f),
-            None => f,
-        })
-        .collect()
+/// The joint frames in the world frame, `P_0` multiplied in first or last.
+fn joint_frames(chain: ChainRef<'_>, graph: &SharedGraph, p0_first: bool) -> Vec<Frame<E>> {
+    let ring = super::graph_chain(chain, graph);
+    let p0 = chain.placements[0].to_ring::<E>();
+    if p0_first {
+        ring.joint_frames_from(p0)
+    } else {
+        ring.joint_frames()
+            .into_iter()
+            .map(|f| p0.compose(&f))
+            .collect()
+    }
 }
 
-/// The tool frame in the world frame.
-pub fn fk(model: &RobotModel, g: &SharedGraph) -> Frame<E> {
-    let last = frames(model, g).pop().expect("validated models have links");
-    match model.tool_pose() {
-        Some(t) => last.compose(&t.frame()),
-        None => last,
-    }
+/// Builds `outputs(p0_first)` both ways in fresh graphs and keeps the cheaper.
+fn cheaper_order<T>(
+    mut build: impl FnMut(&SharedGraph, bool) -> T,
+    roots: impl Fn(&T) -> Vec<E>,
+) -> (SharedGraph, T) {
+    let candidates = [true, false].map(|first| {
+        let graph = SharedGraph::default();
+        let out = build(&graph, first);
+        (graph, out)
+    });
+    let cost = |(graph, out): &(SharedGraph, T)| {
+        let ids: Vec<_> = roots(out).iter().map(|e| e.id_in(graph)).collect();
+        count(&graph.borrow(), ids).total()
+    };
+    let [a, b] = candidates;
+    if cost(&b) < cost(&a) { b } else { a }
+}
+
+/// The n link frames in the world frame (base applied, tool not), in a new graph.
+pub fn frames(chain: ChainRef<'_>) -> (SharedGraph, Vec<Frame<E>>) {
+    cheaper_order(
+        |graph, first| {
+            joint_frames(chain, graph, first)
+                .iter()
+                .zip(chain.bodies)
+                .map(|(f, b)| f.compose(&b.link.to_ring()))
+                .collect::<Vec<_>>()
+        },
+        |frames| frames.iter().flat_map(frame_entries).collect(),
+    )
+}
+
+/// The tool frame in the world frame, in a new graph.
+pub fn fk(chain: ChainRef<'_>) -> (SharedGraph, Frame<E>) {
+    cheaper_order(
+        |graph, first| tool_frame(chain, graph, first),
+        frame_entries,
+    )
+}
+
+fn tool_frame(chain: ChainRef<'_>, graph: &SharedGraph, p0_first: bool) -> Frame<E> {
+    let last = joint_frames(chain, graph, p0_first)
+        .pop()
+        .expect("a chain has bodies");
+    last.compose(&chain.placements[chain.dof()].to_ring())
+}
+
+fn frame_entries(f: &Frame<E>) -> Vec<E> {
+    f.r.iter().flatten().chain(&f.p).cloned().collect()
 }
 
 /// The 6×n geometric Jacobian of the tool frame origin, world axes, rows `[v; ω]`,
-/// column-major as `[column][row]`.
-pub fn jacobian(model: &RobotModel, g: &SharedGraph) -> Vec<[E; 6]> {
-    let chain = super::graph_chain(model, g);
-    let base = model.base_pose().map(|b| b.frame::<E>());
-    let world = |f: Frame<E>| match &base {
-        Some(b) => b.compose(&f),
-        None => f,
-    };
-    let tip = fk(model, g).p;
-    chain
-        .joint_frames()
-        .into_iter()
-        .zip(&chain.kinds)
-        .map(|(f, kind)| {
-            let f = world(f);
-            let z: V3<E> = f.z_axis();
-            match kind {
-                dhgen_model::JointKind::Revolute => {
-                    let r: V3<E> = core::array::from_fn(|i| tip[i].clone() - f.p[i].clone());
-                    let v = cross(&z, &r);
-                    [
-                        v[0].clone(),
-                        v[1].clone(),
-                        v[2].clone(),
-                        z[0].clone(),
-                        z[1].clone(),
-                        z[2].clone(),
-                    ]
-                }
-                dhgen_model::JointKind::Prismatic => [
-                    z[0].clone(),
-                    z[1].clone(),
-                    z[2].clone(),
-                    E::K(0.0),
-                    E::K(0.0),
-                    E::K(0.0),
-                ],
-            }
-        })
-        .collect()
+/// column-major as `[column][row]`, in a new graph.
+pub fn jacobian(chain: ChainRef<'_>) -> (SharedGraph, Vec<[E; 6]>) {
+    cheaper_order(
+        |graph, first| {
+            let tip = tool_frame(chain, graph, first).p;
+            joint_frames(chain, graph, first)
+                .into_iter()
+                .zip(chain.bodies)
+                .map(|(f, body)| {
+                    let z: V3<E> = f.z_axis();
+                    match body.joint {
+                        JointKind::Revolute => {
+                            let r: V3<E> =
+                                core::array::from_fn(|i| tip[i].clone() - f.p[i].clone());
+                            let v = cross(&z, &r);
+                            [
+                                v[0].clone(),
+                                v[1].clone(),
+                                v[2].clone(),
+                                z[0].clone(),
+                                z[1].clone(),
+                                z[2].clone(),
+                            ]
+                        }
+                        JointKind::Prismatic => [
+                            z[0].clone(),
+                            z[1].clone(),
+                            z[2].clone(),
+                            E::K(0.0),
+                            E::K(0.0),
+                            E::K(0.0),
+                        ],
+                    }
+                })
+                .collect::<Vec<_>>()
+        },
+        |cols| cols.iter().flatten().cloned().collect(),
+    )
 }
 
 /// `J̇(q, q̇) q̇` of the tool frame origin, world axes, rows `[v; ω]`.
-pub fn jdot_qdot(model: &RobotModel, g: &SharedGraph) -> [E; 6] {
-    let chain = super::graph_chain(model, g);
-    let n = model.dof();
+pub fn jdot_qdot(chain: ChainRef<'_>, graph: &SharedGraph) -> [E; 6] {
+    let ring = super::graph_chain(chain, graph);
+    let n = chain.dof();
     let qd: Vec<E> = (0..n)
-        .map(|i| E::sym(g, crate::graph::Sym::Qd(i)))
+        .map(|i| E::sym(graph, crate::graph::Sym::Qd(i)))
         .collect();
     // The tool frame origin in the last joint frame.
-    let last = &chain.link_in_k[n - 1];
-    let tip = match model.tool_pose() {
-        Some(t) => last.point(&t.xyz.map(E::K)),
-        None => last.p.clone(),
-    };
-    let a = chain.jdot_qdot(&qd, &tip);
-    match model.base_pose() {
-        Some(b) => {
-            let f = b.frame::<E>();
-            let v = crate::chain::rot(&f, &[a[0].clone(), a[1].clone(), a[2].clone()]);
-            let w = crate::chain::rot(&f, &[a[3].clone(), a[4].clone(), a[5].clone()]);
-            [
-                v[0].clone(),
-                v[1].clone(),
-                v[2].clone(),
-                w[0].clone(),
-                w[1].clone(),
-                w[2].clone(),
-            ]
-        }
-        None => a,
-    }
+    let tip = chain.placements[n].p.map(E::K);
+    let a = ring.jdot_qdot(&qd, &tip);
+    // From the root frame to the world.
+    let p0 = chain.placements[0].to_ring::<E>();
+    let v = p0.rotate(&[a[0].clone(), a[1].clone(), a[2].clone()]);
+    let w = p0.rotate(&[a[3].clone(), a[4].clone(), a[5].clone()]);
+    [
+        v[0].clone(),
+        v[1].clone(),
+        v[2].clone(),
+        w[0].clone(),
+        w[1].clone(),
+        w[2].clone(),
+    ]
 }

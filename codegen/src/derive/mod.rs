@@ -11,17 +11,17 @@ pub mod kinematics;
 pub mod newton_euler;
 pub mod singularity;
 
-use crate::chain::{Chain, JointSymbols};
+use crate::chain::{JointSymbols, RingChain};
 use crate::graph::{E, SharedGraph, Sym, count};
 use crate::poly::{Basis, P, Poly, Var};
-use dhgen_model::{JointKind, RobotModel};
+use dhgen_model::{ChainRef, JointKind};
 use std::cell::OnceCell;
 use std::rc::Rc;
 
 /// One robot's derivations, with the expensive normal forms built at most once.
-pub struct Derivation<'m> {
-    /// The robot.
-    pub model: &'m RobotModel,
+pub struct Derivation<'c> {
+    /// The robot's structure.
+    pub chain: ChainRef<'c>,
     mass_matrix: OnceCell<Vec<Vec<Poly>>>,
     christoffel: OnceCell<Vec<Vec<Vec<Poly>>>>,
     gravity: OnceCell<Vec<Poly>>,
@@ -31,11 +31,11 @@ pub struct Derivation<'m> {
 /// parallel axes and with full inertia tensors (e.g. 7-DOF) expand to many thousands.
 const NORMAL_FORM_TERMS: usize = 4000;
 
-impl<'m> Derivation<'m> {
-    /// Starts the derivations of `model`.
-    pub fn new(model: &'m RobotModel) -> Self {
+impl<'c> Derivation<'c> {
+    /// Starts the derivations of the robot with structure `chain`.
+    pub fn new(chain: ChainRef<'c>) -> Self {
         Derivation {
-            model,
+            chain,
             mass_matrix: OnceCell::new(),
             christoffel: OnceCell::new(),
             gravity: OnceCell::new(),
@@ -45,25 +45,25 @@ impl<'m> Derivation<'m> {
     /// D(q) in the normal form (motor inertia included), row-major.
     pub fn mass_matrix_polys(&self) -> &Vec<Vec<Poly>> {
         self.mass_matrix
-            .get_or_init(|| inertia::mass_matrix_polys(self.model))
+            .get_or_init(|| inertia::mass_matrix_polys(self.chain))
     }
 
     /// `c[i][j][k]` in the normal form.
     pub fn christoffel_polys(&self) -> &Vec<Vec<Vec<Poly>>> {
         self.christoffel
-            .get_or_init(|| christoffel::christoffel_polys(self.model, self.mass_matrix_polys()))
+            .get_or_init(|| christoffel::christoffel_polys(self.chain, self.mass_matrix_polys()))
     }
 
     /// g(q) in the normal form.
     pub fn gravity_polys(&self) -> &Vec<Poly> {
         self.gravity
-            .get_or_init(|| gravity::gravity_polys(self.model))
+            .get_or_init(|| gravity::gravity_polys(self.chain))
     }
 
     /// D(q) as Horner-factored expressions in `g`, flattened row-major.
     pub fn mass_matrix_exprs(&self, g: &SharedGraph) -> Vec<E> {
         let flat: Vec<Poly> = self.mass_matrix_polys().iter().flatten().cloned().collect();
-        polys_to_exprs(&flat, g, self.model)
+        polys_to_exprs(&flat, g, self.chain)
     }
 
     /// `c[i][j][k]` as Horner-factored expressions in `g`, flattened `(i·n + j)·n + k`.
@@ -75,12 +75,12 @@ impl<'m> Derivation<'m> {
             .flatten()
             .cloned()
             .collect();
-        polys_to_exprs(&flat, g, self.model)
+        polys_to_exprs(&flat, g, self.chain)
     }
 
     /// g(q) as Horner-factored expressions in `g`.
     pub fn gravity_exprs(&self, g: &SharedGraph) -> Vec<E> {
-        polys_to_exprs(self.gravity_polys(), g, self.model)
+        polys_to_exprs(self.gravity_polys(), g, self.chain)
     }
 
     /// Whether the normal form is small enough for its candidates to be worth building.
@@ -119,12 +119,12 @@ impl JointSymbols<P> for PolySymbols {
     }
 }
 
-/// The variable kinds of a model's joints.
-pub fn vars(model: &RobotModel) -> Rc<[Var]> {
-    model
-        .links
+/// The variable kinds of a chain's joints.
+pub fn vars(chain: ChainRef<'_>) -> Rc<[Var]> {
+    chain
+        .bodies
         .iter()
-        .map(|l| match l.joint {
+        .map(|b| match b.joint {
             JointKind::Revolute => Var::Angle,
             JointKind::Prismatic => Var::Length,
         })
@@ -132,13 +132,13 @@ pub fn vars(model: &RobotModel) -> Rc<[Var]> {
 }
 
 /// The chain in expression arithmetic.
-pub fn graph_chain(model: &RobotModel, g: &SharedGraph) -> Chain<E> {
-    Chain::new(model, &GraphSymbols(g))
+pub fn graph_chain<'c>(chain: ChainRef<'c>, graph: &SharedGraph) -> RingChain<'c, E> {
+    RingChain::new(chain, &GraphSymbols(graph))
 }
 
 /// The chain in normal-form arithmetic.
-pub fn poly_chain(model: &RobotModel) -> Chain<P> {
-    Chain::new(model, &PolySymbols(vars(model)))
+pub fn poly_chain(chain: ChainRef<'_>) -> RingChain<'_, P> {
+    RingChain::new(chain, &PolySymbols(vars(chain)))
 }
 
 /// Of several candidate derivations of the same outputs, each in its own graph, the one
@@ -155,19 +155,10 @@ pub fn cheapest(candidates: Vec<(SharedGraph, Vec<E>)>) -> (SharedGraph, Vec<E>)
 
 /// Runs of consecutive revolute joints with parallel axes (no constant rotation between
 /// them): their angles add up, and `cos(θ2 + θ3)` is one variable instead of four terms.
-pub fn parallel_runs(model: &RobotModel) -> Basis {
-    let n = model.dof();
-    let mut start: Vec<usize> = (0..n).collect();
-    for k in 1..n {
-        let both_revolute = model.links[k - 1].joint == JointKind::Revolute
-            && model.links[k].joint == JointKind::Revolute;
-        // The constant rotation between joint k-1's and joint k's frames is Rx(α) of row
-        // k-1 (standard) or row k (modified).
-        let alpha = match model.convention {
-            dhgen_model::Convention::Standard => model.links[k - 1].alpha,
-            dhgen_model::Convention::Modified => model.links[k].alpha,
-        };
-        if both_revolute && alpha.quarter_turn() == Some((1, 0)) {
+pub fn parallel_runs(chain: ChainRef<'_>) -> Basis {
+    let mut start: Vec<usize> = (0..chain.dof()).collect();
+    for k in 1..chain.dof() {
+        if chain.parallel_to_previous(k) {
             start[k] = start[k - 1];
         }
     }
@@ -176,10 +167,10 @@ pub fn parallel_runs(model: &RobotModel) -> Basis {
 
 /// Polynomials as expressions in `g`, Horner-factored; each polynomial is written in
 /// cumulative angles of parallel axes when that gives fewer terms.
-pub fn polys_to_exprs(polys: &[Poly], g: &SharedGraph, model: &RobotModel) -> Vec<E> {
-    let v = vars(model);
-    let runs = parallel_runs(model);
-    let plain = Basis::joint_angles(model.dof());
+pub fn polys_to_exprs(polys: &[Poly], g: &SharedGraph, chain: ChainRef<'_>) -> Vec<E> {
+    let v = vars(chain);
+    let runs = parallel_runs(chain);
+    let plain = Basis::joint_angles(chain.dof());
     polys
         .iter()
         .map(|p| {
@@ -187,7 +178,7 @@ pub fn polys_to_exprs(polys: &[Poly], g: &SharedGraph, model: &RobotModel) -> Ve
                 return crate::poly::to_expr(p, g, &v);
             }
             let mut q = p.clone();
-            for k in 1..model.dof() {
+            for k in 1..chain.dof() {
                 if runs.start[k] != k {
                     q = q.to_cumulative(k, &v);
                 }

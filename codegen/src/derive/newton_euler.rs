@@ -6,71 +6,61 @@
 
 use super::Derivation;
 use crate::graph::{E, SharedGraph, Sym};
-use dhgen_model::RobotModel;
+use dhgen_model::ChainRef;
 
-/// Motor inertia and friction terms added to joint i's torque (friction's Coulomb part
-/// is emitted separately, since `sign` is not arithmetic).
-fn motor_term(model: &RobotModel, i: usize, qdd: &E) -> E {
-    match model.links[i].motor {
-        Some(m) => E::K(m.reflected_inertia()) * qdd.clone(),
-        None => E::K(0.0),
-    }
-}
-
-fn viscous_term(model: &RobotModel, i: usize, qd: &E) -> E {
-    match model.links[i].friction {
-        Some(f) => E::K(f.viscous) * qd.clone(),
-        None => E::K(0.0),
-    }
+/// The armature and viscous friction torques of joint i (friction's Coulomb part is emitted
+/// separately, since `sign` is not arithmetic).
+fn joint_terms(chain: ChainRef<'_>, i: usize, qd: &E, qdd: &E) -> E {
+    let b = &chain.bodies[i];
+    E::K(b.armature) * qdd.clone() + E::K(b.friction.viscous) * qd.clone()
 }
 
 /// The bias torques without gravity or with it, and with q̈ as given: the Newton-Euler
 /// recursion, plus motor inertia and viscous friction.
 pub fn rnea_exprs(
-    model: &RobotModel,
-    g: &SharedGraph,
+    chain: ChainRef<'_>,
+    graph: &SharedGraph,
     qdd_zero: bool,
     with_gravity: bool,
 ) -> Vec<E> {
-    let n = model.dof();
-    let chain = super::graph_chain(model, g);
-    let qd: Vec<E> = (0..n).map(|i| E::sym(g, Sym::Qd(i))).collect();
+    let n = chain.dof();
+    let qd: Vec<E> = (0..n).map(|i| E::sym(graph, Sym::Qd(i))).collect();
     let qdd: Vec<E> = (0..n)
         .map(|i| {
             if qdd_zero {
                 E::K(0.0)
             } else {
-                E::sym(g, Sym::Qdd(i))
+                E::sym(graph, Sym::Qdd(i))
             }
         })
         .collect();
-    chain
+    super::graph_chain(chain, graph)
         .rnea(&qd, &qdd, with_gravity)
         .into_iter()
         .enumerate()
-        .map(|(i, t)| t + motor_term(model, i, &qdd[i]) + viscous_term(model, i, &qd[i]))
+        .map(|(i, t)| t + joint_terms(chain, i, &qd[i], &qdd[i]))
         .collect()
 }
 
 /// τ without Coulomb friction, whichever derivation is cheaper.
 pub fn inverse_dynamics(dv: &Derivation<'_>) -> (SharedGraph, Vec<E>) {
-    let model = dv.model;
-    let n = model.dof();
+    let chain = dv.chain;
+    let n = chain.dof();
     let recursive = {
-        let g = SharedGraph::default();
-        let e = rnea_exprs(model, &g, false, true);
-        (g, e)
+        let graph = SharedGraph::default();
+        let e = rnea_exprs(chain, &graph, false, true);
+        (graph, e)
     };
     if !dv.normal_form_is_small() {
         return recursive;
     }
     let assembled = {
-        let g = SharedGraph::default();
-        let d = dv.mass_matrix_exprs(&g);
-        let c = dv.christoffel_exprs(&g);
-        let gr = dv.gravity_exprs(&g);
-        let qd: Vec<E> = (0..n).map(|i| E::sym(&g, Sym::Qd(i))).collect();
-        let qdd: Vec<E> = (0..n).map(|i| E::sym(&g, Sym::Qdd(i))).collect();
+        let graph = SharedGraph::default();
+        let d = dv.mass_matrix_exprs(&graph);
+        let c = dv.christoffel_exprs(&graph);
+        let gr = dv.gravity_exprs(&graph);
+        let qd: Vec<E> = (0..n).map(|i| E::sym(&graph, Sym::Qd(i))).collect();
+        let qdd: Vec<E> = (0..n).map(|i| E::sym(&graph, Sym::Qdd(i))).collect();
         let e = (0..n)
             .map(|k| {
                 let mut t = gr[k].clone();
@@ -84,10 +74,10 @@ pub fn inverse_dynamics(dv: &Derivation<'_>) -> (SharedGraph, Vec<E>) {
                             * (qd[i].clone() * qd[j].clone());
                     }
                 }
-                t + viscous_term(model, k, &qd[k])
+                t + E::K(chain.bodies[k].friction.viscous) * qd[k].clone()
             })
             .collect();
-        (g, e)
+        (graph, e)
     };
     super::cheapest(vec![recursive, assembled])
 }
