@@ -10,7 +10,7 @@ use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
 use dhgen::Arm;
 use dhgen::ik::{DecoupledIk, NumericIk};
 use dhgen::nalgebra::{Isometry3, SVector, Vector6};
-use dhgen::velocity::{Damping, JacobianSvd, inverse_velocity, jacobian_dot_qd};
+use dhgen::velocity::{Damping, JacobianSvd, inverse_velocity};
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
 use std::hint::black_box;
@@ -74,8 +74,8 @@ fn cycle<const N: usize, R>(
 }
 
 fn closed_form(c: &mut Criterion) {
-    let puma = cases::<6, _>(&puma560::Model, 560);
-    let ik = DecoupledIk::from_arm(&puma560::Model).unwrap();
+    let puma = cases::<6, _>(&puma560::Robot, 560);
+    let ik = DecoupledIk::from_arm(&puma560::Robot).unwrap();
     cycle(
         c,
         "puma560",
@@ -84,8 +84,8 @@ fn closed_form(c: &mut Criterion) {
         &puma,
         |s| ik.solve(&s.pose),
     );
-    let st = cases::<6, _>(&stanford::Model, 1969);
-    let ik = DecoupledIk::from_arm(&stanford::Model).unwrap();
+    let st = cases::<6, _>(&stanford::Robot, 1969);
+    let ik = DecoupledIk::from_arm(&stanford::Robot).unwrap();
     cycle(c, "stanford", "ik_closed_form", "all_solutions", &st, |s| {
         ik.solve(&s.pose)
     });
@@ -93,33 +93,33 @@ fn closed_form(c: &mut Criterion) {
 
 fn numeric(c: &mut Criterion) {
     let solver = NumericIk::default();
-    let puma = cases::<6, _>(&puma560::Model, 560);
+    let puma = cases::<6, _>(&puma560::Robot, 560);
     cycle(c, "puma560", "ik_numeric", "near_seed", &puma, |s| {
-        solver.solve(&puma560::Model, &s.pose, &s.near)
+        solver.solve(&puma560::Robot, &s.pose, &s.near)
     });
     cycle(c, "puma560", "ik_numeric", "random_seed", &puma, |s| {
-        solver.solve(&puma560::Model, &s.pose, &s.random)
+        solver.solve(&puma560::Robot, &s.pose, &s.random)
     });
-    let pd = cases::<7, _>(&panda::Model, 7);
+    let pd = cases::<7, _>(&panda::Robot, 7);
     cycle(c, "panda", "ik_numeric", "near_seed", &pd, |s| {
-        solver.solve(&panda::Model, &s.pose, &s.near)
+        solver.solve(&panda::Robot, &s.pose, &s.near)
     });
     cycle(c, "panda", "ik_numeric", "random_seed", &pd, |s| {
-        solver.solve(&panda::Model, &s.pose, &s.random)
+        solver.solve(&panda::Robot, &s.pose, &s.random)
     });
 }
 
 fn velocity(c: &mut Criterion) {
-    let puma = cases::<6, _>(&puma560::Model, 560);
+    let puma = cases::<6, _>(&puma560::Robot, 560);
     let xi = Vector6::new(0.1, -0.2, 0.05, 0.3, 0.0, -0.1);
     cycle(c, "puma560", "svd", "jacobian", &puma, |s| {
-        JacobianSvd::new(&puma560::Model.jacobian(&s.q))
+        JacobianSvd::new(&puma560::Robot.jacobian(&s.q))
     });
     cycle(c, "puma560", "inverse_velocity", "damped", &puma, |s| {
-        inverse_velocity(&puma560::Model, &s.q, &xi, None, &Damping::default())
+        inverse_velocity(&puma560::Robot, &s.q, &xi, None, &Damping::default())
     });
-    cycle(c, "puma560", "jacobian_dot_qd", "analytic", &puma, |s| {
-        jacobian_dot_qd(&puma560::Model, &s.q, &s.near)
+    cycle(c, "puma560", "jdot_qdot", "analytic", &puma, |s| {
+        dhgen::Arm::jdot_qdot(&puma560::Robot, &s.q, &s.near)
     });
 }
 

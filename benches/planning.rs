@@ -44,7 +44,7 @@ where
     CollisionChecker::new(arm, Scene::new(scenes::puma_obstacles()).unwrap()).unwrap()
 }
 
-fn configurations(checker: &CollisionChecker<'_, puma560::Model>) -> Vec<[f64; 6]> {
+fn configurations(checker: &CollisionChecker<'_, puma560::Robot>) -> Vec<[f64; 6]> {
     let mut rng = StdRng::seed_from_u64(7);
     (0..STATES)
         .map(|_| {
@@ -105,15 +105,15 @@ where
 
 fn planning(c: &mut Criterion) {
     let robot = Robot::from_model(scenes::model("puma560.toml"));
-    let margin = checker(&puma560::Model)
+    let margin = checker(&puma560::Robot)
         .model()
         .margin(roadmap_config().resolution);
-    let qs = configurations(&checker(&puma560::Model));
+    let qs = configurations(&checker(&puma560::Robot));
     let generated: Vec<SVector<f64, 6>> = qs.iter().map(|q| SVector::from(*q)).collect();
     let runtime: Vec<DVector<f64>> = qs.iter().map(|q| DVector::from_column_slice(q)).collect();
-    bench_checks(c, "generated", &puma560::Model, &generated, margin);
+    bench_checks(c, "generated", &puma560::Robot, &generated, margin);
     bench_checks(c, "runtime", &robot, &runtime, margin);
-    bench_roadmap(c, "generated", &puma560::Model);
+    bench_roadmap(c, "generated", &puma560::Robot);
     bench_roadmap(c, "runtime", &robot);
 }
 

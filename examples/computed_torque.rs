@@ -66,8 +66,8 @@ fn control(q: &[f64; 6], qd: &[f64; 6], q_ref: &V6, qd_ref: &V6, qdd_ref: &V6) -
 
 /// q̈ of the plant; its D(q) is positive definite everywhere, so the solve cannot fail.
 fn plant_acceleration(q: &V6, qd: &V6, tau: &[f64; 6]) -> V6 {
-    plant::State::new(&(*q).into())
-        .forward_dynamics(&(*qd).into(), tau)
+    plant::State::new(q)
+        .forward_dynamics(qd, tau)
         .expect("the plant's inertia matrix is positive definite")
 }
 

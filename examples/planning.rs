@@ -65,7 +65,7 @@ fn main() -> Result<(), Box<dyn Error>> {
 }
 
 fn planar(dir: &Path, scene: &PlanarScene) -> Result<(), Box<dyn Error>> {
-    let mut checker = CollisionChecker::new(&planar::Model, Scene::new(scene.obstacles.clone())?)?;
+    let mut checker = CollisionChecker::new(&planar::Robot, Scene::new(scene.obstacles.clone())?)?;
     let (start, goal) = (Q2::from(scene.start), Q2::from(scene.goal));
     let config = scenes::narrow_config();
     let resolution = config.resolution;
@@ -433,7 +433,7 @@ fn draw_workspace(
 
 fn puma560(dir: &Path) -> Result<(), Box<dyn Error>> {
     let scene = Scene::new(scenes::puma_obstacles())?;
-    let mut checker = CollisionChecker::new(&puma::Model, scene)?;
+    let mut checker = CollisionChecker::new(&puma::Robot, scene)?;
     let (start, goal) = (Q6::from(scenes::PUMA_START), Q6::from(scenes::PUMA_GOAL));
     let mut prm = Prm::new(&mut checker, scenes::puma_config(), 1)?;
     let path = prm.query(&start, &goal)?;

@@ -1,4 +1,4 @@
-//! One interface to every robot: a generated module's `Model` and the runtime
+//! One interface to every robot: a generated module's `Robot` and the runtime
 //! [`Robot`](crate::Robot) both implement [`Arm`] (and [`ArmDynamics`] when the description
 //! has mass properties), so inverse kinematics, planners and controllers are written once.
 //!
@@ -18,12 +18,12 @@
 //! }
 //!
 //! let q = dhgen::nalgebra::SVector::<f64, 2>::new(0.0, 0.0);
-//! assert!((reach(&planar::Model, &q) - 1.8).abs() < 1e-12);
+//! assert!((reach(&planar::Robot, &q) - 1.8).abs() < 1e-12);
 //! ```
 
 use dhgen_model::ChainRef;
 use nalgebra::allocator::Allocator;
-use nalgebra::{DefaultAllocator, Dim, Isometry3, OMatrix, OVector, U6};
+use nalgebra::{DefaultAllocator, Dim, Isometry3, OMatrix, OVector, U6, Vector6};
 
 /// The allocator bounds every [`Arm`] needs: joint vectors, the 6×n Jacobian and n×n
 /// matrices. Repeat `DefaultAllocator: ArmAllocator<A::Dof>` in generic code.
@@ -70,13 +70,24 @@ where
     }
 
     /// Pose of the tool frame in the world frame: base · A1 ⋯ An · tool.
+    #[doc(alias = "fkine")]
     fn fk(&self, q: &OVector<f64, Self::Dof>) -> Isometry3<f64>;
 
     /// Writes the link frames (world frame, tool not applied) into `out`, as many as fit.
     fn frames_into(&self, q: &OVector<f64, Self::Dof>, out: &mut [Isometry3<f64>]);
 
     /// Geometric Jacobian of the tool frame origin, world axes, rows `[v; ω]`.
+    #[doc(alias = "jacob0")]
     fn jacobian(&self, q: &OVector<f64, Self::Dof>) -> OMatrix<f64, U6, Self::Dof>;
+
+    /// `J̇(q, q̇) q̇` of the tool frame origin, world axes, rows `[v; ω]`: the tool's
+    /// acceleration at `q̈ = 0`. By default from the Jacobian
+    /// ([`jdot_qdot_from_jacobian`](crate::velocity::jdot_qdot_from_jacobian)); generated
+    /// modules override it with their straight-line code.
+    #[doc(alias = "jacob_dot")]
+    fn jdot_qdot(&self, q: &OVector<f64, Self::Dof>, qd: &OVector<f64, Self::Dof>) -> Vector6<f64> {
+        crate::velocity::jdot_qdot_from_jacobian(self, &self.jacobian(q), qd)
+    }
 }
 
 /// Rigid-body dynamics of a serial arm (`τ = D q̈ + C q̇ + g`, plus motor inertia and
@@ -86,7 +97,30 @@ where
     DefaultAllocator: ArmAllocator<Self::Dof>,
 {
     /// Joint-space inertia matrix D(q).
+    #[doc(alias = "crba")]
+    #[doc(alias = "inertia")]
     fn mass_matrix(&self, q: &OVector<f64, Self::Dof>) -> OMatrix<f64, Self::Dof, Self::Dof>;
+
+    /// Writes the Christoffel symbols `c_ijk` (k the equation index) into `out` in the order
+    /// `(i·n + j)·n + k`, as many as fit (`n³` for all). By default from the Coriolis matrix,
+    /// which is linear in `q̇`: `c_ijk = C(q, e_i)_kj`, exactly (n evaluations of C);
+    /// generated modules and the runtime path override it.
+    fn christoffel_into(&self, q: &OVector<f64, Self::Dof>, out: &mut [f64]) {
+        let n = self.dof();
+        let mut e = OVector::<f64, Self::Dof>::zeros_generic(self.dim(), nalgebra::U1);
+        for i in 0..n {
+            e[i] = 1.0;
+            let c = self.coriolis(q, &e);
+            e[i] = 0.0;
+            for j in 0..n {
+                for k in 0..n {
+                    if let Some(o) = out.get_mut((i * n + j) * n + k) {
+                        *o = c[(k, j)];
+                    }
+                }
+            }
+        }
+    }
 
     /// Coriolis matrix C(q, q̇), `C_kj = Σ_i c_ijk q̇_i`.
     fn coriolis(
@@ -96,9 +130,24 @@ where
     ) -> OMatrix<f64, Self::Dof, Self::Dof>;
 
     /// Gravity torques g(q).
+    #[doc(alias = "gravload")]
     fn gravity(&self, q: &OVector<f64, Self::Dof>) -> OVector<f64, Self::Dof>;
 
+    /// The torques at zero acceleration, `C(q, q̇) q̇ + g(q)` plus friction. By default the
+    /// inverse dynamics at `q̈ = 0`.
+    #[doc(alias = "nonLinearEffects")]
+    fn bias(
+        &self,
+        q: &OVector<f64, Self::Dof>,
+        qd: &OVector<f64, Self::Dof>,
+    ) -> OVector<f64, Self::Dof> {
+        let zero = OVector::<f64, Self::Dof>::zeros_generic(self.dim(), nalgebra::U1);
+        self.inverse_dynamics(q, qd, &zero)
+    }
+
     /// Inverse dynamics τ(q, q̇, q̈).
+    #[doc(alias = "rnea")]
+    #[doc(alias = "rne")]
     fn inverse_dynamics(
         &self,
         q: &OVector<f64, Self::Dof>,
@@ -107,6 +156,8 @@ where
     ) -> OVector<f64, Self::Dof>;
 
     /// Forward dynamics q̈(q, q̇, τ); `None` where D(q) is not positive definite.
+    #[doc(alias = "aba")]
+    #[doc(alias = "accel")]
     fn forward_dynamics(
         &self,
         q: &OVector<f64, Self::Dof>,
@@ -120,7 +171,7 @@ mod runtime {
     use super::{Arm, ArmDynamics};
     use crate::Robot;
     use dhgen_model::ChainRef;
-    use nalgebra::{DMatrix, DVector, Dyn, Isometry3, OMatrix, U6};
+    use nalgebra::{DMatrix, DVector, Dyn, Isometry3, Matrix6xX};
 
     impl Arm for Robot {
         type Dof = Dyn;
@@ -138,32 +189,43 @@ mod runtime {
         }
 
         fn fk(&self, q: &DVector<f64>) -> Isometry3<f64> {
-            Robot::fk(self, q.as_slice())
+            Robot::fk(self, q)
         }
 
         fn frames_into(&self, q: &DVector<f64>, out: &mut [Isometry3<f64>]) {
-            for (o, f) in out.iter_mut().zip(Robot::frames(self, q.as_slice())) {
+            for (o, f) in out.iter_mut().zip(Robot::frames(self, q)) {
                 *o = f;
             }
         }
 
-        fn jacobian(&self, q: &DVector<f64>) -> OMatrix<f64, U6, Dyn> {
-            let j = Robot::jacobian(self, q.as_slice());
-            OMatrix::<f64, U6, Dyn>::from_fn_generic(U6, Dyn(j.ncols()), |r, c| j[(r, c)])
+        fn jacobian(&self, q: &DVector<f64>) -> Matrix6xX<f64> {
+            Robot::jacobian(self, q)
         }
     }
 
     impl ArmDynamics for Robot {
         fn mass_matrix(&self, q: &DVector<f64>) -> DMatrix<f64> {
-            Robot::mass_matrix(self, q.as_slice())
+            Robot::mass_matrix(self, q)
+        }
+
+        fn christoffel_into(&self, q: &DVector<f64>, out: &mut [f64]) {
+            let c = Robot::christoffel(self, q);
+            let n = c.dof();
+            for (idx, o) in out.iter_mut().enumerate().take(n * n * n) {
+                *o = c.get(idx / (n * n), (idx / n) % n, idx % n);
+            }
         }
 
         fn coriolis(&self, q: &DVector<f64>, qd: &DVector<f64>) -> DMatrix<f64> {
-            Robot::coriolis(self, q.as_slice(), qd.as_slice())
+            Robot::coriolis(self, q, qd)
         }
 
         fn gravity(&self, q: &DVector<f64>) -> DVector<f64> {
-            Robot::gravity(self, q.as_slice())
+            Robot::gravity(self, q)
+        }
+
+        fn bias(&self, q: &DVector<f64>, qd: &DVector<f64>) -> DVector<f64> {
+            Robot::bias(self, q, qd)
         }
 
         fn inverse_dynamics(
@@ -172,7 +234,7 @@ mod runtime {
             qd: &DVector<f64>,
             qdd: &DVector<f64>,
         ) -> DVector<f64> {
-            Robot::inverse_dynamics(self, q.as_slice(), qd.as_slice(), qdd.as_slice())
+            Robot::inverse_dynamics(self, q, qd, qdd)
         }
 
         fn forward_dynamics(
@@ -181,7 +243,7 @@ mod runtime {
             qd: &DVector<f64>,
             tau: &DVector<f64>,
         ) -> Option<DVector<f64>> {
-            Robot::forward_dynamics(self, q.as_slice(), qd.as_slice(), tau.as_slice())
+            Robot::forward_dynamics(self, q, qd, tau)
         }
     }
 }

@@ -1,8 +1,9 @@
 //! Forward kinematics and the geometric Jacobian of the runtime [`Robot`].
 
+use crate::Joints;
 use crate::robot::{Rigid, Robot};
 use dhgen_model::JointKind;
-use nalgebra::{DMatrix, Isometry3};
+use nalgebra::{Isometry3, Matrix6xX};
 
 impl Robot {
     /// Walks the chain base to tip, calling `visit(i, frame)` with the world pose of each
@@ -32,8 +33,8 @@ impl Robot {
     ///
     /// # Panics
     /// If `q.len() != self.dof()`.
-    pub fn fk(&self, q: &[f64]) -> Isometry3<f64> {
-        self.check_len("fk", "q", q);
+    pub fn fk(&self, q: &(impl Joints<f64> + ?Sized)) -> Isometry3<f64> {
+        let q = self.check_len("fk", "q", q);
         self.walk_joint_frames(q, |_, _| {})
             .compose(&self.tool)
             .to_isometry()
@@ -44,8 +45,8 @@ impl Robot {
     ///
     /// # Panics
     /// If `q.len() != self.dof()`.
-    pub fn frames(&self, q: &[f64]) -> Vec<Isometry3<f64>> {
-        self.check_len("frames", "q", q);
+    pub fn frames(&self, q: &(impl Joints<f64> + ?Sized)) -> Vec<Isometry3<f64>> {
+        let q = self.check_len("frames", "q", q);
         let mut frames = Vec::with_capacity(self.dof());
         self.walk_joint_frames(q, |i, joint_frame| {
             let link = match &self.bodies[i].link {
@@ -60,14 +61,14 @@ impl Robot {
     /// The 6×n geometric Jacobian of the tool frame origin, in world axes, rows
     /// `[v; ω]`: column i is `[z × (p_e − p_z); z]` for a revolute joint and `[z; 0]` for a
     /// prismatic one, where `z` and `p_z` are joint i's axis and the origin of the frame
-    /// carrying it (frame i−1 for standard DH, frame i for modified DH) and `p_e` is the
-    /// tool origin.
+    /// carrying it (joint frame i: frame i−1 for standard DH, frame i for modified DH) and
+    /// `p_e` is the tool origin.
     ///
     /// # Panics
     /// If `q.len() != self.dof()`.
-    pub fn jacobian(&self, q: &[f64]) -> DMatrix<f64> {
-        self.check_len("jacobian", "q", q);
-        let mut j = DMatrix::zeros(6, self.dof());
+    pub fn jacobian(&self, q: &(impl Joints<f64> + ?Sized)) -> Matrix6xX<f64> {
+        let q = self.check_len("jacobian", "q", q);
+        let mut j = Matrix6xX::zeros(self.dof());
         // p_e is only known at the end of the walk, so a revolute column first holds
         // p_z × z = −z × p_z, and z × p_e is added afterwards.
         let last = self.walk_joint_frames(q, |i, frame| {

@@ -65,9 +65,11 @@ pub use dhgen_macros::robot;
 extern crate self as dhgen;
 
 mod arm;
+mod joints;
 mod real;
 mod rigid;
 pub use arm::{Arm, ArmAllocator, ArmDynamics, JointVector};
+pub use joints::{JointArray, Joints};
 pub use real::Real;
 
 // Rotations (section 3.5): ZYZ Euler angles, roll-pitch-yaw, axis-angle; what nalgebra lacks.

@@ -2,8 +2,8 @@
 //! needs, computed once at construction (Pinocchio's split between the constant model and
 //! the per-call work, which lives in [`crate::kinematics`] and [`crate::dynamics`]).
 
-use crate::Error;
 pub(crate) use crate::rigid::Rigid;
+use crate::{Error, Joints};
 use dhgen_model::{ChainRef, JointChain, JointKind, RobotModel};
 use nalgebra::{Matrix3, Vector3};
 use std::path::Path;
@@ -166,10 +166,16 @@ impl Robot {
         self.has_dynamics
     }
 
-    /// Panics unless `v` has one entry per joint.
+    /// The values of `v`; panics unless it has one entry per joint.
     #[inline]
     #[track_caller]
-    pub(crate) fn check_len(&self, method: &str, arg: &str, v: &[f64]) {
+    pub(crate) fn check_len<'v>(
+        &self,
+        method: &str,
+        arg: &str,
+        v: &'v (impl Joints<f64> + ?Sized),
+    ) -> &'v [f64] {
+        let v = v.joints();
         let n = self.bodies.len();
         if v.len() != n {
             panic!(
@@ -177,6 +183,7 @@ impl Robot {
                 v.len()
             );
         }
+        v
     }
 
     /// Panics for a kinematics-only robot.

@@ -10,22 +10,22 @@
 //!
 //! ```
 //! use dhgen::nalgebra::{SVector, Vector6};
-//! use dhgen::velocity::{Damping, JacobianSvd, inverse_velocity, jacobian_dot_qd};
+//! use dhgen::velocity::{Damping, JacobianSvd, inverse_velocity};
 //! use dhgen::Arm;
 //! dhgen::robot!(mod puma = "robots/puma560.toml");
 //!
 //! let q = SVector::<f64, 6>::new(0.1, -0.5, 0.3, 0.2, 0.8, -0.4);
-//! let j = puma::Model.jacobian(&q);
+//! let j = puma::Robot.jacobian(&q);
 //! let svd = JacobianSvd::new(&j);
 //! assert!(svd.min_singular_value() > 1e-3 && svd.manipulability() > 0.0);
 //!
 //! // Joint rates for a desired twist [v; ω], exact away from singularities.
 //! let xi = Vector6::new(0.1, 0.0, -0.05, 0.0, 0.2, 0.0);
-//! let qd = inverse_velocity(&puma::Model, &q, &xi, None, &Damping::default());
+//! let qd = inverse_velocity(&puma::Robot, &q, &xi, None, &Damping::default());
 //! assert!((j * qd - xi).norm() < 1e-12);
 //!
 //! // The velocity-product term of the tool acceleration, J̇(q, q̇) q̇.
-//! let bias = jacobian_dot_qd(&puma::Model, &q, &qd);
+//! let bias = puma::Robot.jdot_qdot(&q, &qd);
 //! assert!(bias.iter().all(|x| x.is_finite()));
 //! ```
 
@@ -336,7 +336,7 @@ where
 
 /// Inverse acceleration (section 5.7): `q̈ = J⁺ (ẍ − J̇ q̇) + (I − J⁺ J) b` for the tool
 /// acceleration `ẍ = [a; α]` (linear acceleration of the tool origin and angular
-/// acceleration, world axes), with [`jacobian_dot_qd`] for `J̇ q̇` and J⁺ damped per `damping`.
+/// acceleration, world axes), with [`Arm::jdot_qdot`] for `J̇ q̇` and J⁺ damped per `damping`.
 pub fn inverse_acceleration<A: Arm>(
     arm: &A,
     q: &OVector<f64, A::Dof>,
@@ -349,7 +349,7 @@ where
     DefaultAllocator: ArmAllocator<A::Dof>,
 {
     let j = arm.jacobian(q);
-    let bias = jacobian_dot_qd_from(arm, &j, qd);
+    let bias = jdot_qdot_from_jacobian(arm, &j, qd);
     let svd = JacobianSvd::new(&j);
     let lambda = damping.lambda(svd.min_singular_value());
     let mut qdd = svd.solve(&(xdd - bias), lambda);
@@ -401,8 +401,8 @@ fn column_dot(
 /// let q = SVector::<f64, 6>::new(0.2, -0.3, 0.4, 0.5, 0.6, 0.7);
 /// let qd = SVector::<f64, 6>::new(0.5, -0.1, 0.3, 0.0, 0.2, -0.4);
 /// let h = 1e-6;
-/// let fd = (puma::Model.jacobian(&(q + qd * h)) - puma::Model.jacobian(&(q - qd * h))) / (2.0 * h);
-/// assert!((jacobian_dot(&puma::Model, &q, &qd) - fd).abs().max() < 1e-8);
+/// let fd = (puma::Robot.jacobian(&(q + qd * h)) - puma::Robot.jacobian(&(q - qd * h))) / (2.0 * h);
+/// assert!((jacobian_dot(&puma::Robot, &q, &qd) - fd).abs().max() < 1e-8);
 /// ```
 pub fn jacobian_dot<A: Arm>(
     arm: &A,
@@ -432,7 +432,11 @@ where
     out
 }
 
-fn jacobian_dot_qd_from<A: Arm>(
+/// `J̇(q, q̇) q̇` from the Jacobian `j` at q: the tool acceleration `[a; α]` at zero joint
+/// acceleration, as in `ẍ = J q̈ + J̇ q̇`. Same derivation as [`jacobian_dot`], summed on the
+/// fly (no n×6 temporary). What [`Arm::jdot_qdot`] computes for arms without a generated
+/// `jdot_qdot`.
+pub fn jdot_qdot_from_jacobian<A: Arm + ?Sized>(
     arm: &A,
     j: &OMatrix<f64, U6, A::Dof>,
     qd: &OVector<f64, A::Dof>,
@@ -457,20 +461,6 @@ where
         }
     }
     acc
-}
-
-/// `J̇(q, q̇) q̇`: the tool acceleration `[a; α]` at zero joint acceleration, as in
-/// `ẍ = J q̈ + J̇ q̇`. Same derivation as [`jacobian_dot`], summed on the fly (one Jacobian, no
-/// n×6 temporary).
-pub fn jacobian_dot_qd<A: Arm>(
-    arm: &A,
-    q: &OVector<f64, A::Dof>,
-    qd: &OVector<f64, A::Dof>,
-) -> Vector6<f64>
-where
-    DefaultAllocator: ArmAllocator<A::Dof>,
-{
-    jacobian_dot_qd_from(arm, &arm.jacobian(q), qd)
 }
 
 /// `B(α)` of the ZYZ Euler angles `α = (φ, θ, ψ)` (`R = Rz(φ) Ry(θ) Rz(ψ)`): `ω = B(α) α̇`,
@@ -507,9 +497,9 @@ where
 /// dhgen::robot!(mod puma = "robots/puma560.toml");
 ///
 /// let q = SVector::<f64, 6>::new(0.2, -0.3, 0.4, 0.5, 0.6, 0.7);
-/// let a = analytic_jacobian(&puma::Model, &q).unwrap();
+/// let a = analytic_jacobian(&puma::Robot, &q).unwrap();
 /// // ω = B(α) α̇ recovers the geometric Jacobian's angular rows.
-/// let j = puma::Model.jacobian(&q);
+/// let j = puma::Robot.jacobian(&q);
 /// let omega = euler_rate_matrix(&a.euler) * a.jacobian.fixed_view::<3, 6>(3, 0);
 /// assert!((omega - j.fixed_view::<3, 6>(3, 0)).abs().max() < 1e-12);
 /// ```
@@ -570,10 +560,10 @@ pub struct DecoupledDeterminants {
 /// use dhgen::velocity::decoupled_determinants;
 /// dhgen::robot!(mod puma = "robots/puma560.toml");
 ///
-/// let centre = DecoupledIk::from_arm(&puma::Model).unwrap().wrist_centre_in_tool();
+/// let centre = DecoupledIk::from_arm(&puma::Robot).unwrap().wrist_centre_in_tool();
 /// // θ5 = 0: a wrist singularity, the arm part is regular.
 /// let q = SVector::<f64, 6>::new(0.2, -0.3, 0.4, 0.5, 0.0, 0.7);
-/// let d = decoupled_determinants(&puma::Model, &q, &centre).unwrap();
+/// let d = decoupled_determinants(&puma::Robot, &q, &centre).unwrap();
 /// assert!(d.wrist.abs() < 1e-15 && d.arm.abs() > 1e-3);
 /// ```
 pub fn decoupled_determinants<A: Arm>(

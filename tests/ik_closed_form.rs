@@ -175,9 +175,9 @@ fn report(name: &str, f: &Figures) {
 
 #[test]
 fn puma560_ten_thousand_poses() {
-    let ik = DecoupledIk::from_arm(&puma560::Model).unwrap();
+    let ik = DecoupledIk::from_arm(&puma560::Robot).unwrap();
     assert_eq!(ik.geometry(), ArmGeometry::IntersectingShoulder);
-    let f = acceptance(&puma560::Model, &ik, 10_000, 560);
+    let f = acceptance(&puma560::Robot, &ik, 10_000, 560);
     report("puma560", &f);
     // The PUMA has 8 solutions at almost every pose (4 arm configurations × wrist flip).
     assert!(f.histogram[8] > 9_900, "{:?}", f.histogram);
@@ -185,18 +185,18 @@ fn puma560_ten_thousand_poses() {
 
 #[test]
 fn stanford_ten_thousand_poses() {
-    let ik = DecoupledIk::from_arm(&stanford::Model).unwrap();
+    let ik = DecoupledIk::from_arm(&stanford::Robot).unwrap();
     assert_eq!(ik.geometry(), ArmGeometry::IntersectingShoulder);
-    let f = acceptance(&stanford::Model, &ik, 10_000, 1969);
+    let f = acceptance(&stanford::Robot, &ik, 10_000, 1969);
     report("stanford", &f);
     assert!(f.histogram[8] > 9_900, "{:?}", f.histogram);
 }
 
 #[test]
 fn cylindrical_ten_thousand_poses() {
-    let ik = DecoupledIk::from_arm(&cylindrical::Model).unwrap();
+    let ik = DecoupledIk::from_arm(&cylindrical::Robot).unwrap();
     assert_eq!(ik.geometry(), ArmGeometry::Cylindrical);
-    let f = acceptance(&cylindrical::Model, &ik, 10_000, 42);
+    let f = acceptance(&cylindrical::Robot, &ik, 10_000, 42);
     report("cylindrical", &f);
     // Reach ±d3 with q1 and q1 + π, times the wrist flip.
     assert_eq!(f.histogram[4], 10_000, "{:?}", f.histogram);
@@ -204,25 +204,25 @@ fn cylindrical_ten_thousand_poses() {
 
 #[test]
 fn offsets_base_and_tool_are_honoured() {
-    let ik = DecoupledIk::from_arm(&puma_offsets::Model).unwrap();
-    let f = acceptance(&puma_offsets::Model, &ik, 2_000, 7);
+    let ik = DecoupledIk::from_arm(&puma_offsets::Robot).unwrap();
+    let f = acceptance(&puma_offsets::Robot, &ik, 2_000, 7);
     report("puma with offsets, base, tool", &f);
     assert!(f.histogram[8] > 1_950, "{:?}", f.histogram);
 }
 
 #[test]
 fn elbow_with_shoulder_offset_a1() {
-    let ik = DecoupledIk::from_arm(&offset_elbow::Model).unwrap();
+    let ik = DecoupledIk::from_arm(&offset_elbow::Robot).unwrap();
     assert_eq!(ik.geometry(), ArmGeometry::ParallelElbow);
-    let f = acceptance(&offset_elbow::Model, &ik, 2_000, 11);
+    let f = acceptance(&offset_elbow::Robot, &ik, 2_000, 11);
     report("elbow arm with a1 offset", &f);
     assert!(f.solutions >= 2_000 * 4);
 }
 
 #[test]
 fn modified_dh_arm() {
-    let ik = DecoupledIk::from_arm(&craig::Model).unwrap();
-    let f = acceptance(&craig::Model, &ik, 2_000, 13);
+    let ik = DecoupledIk::from_arm(&craig::Robot).unwrap();
+    let f = acceptance(&craig::Robot, &ik, 2_000, 13);
     report("modified DH PUMA", &f);
     assert!(f.histogram[8] > 1_950, "{:?}", f.histogram);
 }
@@ -382,10 +382,10 @@ fn from_model_honours_offsets_base_tool_and_modified_dh() {
 
 #[test]
 fn wrist_singularity_sets_q4_to_zero() {
-    let ik = DecoupledIk::from_arm(&puma560::Model).unwrap();
+    let ik = DecoupledIk::from_arm(&puma560::Robot).unwrap();
     for (q4, q6) in [(0.7, -0.2), (-1.0, 2.0), (0.0, 0.5)] {
         let q = SVector::<f64, 6>::new(0.3, 0.2, -0.9, q4, 0.0, q6);
-        let pose = puma560::fk(&q.into());
+        let pose = puma560::fk(&q);
         let solutions = ik.solve(&pose);
         // 4 arm solutions; for the one that generated the pose the wrist is singular.
         let singular: Vec<_> = solutions
@@ -397,7 +397,7 @@ fn wrist_singularity_sets_q4_to_zero() {
         assert_eq!(s[3], 0.0);
         assert!(s[4].abs() < 1e-9);
         assert!(wrap_angle(s[5] - (q4 + q6)).abs() < 1e-9);
-        let (dp, dr) = pose_error(&puma560::fk(&(*s).into()), &pose);
+        let (dp, dr) = pose_error(&puma560::fk(s), &pose);
         assert!(dp < 1e-12 && dr < 1e-12);
     }
 }
@@ -418,24 +418,24 @@ fn shoulder_singularity_sets_q1_to_zero() {
             ]
         }
     }
-    let ik = DecoupledIk::from_arm(&elbow::Model).unwrap();
+    let ik = DecoupledIk::from_arm(&elbow::Robot).unwrap();
     // With q2 = 60°, q3 = −90° puts the wrist centre straight above the base: on axis 1.
     let q = SVector::<f64, 6>::new(1.1, PI / 3.0, -PI / 2.0, 0.4, 0.9, -0.3);
-    let pose = elbow::fk(&q.into());
+    let pose = elbow::fk(&q);
     let centre = pose * dhgen::nalgebra::Point3::from(ik.wrist_centre_in_tool());
     assert!(centre.coords.xy().norm() < 1e-12, "{centre:?}");
     let solutions = ik.solve(&pose);
     assert!(!solutions.is_empty());
     for s in &solutions {
         assert_eq!(s[0], 0.0);
-        let (dp, dr) = pose_error(&elbow::fk(&(*s).into()), &pose);
+        let (dp, dr) = pose_error(&elbow::fk(s), &pose);
         assert!(dp < 1e-9 && dr < 1e-9);
     }
 }
 
 #[test]
 fn unreachable_poses_give_no_solution_and_no_nan() {
-    let ik = DecoupledIk::from_arm(&puma560::Model).unwrap();
+    let ik = DecoupledIk::from_arm(&puma560::Robot).unwrap();
     let far = Isometry3::from_parts(Translation3::new(3.0, 0.0, 0.5), UnitQuaternion::identity());
     assert!(ik.solve(&far).is_empty());
     let nan = Isometry3::from_parts(
@@ -445,7 +445,7 @@ fn unreachable_poses_give_no_solution_and_no_nan() {
     assert!(ik.solve(&nan).is_empty());
     // Every wrist centre of the cylindrical arm has a solution for some real d2, d3: beyond
     // its reach is a matter of the joint limits.
-    let ik = DecoupledIk::from_arm(&cylindrical::Model).unwrap();
+    let ik = DecoupledIk::from_arm(&cylindrical::Robot).unwrap();
     let inf = Isometry3::from_parts(
         Translation3::new(0.3, f64::INFINITY, 0.5),
         UnitQuaternion::identity(),
@@ -455,7 +455,7 @@ fn unreachable_poses_give_no_solution_and_no_nan() {
     let out = Isometry3::from_parts(Translation3::new(2.0, 0.0, 0.5), UnitQuaternion::identity());
     assert!(ik.solve_within_limits(&out).is_empty());
     // The stretched PUMA (elbow singular) is on the boundary: solutions exist and are exact.
-    let ik = DecoupledIk::from_arm(&puma560::Model).unwrap();
+    let ik = DecoupledIk::from_arm(&puma560::Robot).unwrap();
     let q = SVector::<f64, 6>::new(
         0.2,
         0.5,
@@ -464,7 +464,7 @@ fn unreachable_poses_give_no_solution_and_no_nan() {
         0.7,
         0.1,
     );
-    let pose = puma560::fk(&q.into());
+    let pose = puma560::fk(&q);
     let solutions = ik.solve(&pose);
     assert!(!solutions.is_empty());
     assert!(
@@ -476,11 +476,11 @@ fn unreachable_poses_give_no_solution_and_no_nan() {
 
 #[test]
 fn solutions_within_limits_respect_them() {
-    let ik = DecoupledIk::from_arm(&puma560::Model).unwrap();
+    let ik = DecoupledIk::from_arm(&puma560::Robot).unwrap();
     let mut rng = StdRng::seed_from_u64(99);
     for _ in 0..500 {
-        let q = random_q(&puma560::Model, &mut rng);
-        let pose = puma560::fk(&q.into());
+        let q = random_q(&puma560::Robot, &mut rng);
+        let pose = puma560::fk(&q);
         let inside = ik.solve_within_limits(&pose);
         assert!(!inside.is_empty());
         assert!(inside.len() <= ik.solve(&pose).len());
@@ -498,10 +498,10 @@ fn solutions_within_limits_respect_them() {
 #[test]
 fn structures_without_a_closed_form_are_rejected_with_the_reason() {
     assert_eq!(
-        DecoupledIk::from_arm(&panda::Model).unwrap_err(),
+        DecoupledIk::from_arm(&panda::Robot).unwrap_err(),
         StructureError::NotSixJoints { dof: 7 }
     );
-    let err = DecoupledIk::from_arm(&ur5::Model).unwrap_err();
+    let err = DecoupledIk::from_arm(&ur5::Robot).unwrap_err();
     assert!(
         matches!(
             err,
@@ -524,7 +524,7 @@ fn structures_without_a_closed_form_are_rejected_with_the_reason() {
 fn the_solution_list_is_fixed_capacity() {
     assert_eq!(Solutions::CAPACITY, 8);
     assert!(std::mem::size_of::<Solutions>() <= 8 * 6 * 8 + 16);
-    let _: Vector3<f64> = DecoupledIk::from_arm(&puma560::Model)
+    let _: Vector3<f64> = DecoupledIk::from_arm(&puma560::Robot)
         .unwrap()
         .wrist_centre_in_tool();
 }

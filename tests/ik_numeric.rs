@@ -10,7 +10,7 @@ use dhgen::ik::{DecoupledIk, IkError, NumericIk, pose_error};
 use dhgen::nalgebra::{
     DVector, DefaultAllocator, Isometry3, OVector, SVector, Translation3, UnitQuaternion, Vector6,
 };
-use dhgen::velocity::{Damping, inverse_acceleration, inverse_velocity, jacobian_dot_qd};
+use dhgen::velocity::{Damping, inverse_acceleration, inverse_velocity};
 use dhgen::{Arm, ArmAllocator, Robot};
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
@@ -140,7 +140,7 @@ const POSES: usize = if cfg!(debug_assertions) {
 #[test]
 fn puma560_converges_from_random_seeds() {
     let solver = NumericIk::default();
-    let r = convergence(&puma560::Model, &solver, POSES, 560);
+    let r = convergence(&puma560::Robot, &solver, POSES, 560);
     r.report("puma560", solver.max_iterations);
     assert!(r.rate() >= 0.99, "{}", r.rate());
 }
@@ -148,7 +148,7 @@ fn puma560_converges_from_random_seeds() {
 #[test]
 fn panda_converges_from_random_seeds() {
     let solver = NumericIk::default();
-    let r = convergence(&panda::Model, &solver, POSES, 7);
+    let r = convergence(&panda::Robot, &solver, POSES, 7);
     r.report("panda", solver.max_iterations);
     assert!(r.rate() >= 0.99, "{}", r.rate());
 }
@@ -171,10 +171,10 @@ fn runtime_robots_converge_too() {
 #[test]
 fn prismatic_joints_converge() {
     let solver = NumericIk::default();
-    let r = convergence(&stanford::Model, &solver, 300, 9);
+    let r = convergence(&stanford::Robot, &solver, 300, 9);
     r.report("stanford", solver.max_iterations);
     assert!(r.rate() >= 0.99, "{}", r.rate());
-    let r = convergence(&cylindrical::Model, &solver, 300, 10);
+    let r = convergence(&cylindrical::Robot, &solver, 300, 10);
     r.report("cylindrical", solver.max_iterations);
     assert!(r.rate() >= 0.99, "{}", r.rate());
 }
@@ -183,13 +183,13 @@ fn prismatic_joints_converge() {
 fn near_seed_converges_quadratically_without_restarts() {
     let solver = NumericIk::default();
     let q = SVector::<f64, 7>::from([0.1, -0.4, 0.2, -1.8, 0.3, 1.5, 0.4]);
-    let target = panda::Model.fk(&q);
+    let target = panda::Robot.fk(&q);
     let seed = q + SVector::repeat(0.05);
-    let s = solver.solve(&panda::Model, &target, &seed).unwrap();
+    let s = solver.solve(&panda::Robot, &target, &seed).unwrap();
     assert_eq!(s.restarts, 0);
     assert!(s.iterations <= 6, "{}", s.iterations);
     // At the solution itself: no iteration.
-    let s = solver.solve(&panda::Model, &target, &q).unwrap();
+    let s = solver.solve(&panda::Robot, &target, &q).unwrap();
     assert_eq!((s.iterations, s.restarts), (0, 0));
 }
 
@@ -197,12 +197,12 @@ fn near_seed_converges_quadratically_without_restarts() {
 fn same_call_same_answer() {
     let solver = NumericIk::default();
     let mut rng = StdRng::seed_from_u64(1);
-    let q = random_q(&puma560::Model, &mut rng);
-    let seed = random_q(&puma560::Model, &mut rng);
-    let target = puma560::Model.fk(&q);
+    let q = random_q(&puma560::Robot, &mut rng);
+    let seed = random_q(&puma560::Robot, &mut rng);
+    let target = puma560::Robot.fk(&q);
     assert_eq!(
-        solver.solve(&puma560::Model, &target, &seed),
-        solver.solve(&puma560::Model, &target, &seed)
+        solver.solve(&puma560::Robot, &target, &seed),
+        solver.solve(&puma560::Robot, &target, &seed)
     );
 }
 
@@ -224,7 +224,7 @@ fn invalid_input_is_an_error_naming_it() {
     assert!(err.to_string().contains("length 5, expected 6"), "{err}");
     let mut seed = SVector::<f64, 6>::zeros();
     seed[3] = f64::NAN;
-    let err = solver.solve(&puma560::Model, &target, &seed).unwrap_err();
+    let err = solver.solve(&puma560::Robot, &target, &seed).unwrap_err();
     assert_eq!(err, IkError::NonFiniteSeed { joint: 3 });
     assert!(err.to_string().contains("seed entry 3"), "{err}");
     let bad = Isometry3::from_parts(
@@ -232,7 +232,7 @@ fn invalid_input_is_an_error_naming_it() {
         UnitQuaternion::identity(),
     );
     let err = solver
-        .solve(&puma560::Model, &bad, &SVector::zeros())
+        .solve(&puma560::Robot, &bad, &SVector::zeros())
         .unwrap_err();
     assert_eq!(err, IkError::NonFiniteTarget);
     for (settings, what) in [
@@ -266,7 +266,7 @@ fn invalid_input_is_an_error_naming_it() {
         ),
     ] {
         let err = settings
-            .solve(&puma560::Model, &target, &SVector::zeros())
+            .solve(&puma560::Robot, &target, &SVector::zeros())
             .unwrap_err();
         assert!(matches!(err, IkError::InvalidSettings(_)), "{err}");
         assert!(err.to_string().contains(what), "{err}");
@@ -280,9 +280,9 @@ fn iteration_cap_reports_not_converged_with_the_error() {
         ..NumericIk::default()
     };
     let q = SVector::<f64, 6>::new(0.5, 0.3, -0.8, 0.2, 0.9, -0.4);
-    let target = puma560::Model.fk(&q);
+    let target = puma560::Robot.fk(&q);
     let err = solver
-        .solve(&puma560::Model, &target, &SVector::zeros())
+        .solve(&puma560::Robot, &target, &SVector::zeros())
         .unwrap_err();
     let IkError::NotConverged {
         iterations,
@@ -310,7 +310,7 @@ fn unreachable_pose_stalls_with_the_best_error() {
         ..NumericIk::default()
     };
     let err = solver
-        .solve(&puma560::Model, &far, &SVector::zeros())
+        .solve(&puma560::Robot, &far, &SVector::zeros())
         .unwrap_err();
     let (IkError::LocalMinimum { position_error, .. } | IkError::Singular { position_error, .. }) =
         err
@@ -338,10 +338,10 @@ fn stalling_at_a_singular_configuration_is_reported_as_singular() {
         0.6,
         -0.1,
     );
-    let svd = JacobianSvd::new(&puma560::Model.jacobian(&q));
+    let svd = JacobianSvd::new(&puma560::Robot.jacobian(&q));
     assert!(svd.min_singular_value() < 1e-12);
     let mut lost: Vector6<f64> = svd.u().column(5).into_owned();
-    let pose = puma560::Model.fk(&q);
+    let pose = puma560::Robot.fk(&q);
     if lost.fixed_rows::<3>(0).dot(&pose.translation.vector) < 0.0 {
         lost = -lost;
     }
@@ -354,7 +354,7 @@ fn stalling_at_a_singular_configuration_is_reported_as_singular() {
         restarts: 0,
         ..NumericIk::default()
     };
-    let err = solver.solve(&puma560::Model, &target, &q).unwrap_err();
+    let err = solver.solve(&puma560::Robot, &target, &q).unwrap_err();
     let IkError::Singular { sigma_min, .. } = err else {
         panic!("{err}");
     };
@@ -370,27 +370,27 @@ fn limits_can_be_ignored() {
         ..NumericIk::default()
     };
     let q = SVector::<f64, 6>::new(0.2, 4.2, -0.5, 0.1, 0.4, 0.2);
-    let target = puma560::Model.fk(&q);
-    let s = solver.solve(&puma560::Model, &target, &(q * 0.9)).unwrap();
+    let target = puma560::Robot.fk(&q);
+    let s = solver.solve(&puma560::Robot, &target, &(q * 0.9)).unwrap();
     assert!(s.position_error <= 1e-10);
 }
 
 #[test]
 fn generated_robots_allocate_nothing() {
     let q = SVector::<f64, 7>::from([0.1, -0.4, 0.2, -1.8, 0.3, 1.5, 0.4]);
-    let target = panda::Model.fk(&q);
+    let target = panda::Robot.fk(&q);
     let seed = q + SVector::repeat(0.3);
     let solver = NumericIk::default();
     let mut result = None;
     assert_eq!(
-        allocations_during(|| result = Some(solver.solve(&panda::Model, &target, &seed))),
+        allocations_during(|| result = Some(solver.solve(&panda::Robot, &target, &seed))),
         0
     );
     assert!(result.take().unwrap().is_ok());
     // With restarts (a far seed).
     let far_seed = SVector::<f64, 7>::from([2.5, 1.5, -2.5, -0.2, 2.5, 3.5, -2.5]);
     assert_eq!(
-        allocations_during(|| result = Some(solver.solve(&panda::Model, &target, &far_seed))),
+        allocations_during(|| result = Some(solver.solve(&panda::Robot, &target, &far_seed))),
         0
     );
     let solution = result.take().unwrap().unwrap();
@@ -399,15 +399,15 @@ fn generated_robots_allocate_nothing() {
         "the far seed converged without a restart"
     );
 
-    let ik = DecoupledIk::from_arm(&puma560::Model).unwrap();
+    let ik = DecoupledIk::from_arm(&puma560::Robot).unwrap();
     let q6 = SVector::<f64, 6>::new(0.3, -0.2, 0.4, 0.5, 0.6, 0.7);
-    let pose = puma560::Model.fk(&q6);
+    let pose = puma560::Robot.fk(&q6);
     let mut count = 0;
     assert_eq!(allocations_during(|| count = ik.solve(&pose).len()), 0);
     assert_eq!(count, 8);
     assert_eq!(
         allocations_during(|| {
-            DecoupledIk::from_arm(&puma560::Model).unwrap();
+            DecoupledIk::from_arm(&puma560::Robot).unwrap();
         }),
         0
     );
@@ -416,16 +416,16 @@ fn generated_robots_allocate_nothing() {
     let mut out = SVector::<f64, 6>::zeros();
     assert_eq!(
         allocations_during(|| {
-            out = inverse_velocity(&puma560::Model, &q6, &xi, None, &Damping::default());
+            out = inverse_velocity(&puma560::Robot, &q6, &xi, None, &Damping::default());
             out += inverse_acceleration(
-                &puma560::Model,
+                &puma560::Robot,
                 &q6,
                 &out.clone(),
                 &xi,
                 Some(&out.clone()),
                 &Damping::default(),
             );
-            let _ = jacobian_dot_qd(&puma560::Model, &q6, &out);
+            let _ = dhgen::Arm::jdot_qdot(&puma560::Robot, &q6, &out);
         }),
         0
     );

@@ -160,8 +160,8 @@ fn nearest_points_lie_on_segment_and_surface() {
     );
 }
 
-fn planar_checker(obstacles: Vec<Obstacle>) -> CollisionChecker<'static, planar::Model> {
-    CollisionChecker::new(&planar::Model, Scene::new(obstacles).unwrap()).unwrap()
+fn planar_checker(obstacles: Vec<Obstacle>) -> CollisionChecker<'static, planar::Robot> {
+    CollisionChecker::new(&planar::Robot, Scene::new(obstacles).unwrap()).unwrap()
 }
 
 #[test]
@@ -209,7 +209,7 @@ fn generated_and_runtime_arms_agree() {
     let model = model("puma560.toml");
     let robot = Robot::from_model(model.clone());
     let scene = || Scene::new(puma_obstacles()).unwrap();
-    let mut generated = CollisionChecker::new(&puma::Model, scene()).unwrap();
+    let mut generated = CollisionChecker::new(&puma::Robot, scene()).unwrap();
     let mut runtime = CollisionChecker::new(&robot, scene()).unwrap();
     assert_eq!(generated.model(), runtime.model());
     let mut rng = StdRng::seed_from_u64(4);

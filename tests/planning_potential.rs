@@ -228,7 +228,7 @@ fn planar_arm_descends_over_its_obstacle_grid() {
     // The C-space field of a real arm: QO sampled on a grid, motions checked on the arm.
     let scene = figure3();
     let mut checker =
-        CollisionChecker::new(&planar::Model, Scene::new(scene.obstacles.clone()).unwrap())
+        CollisionChecker::new(&planar::Robot, Scene::new(scene.obstacles.clone()).unwrap())
             .unwrap();
     let grid = CSpaceGrid::compute(&mut checker, [120, 120]).unwrap();
     assert!(grid.components() >= 3);

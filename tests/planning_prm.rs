@@ -139,7 +139,7 @@ fn narrow_passage_is_solved_for_95_of_100_seeds() {
     let scene = narrow_passage();
     let (start, goal) = (SVector::from(scene.start), SVector::from(scene.goal));
     let outcomes = run_seeds(
-        &planar::Model,
+        &planar::Robot,
         || narrow_passage().obstacles,
         &narrow_config(),
         &start,
@@ -153,9 +153,9 @@ fn puma560_scene_is_solved_for_95_of_100_seeds() {
     let (start, goal) = (SVector::from(PUMA_START), SVector::from(PUMA_GOAL));
     // The direct motion is blocked: the roadmap is needed.
     let mut checker =
-        CollisionChecker::new(&puma::Model, Scene::new(puma_obstacles()).unwrap()).unwrap();
+        CollisionChecker::new(&puma::Robot, Scene::new(puma_obstacles()).unwrap()).unwrap();
     assert!(!checker.motion_is_free(&start, &goal, puma_config().resolution));
-    let outcomes = run_seeds(&puma::Model, puma_obstacles, &puma_config(), &start, &goal);
+    let outcomes = run_seeds(&puma::Robot, puma_obstacles, &puma_config(), &start, &goal);
     summarize("PUMA 560 scene", &outcomes);
 }
 
@@ -171,7 +171,7 @@ fn a_seed_fixes_the_roadmap_and_the_path() {
     let scene = narrow_passage();
     let (start, goal) = (SVector::from(scene.start), SVector::from(scene.goal));
     let plan = |seed| {
-        let mut checker = narrow_checker(&planar::Model);
+        let mut checker = narrow_checker(&planar::Robot);
         let mut prm = Prm::new(&mut checker, narrow_config(), seed).unwrap();
         let path = prm.query(&start, &goal).unwrap();
         let edges: Vec<(usize, usize)> = prm.edges().collect();
@@ -207,7 +207,7 @@ fn a_seed_fixes_the_roadmap_and_the_path() {
 #[test]
 fn every_roadmap_edge_is_free() {
     let scene = narrow_passage();
-    let mut checker = narrow_checker(&planar::Model);
+    let mut checker = narrow_checker(&planar::Robot);
     let config = narrow_config();
     let mut prm = Prm::new(&mut checker, config.clone(), 9).unwrap();
     prm.query(&SVector::from(scene.start), &SVector::from(scene.goal))
@@ -239,7 +239,7 @@ fn an_unreachable_goal_is_reported() {
         Obstacle::sphere([0.0, -0.7, 0.0], 0.15),
     ])
     .unwrap();
-    let mut checker = CollisionChecker::new(&planar::Model, scene).unwrap();
+    let mut checker = CollisionChecker::new(&planar::Robot, scene).unwrap();
     let config = PrmConfig {
         max_nodes: 300,
         ..narrow_config()
@@ -265,7 +265,7 @@ fn an_unreachable_goal_is_reported() {
 
 #[test]
 fn bad_queries_are_errors() {
-    let mut checker = narrow_checker(&planar::Model);
+    let mut checker = narrow_checker(&planar::Robot);
     let mut prm = Prm::new(&mut checker, narrow_config(), 0).unwrap();
     // Link 2 pointing outwards hits the ring.
     let err = prm

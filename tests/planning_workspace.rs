@@ -17,12 +17,12 @@ dhgen::robot!(mod puma = "robots/puma560.toml");
 type Q2 = SVector<f64, 2>;
 type Q6 = SVector<f64, 6>;
 
-fn planar_checker(obstacles: Vec<Obstacle>) -> CollisionChecker<'static, planar::Model> {
-    CollisionChecker::new(&planar::Model, Scene::new(obstacles).unwrap()).unwrap()
+fn planar_checker(obstacles: Vec<Obstacle>) -> CollisionChecker<'static, planar::Robot> {
+    CollisionChecker::new(&planar::Robot, Scene::new(obstacles).unwrap()).unwrap()
 }
 
-fn puma_checker(obstacles: Vec<Obstacle>) -> CollisionChecker<'static, puma::Model> {
-    CollisionChecker::new(&puma::Model, Scene::new(obstacles).unwrap()).unwrap()
+fn puma_checker(obstacles: Vec<Obstacle>) -> CollisionChecker<'static, puma::Robot> {
+    CollisionChecker::new(&puma::Robot, Scene::new(obstacles).unwrap()).unwrap()
 }
 
 const RESOLUTION: f64 = 0.02;

@@ -44,7 +44,11 @@ impl Errors {
 }
 
 /// Row-major entries of a matrix.
-fn row_major(m: &nalgebra::DMatrix<f64>) -> Vec<f64> {
+fn row_major<R: nalgebra::Dim, C: nalgebra::Dim>(m: &nalgebra::OMatrix<f64, R, C>) -> Vec<f64>
+where
+    nalgebra::DefaultAllocator:
+        nalgebra::allocator::Allocator<R, C> + nalgebra::allocator::Allocator<C, R>,
+{
     m.transpose().as_slice().to_vec()
 }
 

@@ -12,7 +12,7 @@ use dhgen::rotation::{EulerZyz, wrap_angle};
 use dhgen::velocity::{
     Damping, JacobianSvd, analytic_jacobian, condition_number, decoupled_determinants,
     euler_rate_matrix, inverse_acceleration, inverse_velocity, is_singular, jacobian_dot,
-    jacobian_dot_qd, manipulability,
+    manipulability,
 };
 use dhgen::{Arm, ArmAllocator, Robot};
 use rand::rngs::StdRng;
@@ -99,7 +99,7 @@ where
             err < 1e-8,
             "{name}: J̇ differs from finite differences by {err:e}"
         );
-        let bias = jacobian_dot_qd(arm, &q, &qd);
+        let bias = dhgen::Arm::jdot_qdot(arm, &q, &qd);
         assert!((bias - &jd * &qd).abs().max() < 1e-12, "{name}");
         // Linear part: the tool origin's acceleration along the line q + t q̇.
         let hp = 1e-4;
@@ -115,11 +115,11 @@ where
 
 #[test]
 fn jacobian_dot_matches_finite_differences() {
-    check_jacobian_dot(&puma560::Model, "puma560", 200);
-    check_jacobian_dot(&panda::Model, "panda", 200);
-    check_jacobian_dot(&stanford::Model, "stanford", 200);
-    check_jacobian_dot(&cylindrical::Model, "cylindrical", 200);
-    check_jacobian_dot(&odd::Model, "modified DH, prismatic, base and tool", 200);
+    check_jacobian_dot(&puma560::Robot, "puma560", 200);
+    check_jacobian_dot(&panda::Robot, "panda", 200);
+    check_jacobian_dot(&stanford::Robot, "stanford", 200);
+    check_jacobian_dot(&cylindrical::Robot, "cylindrical", 200);
+    check_jacobian_dot(&odd::Robot, "modified DH, prismatic, base and tool", 200);
     check_jacobian_dot(&runtime("puma560"), "puma560 (runtime)", 50);
     check_jacobian_dot(&runtime("ur5"), "ur5 (runtime)", 50);
 }
@@ -207,8 +207,8 @@ where
 
 #[test]
 fn analytic_jacobian_matches_finite_differences_of_euler_angles() {
-    check_analytic_jacobian(&puma560::Model, "puma560");
-    check_analytic_jacobian(&panda::Model, "panda");
+    check_analytic_jacobian(&puma560::Robot, "puma560");
+    check_analytic_jacobian(&panda::Robot, "panda");
     check_analytic_jacobian(&runtime("stanford"), "stanford (runtime)");
 }
 
@@ -216,7 +216,7 @@ fn analytic_jacobian_matches_finite_differences_of_euler_angles() {
 fn analytic_jacobian_is_undefined_where_b_is_singular() {
     // Tool z axis along the world z axis: θ = 0 in the Euler angles.
     let q = SVector::<f64, 2>::new(0.4, -0.3);
-    assert!(analytic_jacobian(&planar::Model, &q).is_none());
+    assert!(analytic_jacobian(&planar::Robot, &q).is_none());
 }
 
 /// Checks the Penrose identities and compares the singular values with nalgebra's SVD.
@@ -288,31 +288,31 @@ where
 fn svd_and_pseudo_inverse_identities() {
     let mut rng = StdRng::seed_from_u64(8);
     for _ in 0..50 {
-        check_svd(&puma560::Model.jacobian(&random_q(&puma560::Model, &mut rng)));
-        check_svd(&panda::Model.jacobian(&random_q(&panda::Model, &mut rng)));
-        check_svd(&planar::Model.jacobian(&random_q(&planar::Model, &mut rng)));
+        check_svd(&puma560::Robot.jacobian(&random_q(&puma560::Robot, &mut rng)));
+        check_svd(&panda::Robot.jacobian(&random_q(&panda::Robot, &mut rng)));
+        check_svd(&planar::Robot.jacobian(&random_q(&planar::Robot, &mut rng)));
         let robot = runtime("panda");
         check_svd(&Arm::jacobian(&robot, &random_q(&robot, &mut rng)));
     }
     // Singular Jacobians: the wrist of the PUMA at θ5 = 0 (rank 5).
     let q = SVector::<f64, 6>::new(0.3, 0.2, -0.9, 0.4, 0.0, 0.1);
-    check_svd(&puma560::Model.jacobian(&q));
+    check_svd(&puma560::Robot.jacobian(&q));
 }
 
 #[test]
 fn manipulability_and_condition_number() {
     let mut rng = StdRng::seed_from_u64(12);
     for _ in 0..50 {
-        let j = panda::Model.jacobian(&random_q(&panda::Model, &mut rng));
+        let j = panda::Robot.jacobian(&random_q(&panda::Robot, &mut rng));
         let yoshikawa = (j * j.transpose()).determinant().sqrt();
         assert!((manipulability(&j) - yoshikawa).abs() < 1e-12 * (1.0 + yoshikawa));
-        let j = puma560::Model.jacobian(&random_q(&puma560::Model, &mut rng));
+        let j = puma560::Robot.jacobian(&random_q(&puma560::Robot, &mut rng));
         assert!((manipulability(&j) - j.determinant().abs()).abs() < 1e-12);
         let s = j.svd(false, false).singular_values;
         assert!((condition_number(&j) - s.max() / s.min()).abs() < 1e-8 * condition_number(&j));
     }
     // n < 6: the product of the n singular values, √det(Jᵀ J).
-    let j = planar::Model.jacobian(&SVector::<f64, 2>::new(0.3, 1.1));
+    let j = planar::Robot.jacobian(&SVector::<f64, 2>::new(0.3, 1.1));
     assert!((manipulability(&j) - (j.transpose() * j).determinant().sqrt()).abs() < 1e-12);
 }
 
@@ -322,35 +322,35 @@ fn singular_configurations_are_detected() {
     // Elbow stretched: the forearm (a3, d4) in line with the upper arm.
     let elbow = -FRAC_PI_2 + 0.0203f64.atan2(0.4318);
     let stretched = SVector::<f64, 6>::new(0.3, -0.4, elbow, 0.5, 0.7, 0.2);
-    assert!(is_singular(&puma560::Model.jacobian(&stretched), threshold));
+    assert!(is_singular(&puma560::Robot.jacobian(&stretched), threshold));
     // Wrist: θ5 = 0 aligns axes 4 and 6.
     let wrist = SVector::<f64, 6>::new(0.3, -0.4, 0.3, 0.5, 0.0, 0.2);
-    assert!(is_singular(&puma560::Model.jacobian(&wrist), threshold));
+    assert!(is_singular(&puma560::Robot.jacobian(&wrist), threshold));
     // A regular configuration.
     let regular = SVector::<f64, 6>::new(0.3, -0.4, 0.3, 0.5, 0.7, 0.2);
-    let svd = JacobianSvd::new(&puma560::Model.jacobian(&regular));
+    let svd = JacobianSvd::new(&puma560::Robot.jacobian(&regular));
     assert!(svd.min_singular_value() > 1e-2);
-    assert!(!is_singular(&puma560::Model.jacobian(&regular), threshold));
+    assert!(!is_singular(&puma560::Robot.jacobian(&regular), threshold));
     assert_eq!(svd.rank(threshold), 6);
     assert_eq!(
-        JacobianSvd::new(&puma560::Model.jacobian(&wrist)).rank(threshold),
+        JacobianSvd::new(&puma560::Robot.jacobian(&wrist)).rank(threshold),
         5
     );
     // Near (not at) the singularity: small but non-zero, proportional to the distance.
     let near = SVector::<f64, 6>::new(0.3, -0.4, 0.3, 0.5, 1e-4, 0.2);
-    let s = JacobianSvd::new(&puma560::Model.jacobian(&near)).min_singular_value();
+    let s = JacobianSvd::new(&puma560::Robot.jacobian(&near)).min_singular_value();
     assert!(s > 1e-6 && s < 1e-3, "{s}");
 }
 
 #[test]
 fn decoupled_determinants_separate_arm_and_wrist() {
-    let ik = DecoupledIk::from_arm(&puma560::Model).unwrap();
+    let ik = DecoupledIk::from_arm(&puma560::Robot).unwrap();
     let centre = ik.wrist_centre_in_tool();
     let mut rng = StdRng::seed_from_u64(4);
     for _ in 0..200 {
-        let q = random_q(&puma560::Model, &mut rng);
-        let d = decoupled_determinants(&puma560::Model, &q, &centre).unwrap();
-        let det = puma560::Model.jacobian(&q).determinant();
+        let q = random_q(&puma560::Robot, &mut rng);
+        let d = decoupled_determinants(&puma560::Robot, &q, &centre).unwrap();
+        let det = puma560::Robot.jacobian(&q).determinant();
         assert!(
             (d.arm * d.wrist - det).abs() < 1e-12,
             "{} vs {det}",
@@ -361,32 +361,32 @@ fn decoupled_determinants_separate_arm_and_wrist() {
     }
     let elbow = -FRAC_PI_2 + 0.0203f64.atan2(0.4318);
     let stretched = SVector::<f64, 6>::new(0.3, -0.4, elbow, 0.5, 0.7, 0.2);
-    let d = decoupled_determinants(&puma560::Model, &stretched, &centre).unwrap();
+    let d = decoupled_determinants(&puma560::Robot, &stretched, &centre).unwrap();
     assert!(d.arm.abs() < 1e-12 && d.wrist.abs() > 0.5);
     let wrist = SVector::<f64, 6>::new(0.3, -0.4, 0.3, 0.5, 0.0, 0.2);
-    let d = decoupled_determinants(&puma560::Model, &wrist, &centre).unwrap();
+    let d = decoupled_determinants(&puma560::Robot, &wrist, &centre).unwrap();
     assert!(d.wrist.abs() < 1e-15 && d.arm.abs() > 1e-3);
     // Not six joints.
-    assert!(decoupled_determinants(&panda::Model, &SVector::zeros(), &centre).is_none());
+    assert!(decoupled_determinants(&panda::Robot, &SVector::zeros(), &centre).is_none());
 }
 
 #[test]
 fn elbow_arm_det_j11_is_the_texts_expression() {
     let (a2, a3) = (0.7, 0.6);
-    let centre = DecoupledIk::from_arm(&elbow::Model)
+    let centre = DecoupledIk::from_arm(&elbow::Robot)
         .unwrap()
         .wrist_centre_in_tool();
     let mut rng = StdRng::seed_from_u64(6);
     for _ in 0..200 {
-        let q = random_q(&elbow::Model, &mut rng);
-        let d = decoupled_determinants(&elbow::Model, &q, &centre).unwrap();
+        let q = random_q(&elbow::Robot, &mut rng);
+        let d = decoupled_determinants(&elbow::Robot, &q, &centre).unwrap();
         let (c2, s3, c23) = (q[1].cos(), q[2].sin(), (q[1] + q[2]).cos());
         let text = a2 * a3 * s3 * (a2 * c2 + a3 * c23);
         assert!((d.arm + text).abs() < 1e-12, "{} vs −{text}", d.arm);
     }
     // Zero at θ3 = 0 (stretched) and with the wrist centre on axis 1.
     let d = decoupled_determinants(
-        &elbow::Model,
+        &elbow::Robot,
         &SVector::<f64, 6>::new(0.2, 0.5, 0.0, 0.1, 0.4, 0.3),
         &centre,
     )
@@ -395,7 +395,7 @@ fn elbow_arm_det_j11_is_the_texts_expression() {
     let q2: f64 = 1.2;
     let q3 = (-(a2 * q2.cos()) / a3).acos() - q2; // a2 c2 + a3 c23 = 0
     let d = decoupled_determinants(
-        &elbow::Model,
+        &elbow::Robot,
         &SVector::<f64, 6>::new(0.2, q2, q3, 0.1, 0.4, 0.3),
         &centre,
     )
@@ -410,29 +410,29 @@ fn inverse_velocity_reproduces_the_twist_away_from_singularities() {
     let mut worst: f64 = 0.0;
     let mut checked = 0;
     while checked < 500 {
-        let q = random_q(&puma560::Model, &mut rng);
-        let j = puma560::Model.jacobian(&q);
+        let q = random_q(&puma560::Robot, &mut rng);
+        let j = puma560::Robot.jacobian(&q);
         if JacobianSvd::new(&j).min_singular_value() < damping.threshold {
             continue;
         }
         checked += 1;
         let xi = Vector6::from_fn(|_, _| rng.random_range(-1.0..1.0));
-        let qd = inverse_velocity(&puma560::Model, &q, &xi, None, &damping);
+        let qd = inverse_velocity(&puma560::Robot, &q, &xi, None, &damping);
         let err = (j * qd - xi).norm();
         worst = worst.max(err);
         assert!(err < 1e-9, "{err:e}");
     }
     // Redundant: the null-space term changes q̇ but not the twist.
     for _ in 0..200 {
-        let q = random_q(&panda::Model, &mut rng);
-        let j = panda::Model.jacobian(&q);
+        let q = random_q(&panda::Robot, &mut rng);
+        let j = panda::Robot.jacobian(&q);
         if JacobianSvd::new(&j).min_singular_value() < damping.threshold {
             continue;
         }
         let xi = Vector6::from_fn(|_, _| rng.random_range(-1.0..1.0));
         let b = SVector::<f64, 7>::from_fn(|_, _| rng.random_range(-1.0..1.0));
-        let least = inverse_velocity(&panda::Model, &q, &xi, None, &damping);
-        let with_b = inverse_velocity(&panda::Model, &q, &xi, Some(&b), &damping);
+        let least = inverse_velocity(&panda::Robot, &q, &xi, None, &damping);
+        let with_b = inverse_velocity(&panda::Robot, &q, &xi, Some(&b), &damping);
         assert!((j * least - xi).norm() < 1e-9);
         assert!((j * with_b - xi).norm() < 1e-9);
         assert!((with_b - least).norm() > 1e-6);
@@ -444,7 +444,7 @@ fn inverse_velocity_reproduces_the_twist_away_from_singularities() {
     let robot = runtime("puma560");
     let q = SVector::<f64, 6>::new(0.1, -0.5, 0.3, 0.2, 0.8, -0.4);
     let xi = Vector6::new(0.1, 0.2, -0.1, 0.3, -0.2, 0.1);
-    let a = inverse_velocity(&puma560::Model, &q, &xi, None, &damping);
+    let a = inverse_velocity(&puma560::Robot, &q, &xi, None, &damping);
     let b = inverse_velocity(
         &robot,
         &DVector::from_column_slice(q.as_slice()),
@@ -467,7 +467,7 @@ fn inverse_velocity_stays_bounded_near_singularities() {
             SVector::<f64, 6>::new(0.3, -0.4, 0.3, 0.5, offset, 0.2),
             SVector::<f64, 6>::new(0.3, -0.4, elbow + offset, 0.5, 0.7, 0.2),
         ] {
-            let qd = inverse_velocity(&puma560::Model, &q, &xi, None, &damping);
+            let qd = inverse_velocity(&puma560::Robot, &q, &xi, None, &damping);
             assert!(qd.iter().all(|x| x.is_finite()));
             largest = largest.max(qd.norm());
             // σ/(σ² + λ²) ≤ 1/threshold while damped, whatever σ.
@@ -480,7 +480,7 @@ fn inverse_velocity_stays_bounded_near_singularities() {
     }
     // Undamped, the joint rates grow like 1/σ there.
     let q = SVector::<f64, 6>::new(0.3, -0.4, 0.3, 0.5, 1e-6, 0.2);
-    let undamped = inverse_velocity(&puma560::Model, &q, &xi, None, &Damping::NONE);
+    let undamped = inverse_velocity(&puma560::Robot, &q, &xi, None, &Damping::NONE);
     assert!(undamped.norm() > 1e4, "{}", undamped.norm());
     eprintln!("inverse velocity near singularities: largest |q̇| = {largest:.1} for |ξ| = 1");
 }
@@ -491,16 +491,16 @@ fn inverse_acceleration_reproduces_the_tool_acceleration() {
     let damping = Damping::default();
     let mut checked = 0;
     while checked < 200 {
-        let q = random_q(&puma560::Model, &mut rng);
-        let j = puma560::Model.jacobian(&q);
+        let q = random_q(&puma560::Robot, &mut rng);
+        let j = puma560::Robot.jacobian(&q);
         if JacobianSvd::new(&j).min_singular_value() < damping.threshold {
             continue;
         }
         checked += 1;
-        let qd = random_qd(&puma560::Model, &mut rng);
+        let qd = random_qd(&puma560::Robot, &mut rng);
         let xdd = Vector6::from_fn(|_, _| rng.random_range(-2.0..2.0));
-        let qdd = inverse_acceleration(&puma560::Model, &q, &qd, &xdd, None, &damping);
-        let achieved = j * qdd + jacobian_dot_qd(&puma560::Model, &q, &qd);
+        let qdd = inverse_acceleration(&puma560::Robot, &q, &qd, &xdd, None, &damping);
+        let achieved = j * qdd + dhgen::Arm::jdot_qdot(&puma560::Robot, &q, &qd);
         assert!((achieved - xdd).norm() < 1e-9);
     }
 }
@@ -510,7 +510,7 @@ fn rotation_of_the_tool_under_analytic_rates() {
     // ḋ and α̇ from J_a integrate to the pose: one small Euler step in q.
     let q = SVector::<f64, 6>::new(0.2, -0.3, 0.4, 0.5, 0.6, 0.7);
     let qd = SVector::<f64, 6>::new(0.3, -0.2, 0.1, 0.4, -0.5, 0.6);
-    let analytic = analytic_jacobian(&puma560::Model, &q).unwrap();
+    let analytic = analytic_jacobian(&puma560::Robot, &q).unwrap();
     let (ja, e) = (analytic.jacobian, analytic.euler);
     let h = 1e-7;
     let rates = ja * qd;
@@ -520,7 +520,7 @@ fn rotation_of_the_tool_under_analytic_rates() {
         e.psi + rates[5] * h,
     )
     .to_rotation();
-    let actual: Rotation3<f64> = puma560::Model
+    let actual: Rotation3<f64> = puma560::Robot
         .fk(&(q + qd * h))
         .rotation
         .to_rotation_matrix();

@@ -71,7 +71,8 @@ pub fn check_len(robot: &Robot, flag: &str, len: usize) -> Result<(), String> {
 /// Evaluates at `q`, `qd`, `qdd` (lengths already checked, values finite).
 pub fn evaluate(robot: &Robot, q: Vec<f64>, qd: Vec<f64>, qdd: Vec<f64>) -> Evaluation {
     let pose = robot.fk(&q).to_homogeneous();
-    let jacobian = robot.jacobian(&q);
+    let j = robot.jacobian(&q);
+    let jacobian = DMatrix::from_column_slice(6, robot.dof(), j.as_slice());
     let dynamics = robot.has_dynamics().then(|| Dynamics {
         d: robot.mass_matrix(&q),
         c: robot.coriolis(&q, &qd),

@@ -325,7 +325,7 @@ fn emit_writes_a_file_and_renames_the_module() {
     assert!(written.contains("\npub mod arm {\n"), "{written}");
     assert!(written.contains("pub const DOF: usize = 2"), "{written}");
     assert!(
-        written.contains("impl ::dhgen::ArmDynamics for Model"),
+        written.contains("impl ::dhgen::ArmDynamics for Robot"),
         "{written}"
     );
     let err = failure(&["emit", "robots/planar_elbow.toml", "--name", "type"]);

@@ -68,7 +68,7 @@ fn emitted_module_matches_the_macro() {
         );
         let tau = g.inverse_dynamics(&qd, &qdd);
         let fd = e
-            .forward_dynamics(&qd, &tau.into())
+            .forward_dynamics(&qd, &tau)
             .expect("D is positive definite");
         // Forward dynamics inverts inverse dynamics.
         assert_close("forward dynamics", fd.as_slice(), &qdd);
@@ -78,12 +78,12 @@ fn emitted_module_matches_the_macro() {
 #[test]
 fn emitted_module_implements_arm() {
     let q = SVector::<f64, 6>::from([0.3, -0.2, 0.5, 1.0, -0.7, 0.1]);
-    let a = Arm::fk(&emitted_puma::Model, &q);
-    let b = Arm::fk(&generated::Model, &q);
+    let a = Arm::fk(&emitted_puma::Robot, &q);
+    let b = Arm::fk(&generated::Robot, &q);
     assert_close(
         "Arm::fk",
         a.to_homogeneous().as_slice(),
         b.to_homogeneous().as_slice(),
     );
-    assert_eq!(Arm::dof(&emitted_puma::Model), 6);
+    assert_eq!(Arm::dof(&emitted_puma::Robot), 6);
 }

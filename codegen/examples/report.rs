@@ -17,7 +17,7 @@ fn main() {
         };
         let start = Instant::now();
         let name = proc_macro2::Ident::new(&model.name, proc_macro2::Span::call_site());
-        let generated = generate(&model, quote::quote!(pub), &name, "");
+        let generated = generate(&model, quote::quote!(pub), &name);
         let elapsed = start.elapsed();
         let lines = generated.tokens.to_string().matches(';').count();
         println!(

@@ -9,7 +9,8 @@
 //!   construction, constants folded, signs pushed outward);
 //! - [`derive`](mod@derive): each quantity (T, J, D, c_ijk, C, g, τ), choosing the cheaper derivation;
 //! - [`emit`]: tokens, one `let` per node, functions split under a statement limit;
-//! - [`module`]: the generated module around them;
+//! - [`module`]: the generated module, driven by its table of quantities
+//!   ([`module::quantities`]);
 //! - [`latex`]: the normal forms of D(q), c_ijk and g(q) as LaTeX equations (`dhgen latex`).
 
 pub mod chain;
@@ -23,4 +24,4 @@ pub mod poly;
 
 pub use dhgen_model::RobotModel;
 pub use graph::OpCount;
-pub use module::{Generated, generate, op_counts};
+pub use module::{Generated, generate, module_doc, op_counts};

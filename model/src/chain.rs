@@ -133,56 +133,36 @@ pub struct Twist {
 }
 
 /// Why the last three axes are not a spherical wrist.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, thiserror::Error)]
 #[non_exhaustive]
 pub enum NotSpherical {
     /// The chain has fewer than three joints.
+    #[error("only {dof} joints")]
     TooFewJoints {
         /// Its number of joints.
         dof: usize,
     },
     /// A wrist joint is prismatic.
+    #[error("joint {} is prismatic", joint + 1)]
     PrismaticJoint {
         /// The joint, 0-based.
         joint: usize,
     },
     /// Two consecutive wrist axes are parallel, so they meet in no single point.
+    #[error("the axes of joints {} and {} are parallel", axis + 1, axis + 2)]
     ParallelAxes {
         /// The first of the two, 0-based.
         axis: usize,
     },
     /// Two wrist axes do not meet: the distance between the first two, or from the point
     /// where they meet to the third.
+    #[error("the axis of joint {} misses the others by {distance:.3e} m", axis + 1)]
     AxesApart {
         /// The second axis of the pair, 0-based.
         axis: usize,
         /// How far apart, m.
         distance: f64,
     },
-}
-
-impl core::fmt::Display for NotSpherical {
-    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
-        match self {
-            NotSpherical::TooFewJoints { dof } => write!(f, "only {dof} joints"),
-            NotSpherical::PrismaticJoint { joint } => {
-                write!(f, "joint {} is prismatic", joint + 1)
-            }
-            NotSpherical::ParallelAxes { axis } => {
-                write!(
-                    f,
-                    "the axes of joints {} and {} are parallel",
-                    axis + 1,
-                    axis + 2
-                )
-            }
-            NotSpherical::AxesApart { axis, distance } => write!(
-                f,
-                "the axis of joint {} misses the others by {distance:.3e} m",
-                axis + 1
-            ),
-        }
-    }
 }
 
 /// Three last revolute axes meeting in one point.

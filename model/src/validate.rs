@@ -9,8 +9,10 @@ use crate::{
 };
 use core::fmt;
 
-/// A validation error at location `L` (`()` for files, a token span in the macro).
-#[derive(Clone, Debug, PartialEq)]
+/// A validation error at location `L` (`()` for files, a token span in the macro); displays as
+/// `link N, field NAME: what is wrong`.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+#[error("{}{message}", Context { link: *link, field: field.as_deref() })]
 pub struct Error<L> {
     /// Where the offending value (or, for a missing field, its table) is.
     pub loc: L,
@@ -22,19 +24,22 @@ pub struct Error<L> {
     pub message: String,
 }
 
-impl<L> fmt::Display for Error<L> {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match (&self.link, &self.field) {
-            (Some(l), Some(field)) => write!(f, "link {l}, field `{field}`: ")?,
-            (Some(l), None) => write!(f, "link {l}: ")?,
-            (None, Some(field)) => write!(f, "field `{field}`: ")?,
-            (None, None) => {}
-        }
-        f.write_str(&self.message)
-    }
+/// `link N, field NAME: ` (the parts that are known) in front of a validation message.
+struct Context<'a> {
+    link: Option<usize>,
+    field: Option<&'a str>,
 }
 
-impl<L: fmt::Debug> std::error::Error for Error<L> {}
+impl fmt::Display for Context<'_> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match (self.link, self.field) {
+            (Some(l), Some(field)) => write!(f, "link {l}, field `{field}`: "),
+            (Some(l), None) => write!(f, "link {l}: "),
+            (None, Some(field)) => write!(f, "field `{field}`: "),
+            (None, None) => Ok(()),
+        }
+    }
+}
 
 const TOP_FIELDS: &[&str] = &[
     "name",

@@ -48,7 +48,7 @@ macro_rules! evaluate {
                 mass_matrix: $robot::mass_matrix(q),
                 gravity: $robot::gravity(q),
                 torque,
-                acceleration: $robot::forward_dynamics(q, qd, &torque.into()),
+                acceleration: $robot::forward_dynamics(q, qd, &torque),
             }
         }
     };

@@ -2,6 +2,7 @@
 
 use super::accumulate_composites;
 use super::spatial::{Force, Motion};
+use crate::Joints;
 use crate::robot::Robot;
 use core::ops::Index;
 
@@ -75,8 +76,8 @@ impl Robot {
     ///
     /// # Panics
     /// If `q.len() != self.dof()`, or if the robot has no mass properties.
-    pub fn christoffel(&self, q: &[f64]) -> Christoffel {
-        self.check_len("christoffel", "q", q);
+    pub fn christoffel(&self, q: &(impl Joints<f64> + ?Sized)) -> Christoffel {
+        let q = self.check_len("christoffel", "q", q);
         self.check_dynamics("christoffel");
         let n = self.dof();
         let mut states = self.body_states(q);

@@ -2,6 +2,7 @@
 
 use super::accumulate_composites;
 use super::spatial::{Force, Motion};
+use crate::Joints;
 use crate::robot::Robot;
 use nalgebra::{DMatrix, Matrix3, Vector3};
 
@@ -26,9 +27,13 @@ impl Robot {
     /// # Panics
     /// If `q` or `qd` does not have `self.dof()` entries, or if the robot has no mass
     /// properties.
-    pub fn coriolis(&self, q: &[f64], qd: &[f64]) -> DMatrix<f64> {
-        self.check_len("coriolis", "q", q);
-        self.check_len("coriolis", "qd", qd);
+    pub fn coriolis(
+        &self,
+        q: &(impl Joints<f64> + ?Sized),
+        qd: &(impl Joints<f64> + ?Sized),
+    ) -> DMatrix<f64> {
+        let q = self.check_len("coriolis", "q", q);
+        let qd = self.check_len("coriolis", "qd", qd);
         self.check_dynamics("coriolis");
         let n = self.dof();
         let mut states = self.body_states(q);

@@ -1,6 +1,7 @@
 //! The joint-space inertia matrix by the composite rigid body algorithm.
 
 use super::{BodyState, accumulate_composites};
+use crate::Joints;
 use crate::robot::Robot;
 use nalgebra::DMatrix;
 
@@ -10,8 +11,8 @@ impl Robot {
     ///
     /// # Panics
     /// If `q.len() != self.dof()`, or if the robot has no mass properties.
-    pub fn mass_matrix(&self, q: &[f64]) -> DMatrix<f64> {
-        self.check_len("mass_matrix", "q", q);
+    pub fn mass_matrix(&self, q: &(impl Joints<f64> + ?Sized)) -> DMatrix<f64> {
+        let q = self.check_len("mass_matrix", "q", q);
         self.check_dynamics("mass_matrix");
         let mut states = self.body_states(q);
         accumulate_composites(&mut states);

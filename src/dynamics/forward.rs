@@ -1,6 +1,7 @@
 //! Forward dynamics: CRBA, RNEA and a Cholesky solve.
 
 use super::accumulate_composites;
+use crate::Joints;
 use crate::robot::Robot;
 use nalgebra::DVector;
 
@@ -17,10 +18,15 @@ impl Robot {
     /// # Panics
     /// If `q`, `qd` or `tau` does not have `self.dof()` entries, or if the robot has no mass
     /// properties.
-    pub fn forward_dynamics(&self, q: &[f64], qd: &[f64], tau: &[f64]) -> Option<DVector<f64>> {
-        self.check_len("forward_dynamics", "q", q);
-        self.check_len("forward_dynamics", "qd", qd);
-        self.check_len("forward_dynamics", "tau", tau);
+    pub fn forward_dynamics(
+        &self,
+        q: &(impl Joints<f64> + ?Sized),
+        qd: &(impl Joints<f64> + ?Sized),
+        tau: &(impl Joints<f64> + ?Sized),
+    ) -> Option<DVector<f64>> {
+        let q = self.check_len("forward_dynamics", "q", q);
+        let qd = self.check_len("forward_dynamics", "qd", qd);
+        let tau = self.check_len("forward_dynamics", "tau", tau);
         self.check_dynamics("forward_dynamics");
         let mut states = self.body_states(q);
         let bias = self.rnea(&states, qd, None);

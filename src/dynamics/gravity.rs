@@ -2,6 +2,7 @@
 
 use super::joint_axis;
 use super::spatial::Motion;
+use crate::Joints;
 use crate::robot::Robot;
 use nalgebra::{DVector, Vector3};
 
@@ -12,8 +13,8 @@ impl Robot {
     ///
     /// # Panics
     /// If `q.len() != self.dof()`, or if the robot has no mass properties.
-    pub fn gravity(&self, q: &[f64]) -> DVector<f64> {
-        self.check_len("gravity", "q", q);
+    pub fn gravity(&self, q: &(impl Joints<f64> + ?Sized)) -> DVector<f64> {
+        let q = self.check_len("gravity", "q", q);
         self.check_dynamics("gravity");
         // Only the mass and first mass moment of each body matter: the gravity force of
         // the bodies beyond joint i acts at their common centre of mass.

@@ -2,6 +2,7 @@
 
 use super::BodyState;
 use super::spatial::{Force, Motion};
+use crate::Joints;
 use crate::robot::Robot;
 use nalgebra::DVector;
 
@@ -14,15 +15,43 @@ impl Robot {
     /// # Panics
     /// If `q`, `qd` or `qdd` does not have `self.dof()` entries, or if the robot has no mass
     /// properties.
-    pub fn inverse_dynamics(&self, q: &[f64], qd: &[f64], qdd: &[f64]) -> DVector<f64> {
-        self.check_len("inverse_dynamics", "q", q);
-        self.check_len("inverse_dynamics", "qd", qd);
-        self.check_len("inverse_dynamics", "qdd", qdd);
+    pub fn inverse_dynamics(
+        &self,
+        q: &(impl Joints<f64> + ?Sized),
+        qd: &(impl Joints<f64> + ?Sized),
+        qdd: &(impl Joints<f64> + ?Sized),
+    ) -> DVector<f64> {
+        let q = self.check_len("inverse_dynamics", "q", q);
+        let qd = self.check_len("inverse_dynamics", "qd", qd);
+        let qdd = self.check_len("inverse_dynamics", "qdd", qdd);
         self.check_dynamics("inverse_dynamics");
         let states = self.body_states(q);
         let mut tau = self.rnea(&states, qd, Some(qdd));
         for (i, body) in self.bodies.iter().enumerate() {
             tau[i] += body.armature * qdd[i] + self.friction(i, qd[i]);
+        }
+        tau
+    }
+
+    /// The torques at zero acceleration, `C(q, q̇) q̇ + g(q)` plus friction: the inverse
+    /// dynamics at `q̈ = 0` (what a computed-torque law adds to `D(q) v`).
+    ///
+    /// # Panics
+    /// If `q` or `qd` does not have `self.dof()` entries, or if the robot has no mass
+    /// properties.
+    #[doc(alias = "nonLinearEffects")]
+    pub fn bias(
+        &self,
+        q: &(impl Joints<f64> + ?Sized),
+        qd: &(impl Joints<f64> + ?Sized),
+    ) -> DVector<f64> {
+        let q = self.check_len("bias", "q", q);
+        let qd = self.check_len("bias", "qd", qd);
+        self.check_dynamics("bias");
+        let states = self.body_states(q);
+        let mut tau = self.rnea(&states, qd, None);
+        for (i, t) in tau.iter_mut().enumerate() {
+            *t += self.friction(i, qd[i]);
         }
         tau
     }

@@ -1,16 +1,14 @@
 //! Closed-form inverse kinematics by kinematic decoupling (section 4.3) for six-joint arms
 //! whose last three axes meet in one point (a spherical wrist).
 //!
-//! # The chain in a convention-free form
-//! Both DH conventions, with the base and tool poses and the joint offsets, give
-//! `T(q) = P0 Z1(q1) P1 Z2(q2) ⋯ Z6(q6) P6`, with constant rigid transforms `P_i` and joint
-//! motions `Z_i = Rz(q_i)` (revolute) or `Tz(q_i)` (prismatic), q the joint values as the
-//! user gives them (offsets are inside the `P_i`). Standard DH has `A_i(q) = Z(q) A_i(0)`, so
-//! `P0 = base`, `P_i = A_i(0)`, `P6 = A6(0) tool`; modified DH has `A_i(q) = A_i(0) Z(q)`, so
-//! `P0 = base A1(0)`, `P_i = A_{i+1}(0)`, `P6 = tool`. [`DecoupledIk::from_model`] builds the
-//! `P_i` from the DH table with [`Link::transform`](dhgen_model::Link::transform);
-//! [`DecoupledIk::from_arm`] recovers the same chain from any [`Arm`] (a generated module's
-//! `Model` or the runtime [`Robot`](crate::Robot)) from its joint axes at q = 0.
+//! # The chain
+//! The solver works on the robot's kinematic structure ([`ChainRef`], the same numbers its
+//! kinematics are computed from): `T(q) = P0 Z1(q1) P1 Z2(q2) ⋯ Z6(q6) P6`, with constant
+//! rigid transforms `P_i` and joint motions `Z_i = Rz(q_i)` (revolute) or `Tz(q_i)`
+//! (prismatic), each joint's offset folded into the transform before it so that q are the
+//! joint values as the user gives them. [`DecoupledIk::from_chain`] takes the structure,
+//! [`DecoupledIk::from_arm`] the one an [`Arm`] carries (a generated module's `Robot` or the
+//! runtime [`Robot`](crate::Robot)), [`DecoupledIk::from_model`] the one of a description.
 //!
 //! # Decoupling
 //! With axes 4, 5, 6 through one point c, the wrist joints do not move c, so c is fixed in
@@ -237,7 +235,7 @@ enum Position {
 /// use dhgen::ik::DecoupledIk;
 /// dhgen::robot!(mod puma = "robots/puma560.toml");
 ///
-/// let ik = DecoupledIk::from_arm(&puma::Model).unwrap();
+/// let ik = DecoupledIk::from_arm(&puma::Robot).unwrap();
 /// let q = [0.3, -0.4, 0.2, 0.5, -0.7, 1.1];
 /// let pose = puma::fk(&q);
 /// let solutions = ik.solve(&pose);

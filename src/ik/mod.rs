@@ -18,15 +18,15 @@
 //! dhgen::robot!(mod puma = "robots/puma560.toml");
 //!
 //! let q = SVector::<f64, 6>::new(0.2, -0.3, 0.1, 0.4, 0.6, -0.5);
-//! let pose = puma::fk(&q.into());
+//! let pose = puma::fk(&q);
 //!
 //! // Closed form: every solution.
-//! let all = DecoupledIk::from_arm(&puma::Model).unwrap().solve(&pose);
+//! let all = DecoupledIk::from_arm(&puma::Robot).unwrap().solve(&pose);
 //! assert!(all.len() >= 2);
 //!
 //! // Numeric: one solution near the seed.
 //! let seed = q + SVector::repeat(0.1);
-//! let found = NumericIk::default().solve(&puma::Model, &pose, &seed).unwrap();
+//! let found = NumericIk::default().solve(&puma::Robot, &pose, &seed).unwrap();
 //! assert!(found.position_error < 1e-10 && found.orientation_error < 1e-10);
 //! ```
 

@@ -30,7 +30,6 @@
 use crate::rotation::rotation_vector;
 use crate::velocity::JacobianSvd;
 use crate::{Arm, ArmAllocator};
-use core::fmt;
 #[cfg(not(feature = "std"))]
 use nalgebra::ComplexField as _;
 use nalgebra::{
@@ -90,11 +89,15 @@ where
 }
 
 /// Why the numeric solver returned no solution.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, thiserror::Error)]
 #[non_exhaustive]
 pub enum IkError {
     /// The iteration cap was reached first (over all attempts); the errors are those of the
     /// best configuration.
+    #[error(
+        "numeric IK did not converge in {iterations} iterations (position error \
+         {position_error:e} m, orientation error {orientation_error:e} rad)"
+    )]
     NotConverged {
         /// Iterations run.
         iterations: usize,
@@ -106,6 +109,11 @@ pub enum IkError {
     /// Every attempt (the seed and all restarts) stalled, the last at a configuration where the
     /// Jacobian is singular (smallest singular value below 1e-6): typically a pose out of
     /// reach that the arm stretches towards. The errors are those of the best configuration.
+    #[error(
+        "numeric IK stalled at a singular configuration after {iterations} iterations \
+         (smallest singular value {sigma_min:e}; position error {position_error:e} m, \
+         orientation error {orientation_error:e} rad)"
+    )]
     Singular {
         /// Iterations run.
         iterations: usize,
@@ -119,6 +127,11 @@ pub enum IkError {
     /// Every attempt (the seed and all restarts) stalled in a local minimum with a regular
     /// Jacobian: usually against a joint limit, or the pose is out of reach. The errors are
     /// those of the best configuration.
+    #[error(
+        "numeric IK stalled in a local minimum after {iterations} iterations (position \
+         error {position_error:e} m, orientation error {orientation_error:e} rad); try \
+         another seed"
+    )]
     LocalMinimum {
         /// Iterations run.
         iterations: usize,
@@ -128,6 +141,7 @@ pub enum IkError {
         orientation_error: f64,
     },
     /// The seed's length is not the arm's number of joints.
+    #[error("numeric IK: the seed has length {len}, expected {expected} (one entry per joint)")]
     SeedLength {
         /// Length given.
         len: usize,
@@ -135,64 +149,18 @@ pub enum IkError {
         expected: usize,
     },
     /// Seed entry `joint` (0-based) is NaN or infinite.
+    #[error("numeric IK: seed entry {joint} is not finite")]
     NonFiniteSeed {
         /// The joint, 0-based.
         joint: usize,
     },
     /// The target pose has a NaN or infinite entry.
+    #[error("numeric IK: the target pose is not finite")]
     NonFiniteTarget,
     /// A setting is out of range; the text names it.
+    #[error("numeric IK: invalid settings: {0}")]
     InvalidSettings(&'static str),
 }
-
-impl fmt::Display for IkError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self {
-            IkError::NotConverged {
-                iterations,
-                position_error,
-                orientation_error,
-            } => write!(
-                f,
-                "numeric IK did not converge in {iterations} iterations (position error \
-                 {position_error:e} m, orientation error {orientation_error:e} rad)"
-            ),
-            IkError::Singular {
-                iterations,
-                position_error,
-                orientation_error,
-                sigma_min,
-            } => write!(
-                f,
-                "numeric IK stalled at a singular configuration after {iterations} iterations \
-                 (smallest singular value {sigma_min:e}; position error {position_error:e} m, \
-                 orientation error {orientation_error:e} rad)"
-            ),
-            IkError::LocalMinimum {
-                iterations,
-                position_error,
-                orientation_error,
-            } => write!(
-                f,
-                "numeric IK stalled in a local minimum after {iterations} iterations (position \
-                 error {position_error:e} m, orientation error {orientation_error:e} rad); try \
-                 another seed"
-            ),
-            IkError::SeedLength { len, expected } => write!(
-                f,
-                "numeric IK: the seed has length {len}, expected {expected} (one entry per joint)"
-            ),
-            IkError::NonFiniteSeed { joint } => {
-                write!(f, "numeric IK: seed entry {joint} is not finite")
-            }
-            IkError::NonFiniteTarget => write!(f, "numeric IK: the target pose is not finite"),
-            IkError::InvalidSettings(what) => write!(f, "numeric IK: invalid settings: {what}"),
-        }
-    }
-}
-
-#[cfg(feature = "std")]
-impl std::error::Error for IkError {}
 
 /// The error vector `[p* − p; log(R* Rᵀ)]` and its two norms.
 fn pose_residual(target: &Isometry3<f64>, pose: &Isometry3<f64>) -> (Vector6<f64>, f64, f64) {
@@ -261,9 +229,9 @@ impl NumericIk {
     ///
     /// // A 7-joint arm: one of infinitely many solutions, the one the seed leads to.
     /// let q = SVector::<f64, 7>::from([0.1, -0.4, 0.2, -1.8, 0.3, 1.5, 0.4]);
-    /// let target = panda::Model.fk(&q);
+    /// let target = panda::Robot.fk(&q);
     /// let seed = SVector::<f64, 7>::from([0.0, 0.0, 0.0, -1.5, 0.0, 1.5, 0.0]);
-    /// let solution = NumericIk::default().solve(&panda::Model, &target, &seed).unwrap();
+    /// let solution = NumericIk::default().solve(&panda::Robot, &target, &seed).unwrap();
     /// assert!(solution.position_error <= 1e-10 && solution.orientation_error <= 1e-10);
     /// assert!(solution.iterations <= NumericIk::default().max_iterations);
     /// ```

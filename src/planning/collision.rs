@@ -13,7 +13,7 @@
 //! dhgen::robot!(mod planar = "robots/planar_elbow.toml");
 //!
 //! let scene = Scene::new(vec![Obstacle::sphere([1.2, 0.6, 0.0], 0.2)]).unwrap();
-//! let mut checker = CollisionChecker::new(&planar::Model, scene).unwrap();
+//! let mut checker = CollisionChecker::new(&planar::Robot, scene).unwrap();
 //!
 //! let stretched = dhgen::nalgebra::SVector::<f64, 2>::new(0.0, 0.0);
 //! // Link 2 runs along the x axis from 1.0 to 1.8; the sphere's surface is 0.4 above it.

@@ -2,7 +2,7 @@
 //! fields in configuration space and in the workspace, and probabilistic roadmaps.
 //!
 //! Everything here is generic over [`Arm`](crate::Arm), so the same planner runs on a
-//! generated module's `Model` (allocation-free kinematics, the fast path) and on the runtime
+//! generated module's `Robot` (allocation-free kinematics, the fast path) and on the runtime
 //! [`Robot`](crate::Robot).
 //!
 //! - [`collision`](crate::planning::collision): the robot as capsules around its DH segments (the description's

@@ -29,7 +29,7 @@
 //!
 //! // Beyond the reach of link 1 (1 m), so link 2 has to fold to pass it.
 //! let scene = Scene::new(vec![Obstacle::sphere([0.0, 1.4, 0.0], 0.2)]).unwrap();
-//! let mut checker = CollisionChecker::new(&planar::Model, scene).unwrap();
+//! let mut checker = CollisionChecker::new(&planar::Robot, scene).unwrap();
 //! let mut prm = Prm::new(&mut checker, PrmConfig::default(), 7).unwrap();
 //! let path = prm
 //!     .query(&SVector::from([0.3, 0.2]), &SVector::from([2.8, -0.2]))

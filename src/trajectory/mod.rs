@@ -177,9 +177,10 @@ impl fmt::Display for Location {
 }
 
 /// Why a trajectory could not be built or sampled.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, thiserror::Error)]
 pub enum TrajectoryError {
     /// The final time is not after the start time.
+    #[error("final time tf = {tf} must be greater than start time t0 = {t0}")]
     EmptyTimeInterval {
         /// Start time.
         t0: f64,
@@ -187,6 +188,7 @@ pub enum TrajectoryError {
         tf: f64,
     },
     /// An input (or a difference of inputs, e.g. `qf - q0`) is NaN or infinite.
+    #[error("{name} = {value} is not finite{at}")]
     NonFinite {
         /// The quantity's name, e.g. `"q0"`, `"vmax"`, `"qf - q0"`.
         name: &'static str,
@@ -197,6 +199,7 @@ pub enum TrajectoryError {
     },
     /// The LSPB cruise velocity `V` lies outside `((qf - q0)/T, 2 (qf - q0)/T]` for a positive
     /// move, `[2 (qf - q0)/T, (qf - q0)/T)` for a negative move, or is not 0 for a zero move.
+    #[error("{}", LspbVelocityMessage { v: *v, exclusive_bound: *exclusive_bound, inclusive_bound: *inclusive_bound, at })]
     LspbVelocityOutOfRange {
         /// The requested cruise velocity.
         v: f64,
@@ -208,6 +211,10 @@ pub enum TrajectoryError {
         at: Location,
     },
     /// The LSPB blend acceleration cannot cover the move in the given time.
+    #[error(
+        "LSPB blend acceleration {alpha} is too small to finish the move in time: \
+         it must be at least 4|qf - q0|/T^2 = {min}{at}"
+    )]
     LspbAccelerationTooSmall {
         /// The requested blend acceleration (magnitude).
         alpha: f64,
@@ -218,6 +225,10 @@ pub enum TrajectoryError {
     },
     /// Valid inputs so extreme that a derived quantity cannot be represented in `f64`, e.g. an
     /// LSPB cruise velocity within rounding of `(qf - q0)/T`, whose blend time rounds to zero.
+    #[error(
+        "{name} = {value} cannot be represented in f64: the inputs are too extreme \
+         relative to each other{at}"
+    )]
     OutOfFloatRange {
         /// The derived quantity, e.g. `"LSPB blend time tb"`.
         name: &'static str,
@@ -227,6 +238,7 @@ pub enum TrajectoryError {
         at: Location,
     },
     /// A limit or blend time that must be positive is zero or negative.
+    #[error("{name} = {value} must be positive{at}")]
     NonPositiveLimit {
         /// The limit's name, e.g. `"amax"`.
         name: &'static str,
@@ -236,6 +248,11 @@ pub enum TrajectoryError {
         at: Location,
     },
     /// Via times do not increase strictly.
+    #[error(
+        "via times must increase strictly, but times[{index}] = {value} is not greater \
+         than times[{}] = {previous}",
+        index - 1
+    )]
     NonIncreasingTimes {
         /// Index of the first time that is not greater than its predecessor.
         index: usize,
@@ -245,11 +262,13 @@ pub enum TrajectoryError {
         value: f64,
     },
     /// A via-point trajectory needs at least two points.
+    #[error("a via-point trajectory needs at least two points, got {found}")]
     TooFewPoints {
         /// How many were given.
         found: usize,
     },
     /// A slice has the wrong length.
+    #[error("{name} has length {found}, expected {expected}{at}")]
     LengthMismatch {
         /// Which slice, e.g. `"times"`, `"out"`, `"vmax"`.
         name: &'static str,
@@ -261,13 +280,20 @@ pub enum TrajectoryError {
         at: Location,
     },
     /// A trajectory needs at least one joint.
+    #[error("a trajectory needs at least one joint, got none")]
     NoJoints,
     /// Uniform sampling needs at least two samples (to include both `t0` and `tf`).
+    #[error("uniform sampling needs at least two samples (t0 and tf), got {found}")]
     TooFewSamples {
         /// How many were requested.
         found: usize,
     },
     /// Parabolic blends of the given duration do not fit into a segment between via points.
+    #[error(
+        "segment {segment} (via point {} to {segment}) lasts {available}, but its parabolic \
+         blends need {needed}: use a shorter blend time or more time for the segment",
+        segment - 1
+    )]
     BlendsOverlap {
         /// The segment index `k` (from via point `k - 1` to via point `k`).
         segment: usize,
@@ -279,6 +305,10 @@ pub enum TrajectoryError {
         needed: f64,
     },
     /// Profiles passed to [`Synchronized::new`] do not share the first joint's time interval.
+    #[error(
+        "joint {joint} runs on [{t0}, {tf}] but joint 0 on [{expected_t0}, {expected_tf}]: \
+         synchronized joints must share one time interval"
+    )]
     MismatchedTimes {
         /// The first joint whose interval differs.
         joint: usize,
@@ -344,112 +374,44 @@ impl TrajectoryError {
     }
 }
 
-impl fmt::Display for TrajectoryError {
+/// The message of [`TrajectoryError::LspbVelocityOutOfRange`]: the allowed interval depends
+/// on the direction of the move.
+struct LspbVelocityMessage<'a> {
+    v: f64,
+    exclusive_bound: f64,
+    inclusive_bound: f64,
+    at: &'a Location,
+}
+
+impl fmt::Display for LspbVelocityMessage<'_> {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match *self {
-            Self::EmptyTimeInterval { t0, tf } => {
-                write!(
-                    f,
-                    "final time tf = {tf} must be greater than start time t0 = {t0}"
-                )
-            }
-            Self::NonFinite { name, value, at } => write!(f, "{name} = {value} is not finite{at}"),
-            Self::LspbVelocityOutOfRange {
-                v,
-                exclusive_bound,
-                inclusive_bound,
-                at,
-            } => {
-                if exclusive_bound > 0.0 {
-                    write!(
-                        f,
-                        "LSPB cruise velocity V = {v} is outside the allowed interval \
-                         ({exclusive_bound}, {inclusive_bound}] = ((qf - q0)/T, 2(qf - q0)/T]{at}"
-                    )
-                } else if exclusive_bound < 0.0 {
-                    write!(
-                        f,
-                        "LSPB cruise velocity V = {v} is outside the allowed interval \
-                         [{inclusive_bound}, {exclusive_bound}) = [2(qf - q0)/T, (qf - q0)/T) \
-                         of this negative move{at}"
-                    )
-                } else {
-                    write!(
-                        f,
-                        "LSPB cruise velocity V = {v} must be 0 for a zero move (qf = q0){at}"
-                    )
-                }
-            }
-            Self::LspbAccelerationTooSmall { alpha, min, at } => write!(
+        let LspbVelocityMessage {
+            v,
+            exclusive_bound,
+            inclusive_bound,
+            at,
+        } = self;
+        if *exclusive_bound > 0.0 {
+            write!(
                 f,
-                "LSPB blend acceleration {alpha} is too small to finish the move in time: \
-                 it must be at least 4|qf - q0|/T^2 = {min}{at}"
-            ),
-            Self::NonPositiveLimit { name, value, at } => {
-                write!(f, "{name} = {value} must be positive{at}")
-            }
-            Self::OutOfFloatRange { name, value, at } => write!(
+                "LSPB cruise velocity V = {v} is outside the allowed interval \
+                 ({exclusive_bound}, {inclusive_bound}] = ((qf - q0)/T, 2(qf - q0)/T]{at}"
+            )
+        } else if *exclusive_bound < 0.0 {
+            write!(
                 f,
-                "{name} = {value} cannot be represented in f64: the inputs are too extreme \
-                 relative to each other{at}"
-            ),
-            Self::NonIncreasingTimes {
-                index,
-                previous,
-                value,
-            } => write!(
+                "LSPB cruise velocity V = {v} is outside the allowed interval \
+                 [{inclusive_bound}, {exclusive_bound}) = [2(qf - q0)/T, (qf - q0)/T) \
+                 of this negative move{at}"
+            )
+        } else {
+            write!(
                 f,
-                "via times must increase strictly, but times[{index}] = {value} is not greater \
-                 than times[{}] = {previous}",
-                index - 1
-            ),
-            Self::TooFewPoints { found } => {
-                write!(
-                    f,
-                    "a via-point trajectory needs at least two points, got {found}"
-                )
-            }
-            Self::LengthMismatch {
-                name,
-                expected,
-                found,
-                at,
-            } => {
-                write!(f, "{name} has length {found}, expected {expected}{at}")
-            }
-            Self::NoJoints => write!(f, "a trajectory needs at least one joint, got none"),
-            Self::TooFewSamples { found } => {
-                write!(
-                    f,
-                    "uniform sampling needs at least two samples (t0 and tf), got {found}"
-                )
-            }
-            Self::BlendsOverlap {
-                segment,
-                available,
-                needed,
-            } => write!(
-                f,
-                "segment {segment} (via point {} to {segment}) lasts {available}, but its parabolic \
-                 blends need {needed}: use a shorter blend time or more time for the segment",
-                segment - 1
-            ),
-            Self::MismatchedTimes {
-                joint,
-                t0,
-                tf,
-                expected_t0,
-                expected_tf,
-            } => write!(
-                f,
-                "joint {joint} runs on [{t0}, {tf}] but joint 0 on [{expected_t0}, {expected_tf}]: \
-                 synchronized joints must share one time interval"
-            ),
+                "LSPB cruise velocity V = {v} must be 0 for a zero move (qf = q0){at}"
+            )
         }
     }
 }
-
-impl core::error::Error for TrajectoryError {}
 
 /// `Ok(x)` if `x` is finite, else the [`TrajectoryError::NonFinite`] naming it.
 pub(crate) fn finite(name: &'static str, value: f64) -> Result<f64, TrajectoryError> {

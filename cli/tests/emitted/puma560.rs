@@ -12,9 +12,199 @@ pub mod puma560 {
     pub const NAME: &str = "puma560";
     /// Whether the description has mass properties (dynamics functions exist).
     pub const HAS_DYNAMICS: bool = true;
-    /// One configuration, prepared: the sine and cosine of every revolute joint's
-    /// full angle and the full displacement of every prismatic joint, computed once
-    /// and shared by every quantity evaluated at this configuration.
+    /// Whether the last three axes meet in one point (a spherical wrist); for a
+    /// six-joint arm, `det_j11`, `det_j22`, `ik` and `ik_solver` then exist.
+    pub const SPHERICAL_WRIST: bool = true;
+    /// The robot's kinematic structure: fixed transforms, joints (kinds, offsets,
+    /// limits, armature, friction), link frames, mass properties and collision
+    /// capsules. The numbers this module was generated from, for algorithms built on
+    /// the structure (inverse kinematics, planning); see [`::dhgen::ChainRef`].
+    pub const CHAIN: ::dhgen::ChainRef<'static> = ::dhgen::ChainRef {
+        base: ::dhgen::model::Frame {
+            r: [[1f64, 0f64, 0f64], [0f64, 1f64, 0f64], [0f64, 0f64, 1f64]],
+            p: [0f64, 0f64, 0f64],
+        },
+        placements: &[
+            ::dhgen::model::Frame {
+                r: [[1f64, 0f64, 0f64], [0f64, 1f64, 0f64], [0f64, 0f64, 1f64]],
+                p: [0f64, 0f64, 0.6718299999999999f64],
+            },
+            ::dhgen::model::Frame {
+                r: [[1f64, 0f64, 0f64], [0f64, 0f64, -1f64], [0f64, 1f64, 0f64]],
+                p: [0f64, 0f64, 0f64],
+            },
+            ::dhgen::model::Frame {
+                r: [[1f64, 0f64, 0f64], [0f64, 1f64, 0f64], [0f64, 0f64, 1f64]],
+                p: [0.4318f64, 0f64, 0.15005f64],
+            },
+            ::dhgen::model::Frame {
+                r: [[1f64, 0f64, 0f64], [0f64, 0f64, 1f64], [0f64, -1f64, 0f64]],
+                p: [0.0203f64, 0.4318f64, 0f64],
+            },
+            ::dhgen::model::Frame {
+                r: [[1f64, 0f64, 0f64], [0f64, 0f64, -1f64], [0f64, 1f64, 0f64]],
+                p: [0f64, 0f64, 0f64],
+            },
+            ::dhgen::model::Frame {
+                r: [[1f64, 0f64, 0f64], [0f64, 0f64, 1f64], [0f64, -1f64, 0f64]],
+                p: [0f64, 0f64, 0f64],
+            },
+            ::dhgen::model::Frame {
+                r: [[1f64, 0f64, 0f64], [0f64, 1f64, 0f64], [0f64, 0f64, 1f64]],
+                p: [0f64, 0f64, 0f64],
+            },
+        ],
+        bodies: &[
+            ::dhgen::model::Body {
+                joint: ::dhgen::JointKind::Revolute,
+                offset: 0f64,
+                limits: Some([-2.792526803190927f64, 2.792526803190927f64]),
+                armature: 0f64,
+                friction: ::dhgen::model::Friction {
+                    viscous: 0f64,
+                    coulomb: 0f64,
+                },
+                link: ::dhgen::model::Frame {
+                    r: [[1f64, -0f64, 0f64], [0f64, 0f64, -1f64], [0f64, 1f64, 0f64]],
+                    p: [0f64, 0f64, 0f64],
+                },
+                inertial: Some(::dhgen::model::Inertial {
+                    mass: 0f64,
+                    com: [0f64, 0f64, 0f64],
+                    inertia: [
+                        [0f64, 0f64, 0f64],
+                        [0f64, 0f64, 0f64],
+                        [0f64, 0f64, 0.35f64],
+                    ],
+                }),
+                capsule: Some(0.1f64),
+            },
+            ::dhgen::model::Body {
+                joint: ::dhgen::JointKind::Revolute,
+                offset: 0f64,
+                limits: Some([-0.7853981633974483f64, 3.9269908169872414f64]),
+                armature: 0f64,
+                friction: ::dhgen::model::Friction {
+                    viscous: 0f64,
+                    coulomb: 0f64,
+                },
+                link: ::dhgen::model::Frame {
+                    r: [[1f64, -0f64, 0f64], [0f64, 1f64, -0f64], [0f64, 0f64, 1f64]],
+                    p: [0.4318f64, 0f64, 0f64],
+                },
+                inertial: Some(::dhgen::model::Inertial {
+                    mass: 17.4f64,
+                    com: [0.068f64, 0.006f64, 0.2275f64],
+                    inertia: [
+                        [0.13f64, 0f64, 0f64],
+                        [0f64, 0.524f64, 0f64],
+                        [0f64, 0f64, 0.539f64],
+                    ],
+                }),
+                capsule: Some(0.08f64),
+            },
+            ::dhgen::model::Body {
+                joint: ::dhgen::JointKind::Revolute,
+                offset: 0f64,
+                limits: Some([-3.9269908169872414f64, 0.7853981633974483f64]),
+                armature: 0f64,
+                friction: ::dhgen::model::Friction {
+                    viscous: 0f64,
+                    coulomb: 0f64,
+                },
+                link: ::dhgen::model::Frame {
+                    r: [[1f64, -0f64, -0f64], [0f64, 0f64, 1f64], [0f64, -1f64, 0f64]],
+                    p: [0.0203f64, 0f64, 0f64],
+                },
+                inertial: Some(::dhgen::model::Inertial {
+                    mass: 4.8f64,
+                    com: [0f64, 0.07f64, 0.0141f64],
+                    inertia: [
+                        [0.066f64, 0f64, 0f64],
+                        [0f64, 0.0125f64, 0f64],
+                        [0f64, 0f64, 0.086f64],
+                    ],
+                }),
+                capsule: Some(0.06f64),
+            },
+            ::dhgen::model::Body {
+                joint: ::dhgen::JointKind::Revolute,
+                offset: 0f64,
+                limits: Some([-1.9198621771937625f64, 2.9670597283903604f64]),
+                armature: 0f64,
+                friction: ::dhgen::model::Friction {
+                    viscous: 0f64,
+                    coulomb: 0f64,
+                },
+                link: ::dhgen::model::Frame {
+                    r: [[1f64, -0f64, 0f64], [0f64, 0f64, -1f64], [0f64, 1f64, 0f64]],
+                    p: [0f64, 0f64, 0f64],
+                },
+                inertial: Some(::dhgen::model::Inertial {
+                    mass: 0.82f64,
+                    com: [0f64, 0f64, 0.019f64],
+                    inertia: [
+                        [0.0018f64, 0f64, 0f64],
+                        [0f64, 0.0018f64, 0f64],
+                        [0f64, 0f64, 0.0013f64],
+                    ],
+                }),
+                capsule: Some(0.05f64),
+            },
+            ::dhgen::model::Body {
+                joint: ::dhgen::JointKind::Revolute,
+                offset: 0f64,
+                limits: Some([-1.7453292519943295f64, 1.7453292519943295f64]),
+                armature: 0f64,
+                friction: ::dhgen::model::Friction {
+                    viscous: 0f64,
+                    coulomb: 0f64,
+                },
+                link: ::dhgen::model::Frame {
+                    r: [[1f64, -0f64, -0f64], [0f64, 0f64, 1f64], [0f64, -1f64, 0f64]],
+                    p: [0f64, 0f64, 0f64],
+                },
+                inertial: Some(::dhgen::model::Inertial {
+                    mass: 0.34f64,
+                    com: [0f64, 0f64, 0f64],
+                    inertia: [
+                        [0.0003f64, 0f64, 0f64],
+                        [0f64, 0.0003f64, 0f64],
+                        [0f64, 0f64, 0.0004f64],
+                    ],
+                }),
+                capsule: Some(0.05f64),
+            },
+            ::dhgen::model::Body {
+                joint: ::dhgen::JointKind::Revolute,
+                offset: 0f64,
+                limits: Some([-4.642575810304916f64, 4.642575810304916f64]),
+                armature: 0f64,
+                friction: ::dhgen::model::Friction {
+                    viscous: 0f64,
+                    coulomb: 0f64,
+                },
+                link: ::dhgen::model::Frame {
+                    r: [[1f64, -0f64, 0f64], [0f64, 1f64, -0f64], [0f64, 0f64, 1f64]],
+                    p: [0f64, 0f64, 0f64],
+                },
+                inertial: Some(::dhgen::model::Inertial {
+                    mass: 0.09f64,
+                    com: [0f64, 0f64, 0.032f64],
+                    inertia: [
+                        [0.00015f64, 0f64, 0f64],
+                        [0f64, 0.00015f64, 0f64],
+                        [0f64, 0f64, 0.00004f64],
+                    ],
+                }),
+                capsule: Some(0.04f64),
+            },
+        ],
+        gravity: [0f64, 0f64, -9.81f64],
+    };
+    /// One configuration, prepared: the sine and cosine of every revolute joint's full
+    /// angle and the full displacement of every prismatic joint, computed once and
+    /// shared by every quantity evaluated at this configuration.
     #[derive(Clone, Copy, Debug, PartialEq)]
     pub struct State<T: na::Scalar> {
         /// cos θ_j (revolute joints; 0 for prismatic ones).
@@ -25,9 +215,10 @@ pub mod puma560 {
         pub d: [T; DOF],
     }
     impl<T: ::dhgen::Real> State<T> {
-        /// Prepares configuration `q`.
+        /// Prepares configuration `q` (an array or an `SVector`).
         #[must_use]
-        pub fn new(q: &[T; DOF]) -> Self {
+        pub fn new(q: &impl ::dhgen::JointArray<T, DOF>) -> Self {
+            let q = q.to_array();
             let mut c = [T::zero(); DOF];
             let mut s = [T::zero(); DOF];
             let d = [T::zero(); DOF];
@@ -51,18 +242,11 @@ pub mod puma560 {
             c[5] = cj;
             State { c, s, d }
         }
-        /// Pose of the tool frame in the world frame: base · A1 ⋯ An · tool.
-        #[must_use]
-        pub fn fk(&self) -> na::Isometry3<T> {
-            isometry(&self.fk_matrix())
-        }
-        /// The link frames in the world frame (base applied, tool not).
-        #[must_use]
-        pub fn frames(&self) -> [na::Isometry3<T>; DOF] {
-            let m = self.frames_matrix();
-            ::core::array::from_fn(|i| isometry(&m[i]))
-        }
-        ///Pose of the tool frame in the world frame as a homogeneous matrix: base · A1 ⋯ An · tool.
+    }
+    impl<T: ::dhgen::Real> State<T> {
+        ///Pose of the tool frame in the world frame as a homogeneous matrix, base · A1 ⋯ An · tool: the fast path (no conversion to a quaternion).
+        #[doc(alias = "fkine")]
+        #[doc(alias = "forwardKinematics")]
         #[must_use]
         pub fn fk_matrix(&self) -> na::Matrix4<T> {
             let mut out: na::Matrix4<T> = na::Matrix4::identity();
@@ -193,7 +377,15 @@ pub mod puma560 {
             out[(2, 3)] = t103;
             out
         }
+        ///Pose of the tool frame in the world frame, base · A1 ⋯ An · tool, as a translation and a unit quaternion (from `fk_matrix`).
+        #[doc(alias = "fkine")]
+        #[doc(alias = "forwardKinematics")]
+        #[must_use]
+        pub fn fk(&self) -> na::Isometry3<T> {
+            isometry(&self.fk_matrix())
+        }
         ///The link frames in the world frame (base applied, tool not) as homogeneous matrices.
+        #[doc(alias = "updateFramePlacements")]
         #[must_use]
         pub fn frames_matrix(&self) -> [na::Matrix4<T>; DOF] {
             let mut out: [na::Matrix4<T>; DOF] = [na::Matrix4::identity(); DOF];
@@ -396,7 +588,17 @@ pub mod puma560 {
             out[2][(2, 1)] = ::dhgen::nalgebra::convert::<f64, T>(0f64);
             out
         }
-        ///Geometric Jacobian of the tool frame origin, world axes, rows [v; ω].
+        ///The link frames in the world frame (base applied, tool not).
+        #[doc(alias = "updateFramePlacements")]
+        #[must_use]
+        pub fn frames(&self) -> [na::Isometry3<T>; DOF] {
+            let m = self.frames_matrix();
+            ::core::array::from_fn(|i| isometry(&m[i]))
+        }
+        ///Geometric Jacobian of the tool frame origin in world axes, rows [v; ω].
+        #[doc(alias = "jacob0")]
+        #[doc(alias = "computeJointJacobians")]
+        #[doc(alias = "getFrameJacobian")]
         #[must_use]
         pub fn jacobian(&self) -> na::SMatrix<T, 6, DOF> {
             let mut out: na::SMatrix<T, 6, DOF> = na::SMatrix::zeros();
@@ -541,9 +743,15 @@ pub mod puma560 {
             out[(2, 5)] = ::dhgen::nalgebra::convert::<f64, T>(0f64);
             out
         }
-        ///J̇(q, q̇) q̇ of the tool frame origin, world axes, rows [v; ω]: the tool's acceleration at q̈ = 0.
+        ///J̇(q, q̇) q̇ of the tool frame origin in world axes, rows [v; ω]: the tool's acceleration at q̈ = 0.
+        #[doc(alias = "jacob_dot")]
+        #[doc(alias = "getFrameClassicalAcceleration")]
         #[must_use]
-        pub fn jdot_qdot(&self, qd: &[T; DOF]) -> na::SVector<T, 6> {
+        pub fn jdot_qdot(
+            &self,
+            qd: &impl ::dhgen::JointArray<T, DOF>,
+        ) -> na::SVector<T, 6> {
+            let qd = &qd.to_array();
             let mut out: na::SVector<T, 6> = na::SVector::zeros();
             let c1: T = self.c[0];
             let s1: T = self.s[0];
@@ -808,7 +1016,7 @@ pub mod puma560 {
             out[5] = t388;
             out
         }
-        ///det J11: zero at arm singularities (section 5.6.1; Jacobian about the wrist centre).
+        ///det J11 (the Jacobian about the wrist centre): zero at arm singularities (section 5.6.1).
         #[must_use]
         pub fn det_j11(&self) -> T {
             let out: T;
@@ -849,7 +1057,9 @@ pub mod puma560 {
             out = t3;
             out
         }
-        ///Joint-space inertia matrix D(q) (motor inertia included).
+        ///Joint-space inertia matrix D(q), armature (reflected motor inertia) included.
+        #[doc(alias = "crba")]
+        #[doc(alias = "inertia")]
         #[must_use]
         pub fn mass_matrix(&self) -> na::SMatrix<T, DOF, DOF> {
             let mut out: na::SMatrix<T, DOF, DOF> = na::SMatrix::zeros();
@@ -1108,6 +1318,7 @@ pub mod puma560 {
             out
         }
         ///Christoffel symbols: `[i][j][k]` = c_ijk = ½(∂d_kj/∂q_i + ∂d_ki/∂q_j − ∂d_ij/∂q_k), k the equation index.
+        #[doc(alias = "christoffel_symbols")]
         #[must_use]
         pub fn christoffel(&self) -> [[[T; DOF]; DOF]; DOF] {
             let mut out: [[[T; DOF]; DOF]; DOF] = [[[T::zero(); DOF]; DOF]; DOF];
@@ -1116,9 +1327,15 @@ pub mod puma560 {
             self.christoffel_part1(&mut w, &mut out);
             out
         }
-        ///Coriolis and centrifugal matrix: C_kj = Σ_i c_ijk q̇_i (so Ḋ − 2C is skew-symmetric).
+        ///Coriolis and centrifugal matrix C(q, q̇), C_kj = Σ_i c_ijk q̇_i (so Ḋ − 2C is skew-symmetric).
+        #[doc(alias = "coriolis_matrix")]
+        #[doc(alias = "computeCoriolisMatrix")]
         #[must_use]
-        pub fn coriolis(&self, qd: &[T; DOF]) -> na::SMatrix<T, DOF, DOF> {
+        pub fn coriolis(
+            &self,
+            qd: &impl ::dhgen::JointArray<T, DOF>,
+        ) -> na::SMatrix<T, DOF, DOF> {
+            let qd = &qd.to_array();
             let mut out: na::SMatrix<T, DOF, DOF> = na::SMatrix::zeros();
             let mut w = [T::zero(); 53];
             self.coriolis_part0(qd, &mut w, &mut out);
@@ -1127,6 +1344,8 @@ pub mod puma560 {
             out
         }
         ///Gravity torques g(q): the torques that hold the arm still.
+        #[doc(alias = "gravload")]
+        #[doc(alias = "computeGeneralizedGravity")]
         #[must_use]
         pub fn gravity(&self) -> na::SVector<T, DOF> {
             let mut out: na::SVector<T, DOF> = na::SVector::zeros();
@@ -1180,30 +1399,43 @@ pub mod puma560 {
             out[5] = ::dhgen::nalgebra::convert::<f64, T>(0f64);
             out
         }
-        /// Inverse dynamics τ = D(q) q̈ + C(q, q̇) q̇ + g(q), plus motor inertia and friction.
+        ///Inverse dynamics τ = D(q) q̈ + C(q, q̇) q̇ + g(q), plus armature and friction.
+        #[doc(alias = "rnea")]
+        #[doc(alias = "rne")]
         #[must_use]
         pub fn inverse_dynamics(
             &self,
-            qd: &[T; DOF],
-            qdd: &[T; DOF],
+            qd: &impl ::dhgen::JointArray<T, DOF>,
+            qdd: &impl ::dhgen::JointArray<T, DOF>,
         ) -> na::SVector<T, DOF> {
+            let qd = &qd.to_array();
+            let qdd = &qdd.to_array();
             let tau = self.inverse_dynamics_smooth(qd, qdd);
             tau
         }
-        /// The torques at zero acceleration: C(q, q̇) q̇ + g(q) + friction.
+        ///The torques at zero acceleration, C(q, q̇) q̇ + g(q) + friction: what a computed-torque law adds to D(q) v.
+        #[doc(alias = "nonLinearEffects")]
         #[must_use]
-        pub fn bias(&self, qd: &[T; DOF]) -> na::SVector<T, DOF> {
+        pub fn bias(
+            &self,
+            qd: &impl ::dhgen::JointArray<T, DOF>,
+        ) -> na::SVector<T, DOF> {
+            let qd = &qd.to_array();
             let tau = self.bias_smooth(qd);
             tau
         }
-        /// Forward dynamics q̈ = D⁻¹(τ − C q̇ − g − friction) by an unrolled Cholesky
-        /// solve; `None` where D(q) is not positive definite.
+        ///Forward dynamics q̈ = D⁻¹(τ − C q̇ − g − friction) by an unrolled Cholesky solve; `None` where D(q) is not positive definite.
+        #[doc(alias = "aba")]
+        #[doc(alias = "accel")]
+        #[doc(alias = "fdyn")]
         #[must_use]
         pub fn forward_dynamics(
             &self,
-            qd: &[T; DOF],
-            tau: &[T; DOF],
+            qd: &impl ::dhgen::JointArray<T, DOF>,
+            tau: &impl ::dhgen::JointArray<T, DOF>,
         ) -> Option<na::SVector<T, DOF>> {
+            let qd = &qd.to_array();
+            let tau = &tau.to_array();
             let dm = self.mass_matrix();
             let h = self.bias(qd);
             let rhs: [T; DOF] = ::core::array::from_fn(|i| tau[i] - h[i]);
@@ -1277,9 +1509,11 @@ pub mod puma560 {
                 * inv0;
             Some(na::SVector::<T, DOF>::from([x0, x1, x2, x3, x4, x5]))
         }
-        /// D, C, g and J at once, sharing this state's sines and cosines.
+        ///D, C, g and J at once, as a controller needs them, sharing one state's sines and cosines.
+        #[doc(alias = "computeAllTerms")]
         #[must_use]
-        pub fn terms(&self, qd: &[T; DOF]) -> Terms<T> {
+        pub fn terms(&self, qd: &impl ::dhgen::JointArray<T, DOF>) -> Terms<T> {
+            let qd = &qd.to_array();
             Terms {
                 mass_matrix: self.mass_matrix(),
                 coriolis: self.coriolis(qd),
@@ -4127,7 +4361,8 @@ pub mod puma560 {
             out
         }
         #[inline]
-        fn for_fk(q: &[T; DOF]) -> Self {
+        fn for_fk_matrix(q: &impl ::dhgen::JointArray<T, DOF>) -> Self {
+            let q = q.to_array();
             let mut c = [T::zero(); DOF];
             let mut s = [T::zero(); DOF];
             let d = [T::zero(); DOF];
@@ -4152,7 +4387,8 @@ pub mod puma560 {
             State { c, s, d }
         }
         #[inline]
-        fn for_jdot_qdot(q: &[T; DOF]) -> Self {
+        fn for_fk(q: &impl ::dhgen::JointArray<T, DOF>) -> Self {
+            let q = q.to_array();
             let mut c = [T::zero(); DOF];
             let mut s = [T::zero(); DOF];
             let d = [T::zero(); DOF];
@@ -4177,30 +4413,8 @@ pub mod puma560 {
             State { c, s, d }
         }
         #[inline]
-        fn for_det_j11(q: &[T; DOF]) -> Self {
-            let mut c = [T::zero(); DOF];
-            let mut s = [T::zero(); DOF];
-            let d = [T::zero(); DOF];
-            let (sj, cj) = ::dhgen::Real::sincos(q[1]);
-            s[1] = sj;
-            c[1] = cj;
-            let (sj, cj) = ::dhgen::Real::sincos(q[2]);
-            s[2] = sj;
-            c[2] = cj;
-            State { c, s, d }
-        }
-        #[inline]
-        fn for_det_j22(q: &[T; DOF]) -> Self {
-            let mut c = [T::zero(); DOF];
-            let mut s = [T::zero(); DOF];
-            let d = [T::zero(); DOF];
-            let (sj, cj) = ::dhgen::Real::sincos(q[4]);
-            s[4] = sj;
-            c[4] = cj;
-            State { c, s, d }
-        }
-        #[inline]
-        fn for_frames(q: &[T; DOF]) -> Self {
+        fn for_frames_matrix(q: &impl ::dhgen::JointArray<T, DOF>) -> Self {
+            let q = q.to_array();
             let mut c = [T::zero(); DOF];
             let mut s = [T::zero(); DOF];
             let d = [T::zero(); DOF];
@@ -4225,7 +4439,34 @@ pub mod puma560 {
             State { c, s, d }
         }
         #[inline]
-        fn for_jacobian(q: &[T; DOF]) -> Self {
+        fn for_frames(q: &impl ::dhgen::JointArray<T, DOF>) -> Self {
+            let q = q.to_array();
+            let mut c = [T::zero(); DOF];
+            let mut s = [T::zero(); DOF];
+            let d = [T::zero(); DOF];
+            let (sj, cj) = ::dhgen::Real::sincos(q[0]);
+            s[0] = sj;
+            c[0] = cj;
+            let (sj, cj) = ::dhgen::Real::sincos(q[1]);
+            s[1] = sj;
+            c[1] = cj;
+            let (sj, cj) = ::dhgen::Real::sincos(q[2]);
+            s[2] = sj;
+            c[2] = cj;
+            let (sj, cj) = ::dhgen::Real::sincos(q[3]);
+            s[3] = sj;
+            c[3] = cj;
+            let (sj, cj) = ::dhgen::Real::sincos(q[4]);
+            s[4] = sj;
+            c[4] = cj;
+            let (sj, cj) = ::dhgen::Real::sincos(q[5]);
+            s[5] = sj;
+            c[5] = cj;
+            State { c, s, d }
+        }
+        #[inline]
+        fn for_jacobian(q: &impl ::dhgen::JointArray<T, DOF>) -> Self {
+            let q = q.to_array();
             let mut c = [T::zero(); DOF];
             let mut s = [T::zero(); DOF];
             let d = [T::zero(); DOF];
@@ -4247,7 +4488,59 @@ pub mod puma560 {
             State { c, s, d }
         }
         #[inline]
-        fn for_mass_matrix(q: &[T; DOF]) -> Self {
+        fn for_jdot_qdot(q: &impl ::dhgen::JointArray<T, DOF>) -> Self {
+            let q = q.to_array();
+            let mut c = [T::zero(); DOF];
+            let mut s = [T::zero(); DOF];
+            let d = [T::zero(); DOF];
+            let (sj, cj) = ::dhgen::Real::sincos(q[0]);
+            s[0] = sj;
+            c[0] = cj;
+            let (sj, cj) = ::dhgen::Real::sincos(q[1]);
+            s[1] = sj;
+            c[1] = cj;
+            let (sj, cj) = ::dhgen::Real::sincos(q[2]);
+            s[2] = sj;
+            c[2] = cj;
+            let (sj, cj) = ::dhgen::Real::sincos(q[3]);
+            s[3] = sj;
+            c[3] = cj;
+            let (sj, cj) = ::dhgen::Real::sincos(q[4]);
+            s[4] = sj;
+            c[4] = cj;
+            let (sj, cj) = ::dhgen::Real::sincos(q[5]);
+            s[5] = sj;
+            c[5] = cj;
+            State { c, s, d }
+        }
+        #[inline]
+        fn for_det_j11(q: &impl ::dhgen::JointArray<T, DOF>) -> Self {
+            let q = q.to_array();
+            let mut c = [T::zero(); DOF];
+            let mut s = [T::zero(); DOF];
+            let d = [T::zero(); DOF];
+            let (sj, cj) = ::dhgen::Real::sincos(q[1]);
+            s[1] = sj;
+            c[1] = cj;
+            let (sj, cj) = ::dhgen::Real::sincos(q[2]);
+            s[2] = sj;
+            c[2] = cj;
+            State { c, s, d }
+        }
+        #[inline]
+        fn for_det_j22(q: &impl ::dhgen::JointArray<T, DOF>) -> Self {
+            let q = q.to_array();
+            let mut c = [T::zero(); DOF];
+            let mut s = [T::zero(); DOF];
+            let d = [T::zero(); DOF];
+            let (sj, cj) = ::dhgen::Real::sincos(q[4]);
+            s[4] = sj;
+            c[4] = cj;
+            State { c, s, d }
+        }
+        #[inline]
+        fn for_mass_matrix(q: &impl ::dhgen::JointArray<T, DOF>) -> Self {
+            let q = q.to_array();
             let mut c = [T::zero(); DOF];
             let mut s = [T::zero(); DOF];
             let d = [T::zero(); DOF];
@@ -4266,7 +4559,8 @@ pub mod puma560 {
             State { c, s, d }
         }
         #[inline]
-        fn for_christoffel(q: &[T; DOF]) -> Self {
+        fn for_christoffel(q: &impl ::dhgen::JointArray<T, DOF>) -> Self {
+            let q = q.to_array();
             let mut c = [T::zero(); DOF];
             let mut s = [T::zero(); DOF];
             let d = [T::zero(); DOF];
@@ -4285,7 +4579,8 @@ pub mod puma560 {
             State { c, s, d }
         }
         #[inline]
-        fn for_coriolis(q: &[T; DOF]) -> Self {
+        fn for_coriolis(q: &impl ::dhgen::JointArray<T, DOF>) -> Self {
+            let q = q.to_array();
             let mut c = [T::zero(); DOF];
             let mut s = [T::zero(); DOF];
             let d = [T::zero(); DOF];
@@ -4304,7 +4599,8 @@ pub mod puma560 {
             State { c, s, d }
         }
         #[inline]
-        fn for_gravity(q: &[T; DOF]) -> Self {
+        fn for_gravity(q: &impl ::dhgen::JointArray<T, DOF>) -> Self {
+            let q = q.to_array();
             let mut c = [T::zero(); DOF];
             let mut s = [T::zero(); DOF];
             let d = [T::zero(); DOF];
@@ -4323,7 +4619,8 @@ pub mod puma560 {
             State { c, s, d }
         }
         #[inline]
-        fn for_inverse_dynamics(q: &[T; DOF]) -> Self {
+        fn for_inverse_dynamics(q: &impl ::dhgen::JointArray<T, DOF>) -> Self {
+            let q = q.to_array();
             let mut c = [T::zero(); DOF];
             let mut s = [T::zero(); DOF];
             let d = [T::zero(); DOF];
@@ -4345,7 +4642,8 @@ pub mod puma560 {
             State { c, s, d }
         }
         #[inline]
-        fn for_forward_dynamics(q: &[T; DOF]) -> Self {
+        fn for_bias(q: &impl ::dhgen::JointArray<T, DOF>) -> Self {
+            let q = q.to_array();
             let mut c = [T::zero(); DOF];
             let mut s = [T::zero(); DOF];
             let d = [T::zero(); DOF];
@@ -4364,97 +4662,195 @@ pub mod puma560 {
             let (sj, cj) = ::dhgen::Real::sincos(q[5]);
             s[5] = sj;
             c[5] = cj;
+            State { c, s, d }
+        }
+        #[inline]
+        fn for_forward_dynamics(q: &impl ::dhgen::JointArray<T, DOF>) -> Self {
+            let q = q.to_array();
+            let mut c = [T::zero(); DOF];
+            let mut s = [T::zero(); DOF];
+            let d = [T::zero(); DOF];
+            let (sj, cj) = ::dhgen::Real::sincos(q[1]);
+            s[1] = sj;
+            c[1] = cj;
+            let (sj, cj) = ::dhgen::Real::sincos(q[2]);
+            s[2] = sj;
+            c[2] = cj;
+            let (sj, cj) = ::dhgen::Real::sincos(q[3]);
+            s[3] = sj;
+            c[3] = cj;
+            let (sj, cj) = ::dhgen::Real::sincos(q[4]);
+            s[4] = sj;
+            c[4] = cj;
+            let (sj, cj) = ::dhgen::Real::sincos(q[5]);
+            s[5] = sj;
+            c[5] = cj;
+            State { c, s, d }
+        }
+        #[inline]
+        fn for_terms(q: &impl ::dhgen::JointArray<T, DOF>) -> Self {
+            let q = q.to_array();
+            let mut c = [T::zero(); DOF];
+            let mut s = [T::zero(); DOF];
+            let d = [T::zero(); DOF];
+            let (sj, cj) = ::dhgen::Real::sincos(q[0]);
+            s[0] = sj;
+            c[0] = cj;
+            let (sj, cj) = ::dhgen::Real::sincos(q[1]);
+            s[1] = sj;
+            c[1] = cj;
+            let (sj, cj) = ::dhgen::Real::sincos(q[2]);
+            s[2] = sj;
+            c[2] = cj;
+            let (sj, cj) = ::dhgen::Real::sincos(q[3]);
+            s[3] = sj;
+            c[3] = cj;
+            let (sj, cj) = ::dhgen::Real::sincos(q[4]);
+            s[4] = sj;
+            c[4] = cj;
             State { c, s, d }
         }
     }
-    /// Pose of the tool frame in the world frame.
+    ///Pose of the tool frame in the world frame as a homogeneous matrix, base · A1 ⋯ An · tool: the fast path (no conversion to a quaternion).
+    #[doc(alias = "fkine")]
+    #[doc(alias = "forwardKinematics")]
     #[must_use]
-    pub fn fk<T: ::dhgen::Real>(q: &[T; DOF]) -> na::Isometry3<T> {
+    pub fn fk_matrix<T: ::dhgen::Real>(
+        q: &impl ::dhgen::JointArray<T, DOF>,
+    ) -> na::Matrix4<T> {
+        State::for_fk_matrix(q).fk_matrix()
+    }
+    ///Pose of the tool frame in the world frame, base · A1 ⋯ An · tool, as a translation and a unit quaternion (from `fk_matrix`).
+    #[doc(alias = "fkine")]
+    #[doc(alias = "forwardKinematics")]
+    #[must_use]
+    pub fn fk<T: ::dhgen::Real>(
+        q: &impl ::dhgen::JointArray<T, DOF>,
+    ) -> na::Isometry3<T> {
         State::for_fk(q).fk()
     }
-    /// The link frames in the world frame (tool not applied).
+    ///The link frames in the world frame (base applied, tool not) as homogeneous matrices.
+    #[doc(alias = "updateFramePlacements")]
     #[must_use]
-    pub fn frames<T: ::dhgen::Real>(q: &[T; DOF]) -> [na::Isometry3<T>; DOF] {
+    pub fn frames_matrix<T: ::dhgen::Real>(
+        q: &impl ::dhgen::JointArray<T, DOF>,
+    ) -> [na::Matrix4<T>; DOF] {
+        State::for_frames_matrix(q).frames_matrix()
+    }
+    ///The link frames in the world frame (base applied, tool not).
+    #[doc(alias = "updateFramePlacements")]
+    #[must_use]
+    pub fn frames<T: ::dhgen::Real>(
+        q: &impl ::dhgen::JointArray<T, DOF>,
+    ) -> [na::Isometry3<T>; DOF] {
         State::for_frames(q).frames()
     }
-    /// Geometric Jacobian of the tool frame origin, world axes, rows [v; ω].
+    ///Geometric Jacobian of the tool frame origin in world axes, rows [v; ω].
+    #[doc(alias = "jacob0")]
+    #[doc(alias = "computeJointJacobians")]
+    #[doc(alias = "getFrameJacobian")]
     #[must_use]
-    pub fn jacobian<T: ::dhgen::Real>(q: &[T; DOF]) -> na::SMatrix<T, 6, DOF> {
+    pub fn jacobian<T: ::dhgen::Real>(
+        q: &impl ::dhgen::JointArray<T, DOF>,
+    ) -> na::SMatrix<T, 6, DOF> {
         State::for_jacobian(q).jacobian()
     }
-    /// J̇(q, q̇) q̇ of the tool frame origin (the tool's acceleration at q̈ = 0).
+    ///J̇(q, q̇) q̇ of the tool frame origin in world axes, rows [v; ω]: the tool's acceleration at q̈ = 0.
+    #[doc(alias = "jacob_dot")]
+    #[doc(alias = "getFrameClassicalAcceleration")]
     #[must_use]
     pub fn jdot_qdot<T: ::dhgen::Real>(
-        q: &[T; DOF],
-        qd: &[T; DOF],
+        q: &impl ::dhgen::JointArray<T, DOF>,
+        qd: &impl ::dhgen::JointArray<T, DOF>,
     ) -> na::SVector<T, 6> {
         State::for_jdot_qdot(q).jdot_qdot(qd)
     }
-    /// Whether the last three axes meet in one point (a spherical wrist); for a
-    /// six-joint arm, `det_j11`, `det_j22`, `ik` and `ik_solver` then exist.
-    pub const SPHERICAL_WRIST: bool = true;
-    /// det J11 (Jacobian about the wrist centre): zero at arm singularities.
+    ///det J11 (the Jacobian about the wrist centre): zero at arm singularities (section 5.6.1).
     #[must_use]
-    pub fn det_j11<T: ::dhgen::Real>(q: &[T; DOF]) -> T {
+    pub fn det_j11<T: ::dhgen::Real>(q: &impl ::dhgen::JointArray<T, DOF>) -> T {
         State::for_det_j11(q).det_j11()
     }
-    /// det J22 = z3 · (z4 × z5): zero at wrist singularities.
+    ///det J22 = z3 · (z4 × z5): zero at wrist singularities (section 5.6.1).
     #[must_use]
-    pub fn det_j22<T: ::dhgen::Real>(q: &[T; DOF]) -> T {
+    pub fn det_j22<T: ::dhgen::Real>(q: &impl ::dhgen::JointArray<T, DOF>) -> T {
         State::for_det_j22(q).det_j22()
     }
-    /// The closed-form inverse kinematics solver of this arm (kinematic decoupling,
-    /// section 4.3): build it once and call `solve` for each pose.
-    pub fn ik_solver() -> Result<::dhgen::ik::DecoupledIk, ::dhgen::ik::StructureError> {
-        ::dhgen::ik::DecoupledIk::from_chain(CHAIN)
-    }
-    /// All closed-form inverse kinematics solutions of `pose` (up to 8), each
-    /// verified by forward kinematics; empty when the pose is unreachable.
-    pub fn ik(
-        pose: &na::Isometry3<f64>,
-    ) -> Result<::dhgen::ik::Solutions, ::dhgen::ik::StructureError> {
-        Ok(ik_solver()?.solve(pose))
-    }
-    /// Joint-space inertia matrix D(q).
+    ///Joint-space inertia matrix D(q), armature (reflected motor inertia) included.
+    #[doc(alias = "crba")]
+    #[doc(alias = "inertia")]
     #[must_use]
-    pub fn mass_matrix<T: ::dhgen::Real>(q: &[T; DOF]) -> na::SMatrix<T, DOF, DOF> {
+    pub fn mass_matrix<T: ::dhgen::Real>(
+        q: &impl ::dhgen::JointArray<T, DOF>,
+    ) -> na::SMatrix<T, DOF, DOF> {
         State::for_mass_matrix(q).mass_matrix()
     }
-    /// Christoffel symbols, `[i][j][k]` = c_ijk with k the equation index.
+    ///Christoffel symbols: `[i][j][k]` = c_ijk = ½(∂d_kj/∂q_i + ∂d_ki/∂q_j − ∂d_ij/∂q_k), k the equation index.
+    #[doc(alias = "christoffel_symbols")]
     #[must_use]
-    pub fn christoffel<T: ::dhgen::Real>(q: &[T; DOF]) -> [[[T; DOF]; DOF]; DOF] {
+    pub fn christoffel<T: ::dhgen::Real>(
+        q: &impl ::dhgen::JointArray<T, DOF>,
+    ) -> [[[T; DOF]; DOF]; DOF] {
         State::for_christoffel(q).christoffel()
     }
-    /// Coriolis matrix C(q, q̇), C_kj = Σ_i c_ijk q̇_i.
+    ///Coriolis and centrifugal matrix C(q, q̇), C_kj = Σ_i c_ijk q̇_i (so Ḋ − 2C is skew-symmetric).
+    #[doc(alias = "coriolis_matrix")]
+    #[doc(alias = "computeCoriolisMatrix")]
     #[must_use]
     pub fn coriolis<T: ::dhgen::Real>(
-        q: &[T; DOF],
-        qd: &[T; DOF],
+        q: &impl ::dhgen::JointArray<T, DOF>,
+        qd: &impl ::dhgen::JointArray<T, DOF>,
     ) -> na::SMatrix<T, DOF, DOF> {
         State::for_coriolis(q).coriolis(qd)
     }
-    /// Gravity torques g(q).
+    ///Gravity torques g(q): the torques that hold the arm still.
+    #[doc(alias = "gravload")]
+    #[doc(alias = "computeGeneralizedGravity")]
     #[must_use]
-    pub fn gravity<T: ::dhgen::Real>(q: &[T; DOF]) -> na::SVector<T, DOF> {
+    pub fn gravity<T: ::dhgen::Real>(
+        q: &impl ::dhgen::JointArray<T, DOF>,
+    ) -> na::SVector<T, DOF> {
         State::for_gravity(q).gravity()
     }
-    /// Inverse dynamics τ(q, q̇, q̈).
+    ///Inverse dynamics τ = D(q) q̈ + C(q, q̇) q̇ + g(q), plus armature and friction.
+    #[doc(alias = "rnea")]
+    #[doc(alias = "rne")]
     #[must_use]
     pub fn inverse_dynamics<T: ::dhgen::Real>(
-        q: &[T; DOF],
-        qd: &[T; DOF],
-        qdd: &[T; DOF],
+        q: &impl ::dhgen::JointArray<T, DOF>,
+        qd: &impl ::dhgen::JointArray<T, DOF>,
+        qdd: &impl ::dhgen::JointArray<T, DOF>,
     ) -> na::SVector<T, DOF> {
         State::for_inverse_dynamics(q).inverse_dynamics(qd, qdd)
     }
-    /// Forward dynamics q̈(q, q̇, τ); `None` where D(q) is not positive definite.
+    ///The torques at zero acceleration, C(q, q̇) q̇ + g(q) + friction: what a computed-torque law adds to D(q) v.
+    #[doc(alias = "nonLinearEffects")]
+    #[must_use]
+    pub fn bias<T: ::dhgen::Real>(
+        q: &impl ::dhgen::JointArray<T, DOF>,
+        qd: &impl ::dhgen::JointArray<T, DOF>,
+    ) -> na::SVector<T, DOF> {
+        State::for_bias(q).bias(qd)
+    }
+    ///Forward dynamics q̈ = D⁻¹(τ − C q̇ − g − friction) by an unrolled Cholesky solve; `None` where D(q) is not positive definite.
+    #[doc(alias = "aba")]
+    #[doc(alias = "accel")]
+    #[doc(alias = "fdyn")]
     #[must_use]
     pub fn forward_dynamics<T: ::dhgen::Real>(
-        q: &[T; DOF],
-        qd: &[T; DOF],
-        tau: &[T; DOF],
+        q: &impl ::dhgen::JointArray<T, DOF>,
+        qd: &impl ::dhgen::JointArray<T, DOF>,
+        tau: &impl ::dhgen::JointArray<T, DOF>,
     ) -> Option<na::SVector<T, DOF>> {
         State::for_forward_dynamics(q).forward_dynamics(qd, tau)
+    }
+    ///D, C, g and J at once, as a controller needs them, sharing one state's sines and cosines.
+    #[doc(alias = "computeAllTerms")]
+    #[must_use]
+    pub fn terms<T: ::dhgen::Real>(
+        q: &impl ::dhgen::JointArray<T, DOF>,
+        qd: &impl ::dhgen::JointArray<T, DOF>,
+    ) -> Terms<T> {
+        State::for_terms(q).terms(qd)
     }
     /// D, C, g and J at one configuration, as a controller needs them.
     #[derive(Clone, Copy, Debug, PartialEq)]
@@ -4468,198 +4864,24 @@ pub mod puma560 {
         /// J(q)
         pub jacobian: na::SMatrix<T, 6, DOF>,
     }
-    /// The robot as a value implementing [`::dhgen::Arm`] (f64), for algorithms written
-    /// once for every robot (inverse kinematics, planners, controllers).
+    /// The closed-form inverse kinematics solver of this arm (kinematic decoupling,
+    /// section 4.3), from its structure: build it once and call `solve` per pose.
+    pub fn ik_solver() -> Result<::dhgen::ik::DecoupledIk, ::dhgen::ik::StructureError> {
+        ::dhgen::ik::DecoupledIk::from_chain(CHAIN)
+    }
+    /// All closed-form inverse kinematics solutions of `pose` (up to 8), each
+    /// verified by forward kinematics; empty when the pose is unreachable.
+    pub fn ik(
+        pose: &na::Isometry3<f64>,
+    ) -> Result<::dhgen::ik::Solutions, ::dhgen::ik::StructureError> {
+        Ok(ik_solver()?.solve(pose))
+    }
+    /// The robot as a value implementing [`::dhgen::Arm`] (and
+    /// [`::dhgen::ArmDynamics`] with mass properties), for `f64`: for algorithms
+    /// written once for every robot (inverse kinematics, planners, controllers).
     #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-    pub struct Model;
-    /// The robot's kinematic structure: fixed transforms, joints (kinds, offsets,
-    /// limits, armature, friction), link frames, mass properties and collision
-    /// capsules. The numbers this module was generated from, for algorithms built on
-    /// the structure (inverse kinematics, planning); see [`::dhgen::ChainRef`].
-    pub const CHAIN: ::dhgen::ChainRef<'static> = ::dhgen::ChainRef {
-        base: ::dhgen::model::Frame {
-            r: [[1f64, 0f64, 0f64], [0f64, 1f64, 0f64], [0f64, 0f64, 1f64]],
-            p: [0f64, 0f64, 0f64],
-        },
-        placements: &[
-            ::dhgen::model::Frame {
-                r: [[1f64, 0f64, 0f64], [0f64, 1f64, 0f64], [0f64, 0f64, 1f64]],
-                p: [0f64, 0f64, 0.6718299999999999f64],
-            },
-            ::dhgen::model::Frame {
-                r: [[1f64, 0f64, 0f64], [0f64, 0f64, -1f64], [0f64, 1f64, 0f64]],
-                p: [0f64, 0f64, 0f64],
-            },
-            ::dhgen::model::Frame {
-                r: [[1f64, 0f64, 0f64], [0f64, 1f64, 0f64], [0f64, 0f64, 1f64]],
-                p: [0.4318f64, 0f64, 0.15005f64],
-            },
-            ::dhgen::model::Frame {
-                r: [[1f64, 0f64, 0f64], [0f64, 0f64, 1f64], [0f64, -1f64, 0f64]],
-                p: [0.0203f64, 0.4318f64, 0f64],
-            },
-            ::dhgen::model::Frame {
-                r: [[1f64, 0f64, 0f64], [0f64, 0f64, -1f64], [0f64, 1f64, 0f64]],
-                p: [0f64, 0f64, 0f64],
-            },
-            ::dhgen::model::Frame {
-                r: [[1f64, 0f64, 0f64], [0f64, 0f64, 1f64], [0f64, -1f64, 0f64]],
-                p: [0f64, 0f64, 0f64],
-            },
-            ::dhgen::model::Frame {
-                r: [[1f64, 0f64, 0f64], [0f64, 1f64, 0f64], [0f64, 0f64, 1f64]],
-                p: [0f64, 0f64, 0f64],
-            },
-        ],
-        bodies: &[
-            ::dhgen::model::Body {
-                joint: ::dhgen::JointKind::Revolute,
-                offset: 0f64,
-                limits: Some([-2.792526803190927f64, 2.792526803190927f64]),
-                armature: 0f64,
-                friction: ::dhgen::model::Friction {
-                    viscous: 0f64,
-                    coulomb: 0f64,
-                },
-                link: ::dhgen::model::Frame {
-                    r: [[1f64, -0f64, 0f64], [0f64, 0f64, -1f64], [0f64, 1f64, 0f64]],
-                    p: [0f64, 0f64, 0f64],
-                },
-                inertial: Some(::dhgen::model::Inertial {
-                    mass: 0f64,
-                    com: [0f64, 0f64, 0f64],
-                    inertia: [
-                        [0f64, 0f64, 0f64],
-                        [0f64, 0f64, 0f64],
-                        [0f64, 0f64, 0.35f64],
-                    ],
-                }),
-                capsule: Some(0.1f64),
-            },
-            ::dhgen::model::Body {
-                joint: ::dhgen::JointKind::Revolute,
-                offset: 0f64,
-                limits: Some([-0.7853981633974483f64, 3.9269908169872414f64]),
-                armature: 0f64,
-                friction: ::dhgen::model::Friction {
-                    viscous: 0f64,
-                    coulomb: 0f64,
-                },
-                link: ::dhgen::model::Frame {
-                    r: [[1f64, -0f64, 0f64], [0f64, 1f64, -0f64], [0f64, 0f64, 1f64]],
-                    p: [0.4318f64, 0f64, 0f64],
-                },
-                inertial: Some(::dhgen::model::Inertial {
-                    mass: 17.4f64,
-                    com: [0.068f64, 0.006f64, 0.2275f64],
-                    inertia: [
-                        [0.13f64, 0f64, 0f64],
-                        [0f64, 0.524f64, 0f64],
-                        [0f64, 0f64, 0.539f64],
-                    ],
-                }),
-                capsule: Some(0.08f64),
-            },
-            ::dhgen::model::Body {
-                joint: ::dhgen::JointKind::Revolute,
-                offset: 0f64,
-                limits: Some([-3.9269908169872414f64, 0.7853981633974483f64]),
-                armature: 0f64,
-                friction: ::dhgen::model::Friction {
-                    viscous: 0f64,
-                    coulomb: 0f64,
-                },
-                link: ::dhgen::model::Frame {
-                    r: [[1f64, -0f64, -0f64], [0f64, 0f64, 1f64], [0f64, -1f64, 0f64]],
-                    p: [0.0203f64, 0f64, 0f64],
-                },
-                inertial: Some(::dhgen::model::Inertial {
-                    mass: 4.8f64,
-                    com: [0f64, 0.07f64, 0.0141f64],
-                    inertia: [
-                        [0.066f64, 0f64, 0f64],
-                        [0f64, 0.0125f64, 0f64],
-                        [0f64, 0f64, 0.086f64],
-                    ],
-                }),
-                capsule: Some(0.06f64),
-            },
-            ::dhgen::model::Body {
-                joint: ::dhgen::JointKind::Revolute,
-                offset: 0f64,
-                limits: Some([-1.9198621771937625f64, 2.9670597283903604f64]),
-                armature: 0f64,
-                friction: ::dhgen::model::Friction {
-                    viscous: 0f64,
-                    coulomb: 0f64,
-                },
-                link: ::dhgen::model::Frame {
-                    r: [[1f64, -0f64, 0f64], [0f64, 0f64, -1f64], [0f64, 1f64, 0f64]],
-                    p: [0f64, 0f64, 0f64],
-                },
-                inertial: Some(::dhgen::model::Inertial {
-                    mass: 0.82f64,
-                    com: [0f64, 0f64, 0.019f64],
-                    inertia: [
-                        [0.0018f64, 0f64, 0f64],
-                        [0f64, 0.0018f64, 0f64],
-                        [0f64, 0f64, 0.0013f64],
-                    ],
-                }),
-                capsule: Some(0.05f64),
-            },
-            ::dhgen::model::Body {
-                joint: ::dhgen::JointKind::Revolute,
-                offset: 0f64,
-                limits: Some([-1.7453292519943295f64, 1.7453292519943295f64]),
-                armature: 0f64,
-                friction: ::dhgen::model::Friction {
-                    viscous: 0f64,
-                    coulomb: 0f64,
-                },
-                link: ::dhgen::model::Frame {
-                    r: [[1f64, -0f64, -0f64], [0f64, 0f64, 1f64], [0f64, -1f64, 0f64]],
-                    p: [0f64, 0f64, 0f64],
-                },
-                inertial: Some(::dhgen::model::Inertial {
-                    mass: 0.34f64,
-                    com: [0f64, 0f64, 0f64],
-                    inertia: [
-                        [0.0003f64, 0f64, 0f64],
-                        [0f64, 0.0003f64, 0f64],
-                        [0f64, 0f64, 0.0004f64],
-                    ],
-                }),
-                capsule: Some(0.05f64),
-            },
-            ::dhgen::model::Body {
-                joint: ::dhgen::JointKind::Revolute,
-                offset: 0f64,
-                limits: Some([-4.642575810304916f64, 4.642575810304916f64]),
-                armature: 0f64,
-                friction: ::dhgen::model::Friction {
-                    viscous: 0f64,
-                    coulomb: 0f64,
-                },
-                link: ::dhgen::model::Frame {
-                    r: [[1f64, -0f64, 0f64], [0f64, 1f64, -0f64], [0f64, 0f64, 1f64]],
-                    p: [0f64, 0f64, 0f64],
-                },
-                inertial: Some(::dhgen::model::Inertial {
-                    mass: 0.09f64,
-                    com: [0f64, 0f64, 0.032f64],
-                    inertia: [
-                        [0.00015f64, 0f64, 0f64],
-                        [0f64, 0.00015f64, 0f64],
-                        [0f64, 0f64, 0.00004f64],
-                    ],
-                }),
-                capsule: Some(0.04f64),
-            },
-        ],
-        gravity: [0f64, 0f64, -9.81f64],
-    };
-    impl ::dhgen::Arm for Model {
+    pub struct Robot;
+    impl ::dhgen::Arm for Robot {
         type Dof = na::Const<DOF>;
         fn chain(&self) -> ::dhgen::ChainRef<'_> {
             CHAIN
@@ -4671,34 +4893,47 @@ pub mod puma560 {
             na::Const
         }
         fn fk(&self, q: &na::SVector<f64, DOF>) -> na::Isometry3<f64> {
-            State::for_fk(&(*q).into()).fk()
+            State::for_fk(q).fk()
         }
         fn frames_into(
             &self,
             q: &na::SVector<f64, DOF>,
             out: &mut [na::Isometry3<f64>],
         ) {
-            for (o, f) in out.iter_mut().zip(State::for_frames(&(*q).into()).frames()) {
+            for (o, f) in out.iter_mut().zip(State::for_frames(q).frames()) {
                 *o = f;
             }
         }
         fn jacobian(&self, q: &na::SVector<f64, DOF>) -> na::SMatrix<f64, 6, DOF> {
-            State::for_jacobian(&(*q).into()).jacobian()
+            State::for_jacobian(q).jacobian()
+        }
+        fn jdot_qdot(
+            &self,
+            q: &na::SVector<f64, DOF>,
+            qd: &na::SVector<f64, DOF>,
+        ) -> na::SVector<f64, 6> {
+            State::for_jdot_qdot(q).jdot_qdot(qd)
         }
     }
-    impl ::dhgen::ArmDynamics for Model {
+    impl ::dhgen::ArmDynamics for Robot {
         fn mass_matrix(&self, q: &na::SVector<f64, DOF>) -> na::SMatrix<f64, DOF, DOF> {
-            State::for_mass_matrix(&(*q).into()).mass_matrix()
+            State::for_mass_matrix(q).mass_matrix()
+        }
+        fn christoffel_into(&self, q: &na::SVector<f64, DOF>, out: &mut [f64]) {
+            let c = State::for_christoffel(q).christoffel();
+            for (o, v) in out.iter_mut().zip(c.iter().flatten().flatten()) {
+                *o = *v;
+            }
         }
         fn coriolis(
             &self,
             q: &na::SVector<f64, DOF>,
             qd: &na::SVector<f64, DOF>,
         ) -> na::SMatrix<f64, DOF, DOF> {
-            State::for_coriolis(&(*q).into()).coriolis(&(*qd).into())
+            State::for_coriolis(q).coriolis(qd)
         }
         fn gravity(&self, q: &na::SVector<f64, DOF>) -> na::SVector<f64, DOF> {
-            State::for_gravity(&(*q).into()).gravity()
+            State::for_gravity(q).gravity()
         }
         fn inverse_dynamics(
             &self,
@@ -4706,8 +4941,14 @@ pub mod puma560 {
             qd: &na::SVector<f64, DOF>,
             qdd: &na::SVector<f64, DOF>,
         ) -> na::SVector<f64, DOF> {
-            State::for_inverse_dynamics(&(*q).into())
-                .inverse_dynamics(&(*qd).into(), &(*qdd).into())
+            State::for_inverse_dynamics(q).inverse_dynamics(qd, qdd)
+        }
+        fn bias(
+            &self,
+            q: &na::SVector<f64, DOF>,
+            qd: &na::SVector<f64, DOF>,
+        ) -> na::SVector<f64, DOF> {
+            State::for_bias(q).bias(qd)
         }
         fn forward_dynamics(
             &self,
@@ -4715,8 +4956,7 @@ pub mod puma560 {
             qd: &na::SVector<f64, DOF>,
             tau: &na::SVector<f64, DOF>,
         ) -> Option<na::SVector<f64, DOF>> {
-            State::for_forward_dynamics(&(*q).into())
-                .forward_dynamics(&(*qd).into(), &(*tau).into())
+            State::for_forward_dynamics(q).forward_dynamics(qd, tau)
         }
     }
     fn isometry<T: ::dhgen::Real>(m: &na::Matrix4<T>) -> na::Isometry3<T> {

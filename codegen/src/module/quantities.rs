@@ -1,0 +1,479 @@
+//! The table of generated quantities: one entry per function a generated module offers.
+//!
+//! An entry says everything the module needs about a quantity: its name, its one doc text
+//! (used for the `State` method and the free function alike), the names other libraries give
+//! it, its joint-vector inputs, what it returns, when it exists, how it is made (a symbolic
+//! derivation emitted as straight-line code, or a composition of other entries), and which
+//! `dhgen::Arm` / `dhgen::ArmDynamics` method it implements. Adding a quantity is one entry
+//! here plus its derivation in [`crate::derive`].
+
+use super::shape::Shape;
+use super::{Context, cholesky};
+use crate::derive::{christoffel, gravity, inertia, kinematics, newton_euler, singularity};
+use crate::graph::{E, SharedGraph};
+use crate::poly::Poly;
+use proc_macro2::TokenStream;
+use quote::quote;
+
+/// A joint-vector argument after `q`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Input {
+    /// Joint velocities `qd`.
+    Qd,
+    /// Joint accelerations `qdd`.
+    Qdd,
+    /// Joint torques `tau`.
+    Tau,
+}
+
+impl Input {
+    /// The parameter's name.
+    pub fn name(self) -> &'static str {
+        match self {
+            Input::Qd => "qd",
+            Input::Qdd => "qdd",
+            Input::Tau => "tau",
+        }
+    }
+}
+
+/// When a quantity exists.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Availability {
+    /// For every robot.
+    Always,
+    /// For robots with mass properties.
+    Dynamics,
+    /// For six-joint arms with a spherical wrist.
+    DecoupledWrist,
+}
+
+/// How a quantity is made.
+pub enum Made {
+    /// Straight-line code: the derivation's scalars, in the order of the quantity's shape.
+    Derived(SharedGraph, Vec<E>),
+    /// A method body built from other entries, named in `reads` (their joints are prepared).
+    Composed {
+        /// The body of the `State` method.
+        body: TokenStream,
+        /// The entries it calls.
+        reads: &'static [&'static str],
+        /// Arithmetic of its own, reported under a name (the Cholesky solve).
+        ops: Option<(&'static str, crate::OpCount)>,
+    },
+}
+
+/// The trait method a quantity implements, for `f64` and nalgebra joint vectors.
+#[derive(Clone, Copy)]
+pub enum ArmMethod {
+    /// `dhgen::Arm::<name>` with the quantity's own signature.
+    Arm,
+    /// `dhgen::ArmDynamics::<name>` with the quantity's own signature.
+    Dynamics,
+    /// A method of another form (writing into a buffer): `(is ArmDynamics, its tokens)`.
+    Custom(bool, fn() -> TokenStream),
+}
+
+/// One generated quantity.
+pub struct Quantity {
+    /// The `State` method, the free function and the trait method.
+    pub name: &'static str,
+    /// What it is: the doc text of the method and the free function.
+    pub doc: &'static str,
+    /// The names users of Pinocchio and Robotics Toolbox search for (`#[doc(alias)]`).
+    pub aliases: &'static [&'static str],
+    /// Arguments after `q`.
+    pub inputs: &'static [Input],
+    /// What it returns.
+    pub shape: Shape,
+    /// When it exists.
+    pub available: Availability,
+    /// Part of the module's interface (a `State` method and a free function), or a private
+    /// helper of other entries.
+    pub public: bool,
+    /// How it is made.
+    pub make: fn(&Context<'_>) -> Made,
+    /// The trait method it implements.
+    pub arm: Option<ArmMethod>,
+}
+
+fn derived(graph: SharedGraph, exprs: Vec<E>) -> Made {
+    Made::Derived(graph, exprs)
+}
+
+fn composed(body: TokenStream, reads: &'static [&'static str]) -> Made {
+    Made::Composed {
+        body,
+        reads,
+        ops: None,
+    }
+}
+
+fn frame_entries(f: &dhgen_model::Frame<E>) -> Vec<E> {
+    (0..3)
+        .flat_map(|r| {
+            let mut row: Vec<E> = f.r[r].to_vec();
+            row.push(f.p[r].clone());
+            row
+        })
+        .collect()
+}
+
+fn wrist_determinant(cx: &Context<'_>, pick: fn(&(Poly, Poly)) -> &Poly) -> Made {
+    let polys = singularity::decoupled_determinants(cx.chain)
+        .expect("only made for arms with a decoupled wrist");
+    let graph = SharedGraph::default();
+    let e = crate::derive::polys_to_exprs(std::slice::from_ref(pick(&polys)), &graph, cx.chain);
+    derived(graph, e)
+}
+
+/// The generated quantities, each after those it reads.
+pub const QUANTITIES: &[Quantity] = &[
+    Quantity {
+        name: "fk_matrix",
+        doc: "Pose of the tool frame in the world frame as a homogeneous matrix, \
+              base · A1 ⋯ An · tool: the fast path (no conversion to a quaternion).",
+        aliases: &["fkine", "forwardKinematics"],
+        inputs: &[],
+        shape: Shape::Homogeneous,
+        available: Availability::Always,
+        public: true,
+        make: |cx| {
+            let (graph, f) = kinematics::fk(cx.chain);
+            derived(graph, frame_entries(&f))
+        },
+        arm: None,
+    },
+    Quantity {
+        name: "fk",
+        doc: "Pose of the tool frame in the world frame, base · A1 ⋯ An · tool, as a \
+              translation and a unit quaternion (from `fk_matrix`).",
+        aliases: &["fkine", "forwardKinematics"],
+        inputs: &[],
+        shape: Shape::Pose,
+        available: Availability::Always,
+        public: true,
+        make: |_| composed(quote!(isometry(&self.fk_matrix())), &["fk_matrix"]),
+        arm: Some(ArmMethod::Arm),
+    },
+    Quantity {
+        name: "frames_matrix",
+        doc: "The link frames in the world frame (base applied, tool not) as homogeneous \
+              matrices.",
+        aliases: &["updateFramePlacements"],
+        inputs: &[],
+        shape: Shape::HomogeneousPerJoint,
+        available: Availability::Always,
+        public: true,
+        make: |cx| {
+            let (graph, frames) = kinematics::frames(cx.chain);
+            derived(graph, frames.iter().flat_map(frame_entries).collect())
+        },
+        arm: None,
+    },
+    Quantity {
+        name: "frames",
+        doc: "The link frames in the world frame (base applied, tool not).",
+        aliases: &["updateFramePlacements"],
+        inputs: &[],
+        shape: Shape::PosePerJoint,
+        available: Availability::Always,
+        public: true,
+        make: |_| {
+            composed(
+                quote! {
+                    let m = self.frames_matrix();
+                    ::core::array::from_fn(|i| isometry(&m[i]))
+                },
+                &["frames_matrix"],
+            )
+        },
+        arm: Some(ArmMethod::Custom(false, || {
+            quote! {
+                fn frames_into(&self, q: &na::SVector<f64, DOF>, out: &mut [na::Isometry3<f64>]) {
+                    for (o, f) in out.iter_mut().zip(State::for_frames(q).frames()) {
+                        *o = f;
+                    }
+                }
+            }
+        })),
+    },
+    Quantity {
+        name: "jacobian",
+        doc: "Geometric Jacobian of the tool frame origin in world axes, rows [v; ω].",
+        aliases: &["jacob0", "computeJointJacobians", "getFrameJacobian"],
+        inputs: &[],
+        shape: Shape::Jacobian,
+        available: Availability::Always,
+        public: true,
+        make: |cx| {
+            let (graph, columns) = kinematics::jacobian(cx.chain);
+            derived(graph, columns.into_iter().flatten().collect())
+        },
+        arm: Some(ArmMethod::Arm),
+    },
+    Quantity {
+        name: "jdot_qdot",
+        doc: "J̇(q, q̇) q̇ of the tool frame origin in world axes, rows [v; ω]: the tool's \
+              acceleration at q̈ = 0.",
+        aliases: &["jacob_dot", "getFrameClassicalAcceleration"],
+        inputs: &[Input::Qd],
+        shape: Shape::Vector6,
+        available: Availability::Always,
+        public: true,
+        make: |cx| {
+            let graph = SharedGraph::default();
+            let acc = kinematics::jdot_qdot(cx.chain, &graph);
+            derived(graph, acc.to_vec())
+        },
+        arm: Some(ArmMethod::Arm),
+    },
+    Quantity {
+        name: "det_j11",
+        doc: "det J11 (the Jacobian about the wrist centre): zero at arm singularities \
+              (section 5.6.1).",
+        aliases: &[],
+        inputs: &[],
+        shape: Shape::Scalar,
+        available: Availability::DecoupledWrist,
+        public: true,
+        make: |cx| wrist_determinant(cx, |d| &d.0),
+        arm: None,
+    },
+    Quantity {
+        name: "det_j22",
+        doc: "det J22 = z3 · (z4 × z5): zero at wrist singularities (section 5.6.1).",
+        aliases: &[],
+        inputs: &[],
+        shape: Shape::Scalar,
+        available: Availability::DecoupledWrist,
+        public: true,
+        make: |cx| wrist_determinant(cx, |d| &d.1),
+        arm: None,
+    },
+    Quantity {
+        name: "mass_matrix",
+        doc: "Joint-space inertia matrix D(q), armature (reflected motor inertia) included.",
+        aliases: &["crba", "inertia"],
+        inputs: &[],
+        shape: Shape::Square,
+        available: Availability::Dynamics,
+        public: true,
+        make: |cx| {
+            let (graph, d) = inertia::mass_matrix(&cx.derivation);
+            derived(graph, d)
+        },
+        arm: Some(ArmMethod::Dynamics),
+    },
+    Quantity {
+        name: "christoffel",
+        doc: "Christoffel symbols: `[i][j][k]` = c_ijk = ½(∂d_kj/∂q_i + ∂d_ki/∂q_j − \
+              ∂d_ij/∂q_k), k the equation index.",
+        aliases: &["christoffel_symbols"],
+        inputs: &[],
+        shape: Shape::Cube,
+        available: Availability::Dynamics,
+        public: true,
+        make: |cx| {
+            let (graph, c) = cx.christoffel();
+            derived(graph.clone(), c.clone())
+        },
+        arm: Some(ArmMethod::Custom(true, || {
+            quote! {
+                fn christoffel_into(&self, q: &na::SVector<f64, DOF>, out: &mut [f64]) {
+                    let c = State::for_christoffel(q).christoffel();
+                    for (o, v) in out.iter_mut().zip(c.iter().flatten().flatten()) {
+                        *o = *v;
+                    }
+                }
+            }
+        })),
+    },
+    Quantity {
+        name: "coriolis",
+        doc: "Coriolis and centrifugal matrix C(q, q̇), C_kj = Σ_i c_ijk q̇_i (so Ḋ − 2C is \
+              skew-symmetric).",
+        aliases: &["coriolis_matrix", "computeCoriolisMatrix"],
+        inputs: &[Input::Qd],
+        shape: Shape::Square,
+        available: Availability::Dynamics,
+        public: true,
+        make: |cx| {
+            // C straight from the symbols (zero symbols fold away), unless contracting the
+            // n³ array at run time is cheaper.
+            let (graph, c) = cx.christoffel();
+            let n = cx.chain.dof();
+            let cor = christoffel::coriolis_from(n, graph, c);
+            let cost = |exprs: &[E]| {
+                let roots: Vec<_> = exprs.iter().map(|e| e.id_in(graph)).collect();
+                crate::graph::count(&graph.borrow(), roots).total()
+            };
+            if cost(&cor) < cost(c) + 2 * n * n * n {
+                derived(graph.clone(), cor)
+            } else {
+                composed(
+                    quote! {
+                        let c = self.christoffel();
+                        let mut out = na::SMatrix::<T, DOF, DOF>::zeros();
+                        for k in 0..DOF {
+                            for j in 0..DOF {
+                                let mut sum = T::zero();
+                                for i in 0..DOF {
+                                    sum += c[i][j][k] * qd[i];
+                                }
+                                out[(k, j)] = sum;
+                            }
+                        }
+                        out
+                    },
+                    &["christoffel"],
+                )
+            }
+        },
+        arm: Some(ArmMethod::Dynamics),
+    },
+    Quantity {
+        name: "gravity",
+        doc: "Gravity torques g(q): the torques that hold the arm still.",
+        aliases: &["gravload", "computeGeneralizedGravity"],
+        inputs: &[],
+        shape: Shape::Vector,
+        available: Availability::Dynamics,
+        public: true,
+        make: |cx| {
+            let (graph, g) = gravity::gravity(&cx.derivation);
+            derived(graph, g)
+        },
+        arm: Some(ArmMethod::Dynamics),
+    },
+    Quantity {
+        name: "inverse_dynamics_smooth",
+        doc: "",
+        aliases: &[],
+        inputs: &[Input::Qd, Input::Qdd],
+        shape: Shape::Vector,
+        available: Availability::Dynamics,
+        public: false,
+        make: |cx| {
+            let (graph, tau) = newton_euler::inverse_dynamics(&cx.derivation);
+            derived(graph, tau)
+        },
+        arm: None,
+    },
+    Quantity {
+        name: "inverse_dynamics",
+        doc: "Inverse dynamics τ = D(q) q̈ + C(q, q̇) q̇ + g(q), plus armature and friction.",
+        aliases: &["rnea", "rne"],
+        inputs: &[Input::Qd, Input::Qdd],
+        shape: Shape::Vector,
+        available: Availability::Dynamics,
+        public: true,
+        make: |cx| {
+            let coulomb = cx.coulomb();
+            let binding = if coulomb.is_empty() {
+                quote!(let tau)
+            } else {
+                quote!(let mut tau)
+            };
+            composed(
+                quote! {
+                    #binding = self.inverse_dynamics_smooth(qd, qdd);
+                    #coulomb
+                    tau
+                },
+                &["inverse_dynamics_smooth"],
+            )
+        },
+        arm: Some(ArmMethod::Dynamics),
+    },
+    Quantity {
+        name: "bias_smooth",
+        doc: "",
+        aliases: &[],
+        inputs: &[Input::Qd],
+        shape: Shape::Vector,
+        available: Availability::Dynamics,
+        public: false,
+        make: |cx| {
+            let graph = SharedGraph::default();
+            let bias = newton_euler::rnea_exprs(cx.chain, &graph, true, true);
+            derived(graph, bias)
+        },
+        arm: None,
+    },
+    Quantity {
+        name: "bias",
+        doc: "The torques at zero acceleration, C(q, q̇) q̇ + g(q) + friction: what a \
+              computed-torque law adds to D(q) v.",
+        aliases: &["nonLinearEffects"],
+        inputs: &[Input::Qd],
+        shape: Shape::Vector,
+        available: Availability::Dynamics,
+        public: true,
+        make: |cx| {
+            let coulomb = cx.coulomb();
+            let binding = if coulomb.is_empty() {
+                quote!(let tau)
+            } else {
+                quote!(let mut tau)
+            };
+            composed(
+                quote! {
+                    #binding = self.bias_smooth(qd);
+                    #coulomb
+                    tau
+                },
+                &["bias_smooth"],
+            )
+        },
+        arm: Some(ArmMethod::Dynamics),
+    },
+    Quantity {
+        name: "forward_dynamics",
+        doc: "Forward dynamics q̈ = D⁻¹(τ − C q̇ − g − friction) by an unrolled Cholesky \
+              solve; `None` where D(q) is not positive definite.",
+        aliases: &["aba", "accel", "fdyn"],
+        inputs: &[Input::Qd, Input::Tau],
+        shape: Shape::OptionVector,
+        available: Availability::Dynamics,
+        public: true,
+        make: |cx| {
+            let (solve, ops) = cholesky::solve(cx.chain.dof());
+            Made::Composed {
+                body: quote! {
+                    let dm = self.mass_matrix();
+                    let h = self.bias(qd);
+                    let rhs: [T; DOF] = ::core::array::from_fn(|i| tau[i] - h[i]);
+                    #solve
+                },
+                reads: &["mass_matrix", "bias"],
+                ops: Some(("cholesky_solve", ops)),
+            }
+        },
+        arm: Some(ArmMethod::Dynamics),
+    },
+    Quantity {
+        name: "terms",
+        doc: "D, C, g and J at once, as a controller needs them, sharing one state's sines \
+              and cosines.",
+        aliases: &["computeAllTerms"],
+        inputs: &[Input::Qd],
+        shape: Shape::Terms,
+        available: Availability::Dynamics,
+        public: true,
+        make: |_| {
+            composed(
+                quote! {
+                    Terms {
+                        mass_matrix: self.mass_matrix(),
+                        coriolis: self.coriolis(qd),
+                        gravity: self.gravity(),
+                        jacobian: self.jacobian(),
+                    }
+                },
+                &["mass_matrix", "coriolis", "gravity", "jacobian"],
+            )
+        },
+        arm: None,
+    },
+];

@@ -1,0 +1,110 @@
+//! The value types generated functions return, and where each scalar of a derivation goes.
+
+use proc_macro2::TokenStream;
+use quote::quote;
+
+/// What a generated function returns, generic over the scalar `T` (or `f64` in trait impls).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Shape {
+    /// A scalar.
+    Scalar,
+    /// A 4×4 homogeneous transform; derivations give the top three rows, row by row.
+    Homogeneous,
+    /// One homogeneous transform per joint.
+    HomogeneousPerJoint,
+    /// A pose as an `Isometry3`.
+    Pose,
+    /// One pose per joint.
+    PosePerJoint,
+    /// A 6-vector (a twist or its rate).
+    Vector6,
+    /// A 6×n matrix, column by column.
+    Jacobian,
+    /// One value per joint.
+    Vector,
+    /// An optional value per joint.
+    OptionVector,
+    /// An n×n matrix, row by row.
+    Square,
+    /// An n×n×n array `[i][j][k]`.
+    Cube,
+    /// The `Terms` struct.
+    Terms,
+}
+
+impl Shape {
+    /// The type, with scalar `t`.
+    pub fn ty(self, t: &TokenStream) -> TokenStream {
+        match self {
+            Shape::Scalar => quote!(#t),
+            Shape::Homogeneous => quote!(na::Matrix4<#t>),
+            Shape::HomogeneousPerJoint => quote!([na::Matrix4<#t>; DOF]),
+            Shape::Pose => quote!(na::Isometry3<#t>),
+            Shape::PosePerJoint => quote!([na::Isometry3<#t>; DOF]),
+            Shape::Vector6 => quote!(na::SVector<#t, 6>),
+            Shape::Jacobian => quote!(na::SMatrix<#t, 6, DOF>),
+            Shape::Vector => quote!(na::SVector<#t, DOF>),
+            Shape::OptionVector => quote!(Option<na::SVector<#t, DOF>>),
+            Shape::Square => quote!(na::SMatrix<#t, DOF, DOF>),
+            Shape::Cube => quote!([[[#t; DOF]; DOF]; DOF]),
+            Shape::Terms => quote!(Terms<#t>),
+        }
+    }
+
+    /// The initial value of a derived output, before its entries are stored (`None` for a
+    /// scalar, which is assigned exactly once).
+    pub fn init(self) -> Option<TokenStream> {
+        match self {
+            Shape::Scalar => None,
+            Shape::Homogeneous => Some(quote!(na::Matrix4::identity())),
+            Shape::HomogeneousPerJoint => Some(quote!([na::Matrix4::identity(); DOF])),
+            Shape::Vector6 => Some(quote!(na::SVector::zeros())),
+            Shape::Jacobian | Shape::Square => Some(quote!(na::SMatrix::zeros())),
+            Shape::Vector => Some(quote!(na::SVector::zeros())),
+            Shape::Cube => Some(quote!([[[T::zero(); DOF]; DOF]; DOF])),
+            Shape::Pose | Shape::PosePerJoint | Shape::OptionVector | Shape::Terms => {
+                unreachable!("{self:?} values are composed, never derived entry by entry")
+            }
+        }
+    }
+
+    /// Where the scalars of a derivation go, in the order the derivation lists them.
+    pub fn targets(self, n: usize) -> Vec<TokenStream> {
+        let homogeneous = |out: TokenStream| -> Vec<TokenStream> {
+            let mut v = Vec::with_capacity(12);
+            for r in 0..3usize {
+                for c in 0..4usize {
+                    v.push(quote!(#out[(#r, #c)]));
+                }
+            }
+            v
+        };
+        match self {
+            Shape::Scalar => vec![quote!(out)],
+            Shape::Homogeneous => homogeneous(quote!(out)),
+            Shape::HomogeneousPerJoint => {
+                (0..n).flat_map(|i| homogeneous(quote!(out[#i]))).collect()
+            }
+            Shape::Vector6 => (0..6usize).map(|i| quote!(out[#i])).collect(),
+            Shape::Jacobian => (0..n)
+                .flat_map(|c| (0..6usize).map(move |r| quote!(out[(#r, #c)])))
+                .collect(),
+            Shape::Vector => (0..n).map(|i| quote!(out[#i])).collect(),
+            Shape::Square => (0..n * n)
+                .map(|idx| {
+                    let (r, c) = (idx / n, idx % n);
+                    quote!(out[(#r, #c)])
+                })
+                .collect(),
+            Shape::Cube => (0..n * n * n)
+                .map(|idx| {
+                    let (i, j, k) = (idx / (n * n), (idx / n) % n, idx % n);
+                    quote!(out[#i][#j][#k])
+                })
+                .collect(),
+            Shape::Pose | Shape::PosePerJoint | Shape::OptionVector | Shape::Terms => {
+                unreachable!("{self:?} values are composed, never derived entry by entry")
+            }
+        }
+    }
+}

@@ -1,0 +1,107 @@
+//! The per-configuration `State`: each joint's sine and cosine (or displacement) computed
+//! once, and the preparers that compute only the joints one quantity reads.
+
+use super::Context;
+use crate::emit::constant;
+use dhgen_model::JointKind;
+use proc_macro2::TokenStream;
+use quote::quote;
+
+/// The statements that fill `State { c, s, d }` from `q` (an array) for the given joints
+/// (all when `None`), ending in the value.
+pub fn fill(cx: &Context<'_>, joints: Option<&[usize]>) -> TokenStream {
+    let chain = cx.chain;
+    let used = |j: &usize| joints.is_none_or(|js| js.contains(j));
+    let lines = chain
+        .bodies
+        .iter()
+        .enumerate()
+        .filter(|(j, _)| used(j))
+        .map(|(j, b)| {
+            let value = if b.offset == 0.0 {
+                quote!(q[#j])
+            } else {
+                let k = constant(b.offset);
+                quote!(q[#j] + #k)
+            };
+            match b.joint {
+                JointKind::Revolute => {
+                    quote!(let (sj, cj) = ::dhgen::Real::sincos(#value); s[#j] = sj; c[#j] = cj;)
+                }
+                JointKind::Prismatic => quote!(d[#j] = #value;),
+            }
+        });
+    // Only arrays that some line fills are declared `mut` (no warnings in user crates).
+    let any = |kind: JointKind| {
+        chain
+            .bodies
+            .iter()
+            .enumerate()
+            .any(|(j, b)| used(&j) && b.joint == kind)
+    };
+    let trig = if any(JointKind::Revolute) {
+        quote!(let mut c = [T::zero(); DOF]; let mut s = [T::zero(); DOF];)
+    } else {
+        quote!(let c = [T::zero(); DOF]; let s = [T::zero(); DOF];)
+    };
+    let lengths = if any(JointKind::Prismatic) {
+        quote!(let mut d = [T::zero(); DOF];)
+    } else {
+        quote!(let d = [T::zero(); DOF];)
+    };
+    let read = if joints.is_some_and(<[usize]>::is_empty) {
+        // A quantity that reads no joint (a constant) ignores the configuration.
+        quote!(let _ = q;)
+    } else {
+        quote!(let q = q.to_array();)
+    };
+    quote! {
+        #read
+        #trig
+        #lengths
+        #(#lines)*
+        State { c, s, d }
+    }
+}
+
+/// The `State` type and its constructor.
+pub fn definition(cx: &Context<'_>) -> TokenStream {
+    let fill = fill(cx, None);
+    quote! {
+        /// One configuration, prepared: the sine and cosine of every revolute joint's full
+        /// angle and the full displacement of every prismatic joint, computed once and
+        /// shared by every quantity evaluated at this configuration.
+        #[derive(Clone, Copy, Debug, PartialEq)]
+        pub struct State<T: na::Scalar> {
+            /// cos θ_j (revolute joints; 0 for prismatic ones).
+            pub c: [T; DOF],
+            /// sin θ_j (revolute joints; 0 for prismatic ones).
+            pub s: [T; DOF],
+            /// d_j (prismatic joints; 0 for revolute ones).
+            pub d: [T; DOF],
+        }
+
+        impl<T: ::dhgen::Real> State<T> {
+            /// Prepares configuration `q` (an array or an `SVector`).
+            #[must_use]
+            pub fn new(q: &impl ::dhgen::JointArray<T, DOF>) -> Self {
+                #fill
+            }
+        }
+    }
+}
+
+/// `tau[j] += coulomb_j · sign(q̇_j)` for the joints with Coulomb friction.
+pub fn coulomb(cx: &Context<'_>) -> TokenStream {
+    let lines = cx
+        .chain
+        .bodies
+        .iter()
+        .enumerate()
+        .filter(|(_, b)| b.friction.coulomb != 0.0)
+        .map(|(j, b)| {
+            let k = constant(b.friction.coulomb);
+            quote!(tau[#j] += #k * sign(qd[#j]);)
+        });
+    quote!(#(#lines)*)
+}
