@@ -145,6 +145,13 @@ where
         self.inverse_dynamics(q, qd, &zero)
     }
 
+    /// Kinetic energy `T(q, q̇) = ½ q̇ᵀ D(q) q̇` of the links and rotors. By default from
+    /// the mass matrix.
+    #[doc(alias = "computeKineticEnergy")]
+    fn kinetic_energy(&self, q: &OVector<f64, Self::Dof>, qd: &OVector<f64, Self::Dof>) -> f64 {
+        0.5 * qd.dot(&(self.mass_matrix(q) * qd))
+    }
+
     /// Inverse dynamics τ(q, q̇, q̈).
     #[doc(alias = "rnea")]
     #[doc(alias = "rne")]

@@ -3,6 +3,7 @@
 //! joints, modified DH with base and tool, tilted gravity, motors and friction).
 
 use dhgen::Robot;
+use dhgen::nalgebra::DVector;
 use proptest::prelude::*;
 
 dhgen::robot!(mod planar_elbow = "robots/planar_elbow.toml");
@@ -76,7 +77,8 @@ macro_rules! compare {
         compare!($test, $m, $robot, |st, robot, q, qd, qdd| {
             const N: usize = $m::DOF;
             dynamics::<N>(robot, q, qd, qdd, &st.mass_matrix(), &st.christoffel(),
-                &st.coriolis(qd), &st.gravity(), &st.inverse_dynamics(qd, qdd))
+                &st.coriolis(qd), &st.gravity(), &st.inverse_dynamics(qd, qdd))?;
+            energy_and_bias::<N>(robot, q, qd, st.kinetic_energy(qd), &st.bias(qd))
         });
     };
     ($test:ident, $m:ident, $robot:expr, kinematics) => {
@@ -161,6 +163,29 @@ fn dynamics<const N: usize>(
     let s = max_abs(taur.iter().copied());
     for i in 0..N {
         close("tau", tau[i], taur[i], s)?;
+    }
+    Ok(())
+}
+
+/// The kinetic energy against the runtime path's `½ q̇ᵀ D q̇` (the trait's default), and the
+/// bias torques against the runtime RNEA at zero acceleration.
+fn energy_and_bias<const N: usize>(
+    robot: &Robot,
+    q: &[f64; N],
+    qd: &[f64; N],
+    energy: f64,
+    bias: &dhgen::nalgebra::SVector<f64, N>,
+) -> Result<(), TestCaseError> {
+    let (qv, qdv) = (
+        DVector::from_column_slice(q),
+        DVector::from_column_slice(qd),
+    );
+    let want = dhgen::ArmDynamics::kinetic_energy(robot, &qv, &qdv);
+    close("kinetic energy", energy, want, want.abs())?;
+    let br = robot.bias(q, qd);
+    let s = max_abs(br.iter().copied());
+    for i in 0..N {
+        close("bias", bias[i], br[i], s)?;
     }
     Ok(())
 }

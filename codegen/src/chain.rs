@@ -279,6 +279,31 @@ impl<'c, R: Ring> RingChain<'c, R> {
             .collect()
     }
 
+    /// The kinetic energy `½ Σ_k (m v·v + 2 v·(ω × h) + ω·Ī ω)` of the links, from the
+    /// velocities of the joint frames (ω and the origin's v, local coordinates) and each
+    /// link's moments about its joint frame's origin.
+    pub fn kinetic_energy(&self, qd: &[R]) -> R {
+        let z = || k::<R>(0.0);
+        let (mut w, mut v): (V3<R>, V3<R>) = ([z(), z(), z()], [z(), z(), z()]);
+        let mut twice = z();
+        for (((t, kind), b), rate) in self.t.iter().zip(&self.kinds).zip(&self.bodies).zip(qd) {
+            // The parent's motion seen from frame j, then joint j's own rate.
+            v = rot_t(t, &add3(&v, &cross(&w, &t.p)));
+            w = rot_t(t, &w);
+            let rate = [z(), z(), rate.clone()];
+            match kind {
+                JointKind::Revolute => w = add3(&w, &rate),
+                JointKind::Prismatic => v = add3(&v, &rate),
+            }
+            let iw = mat_vec(&b.i, &w);
+            twice = twice
+                + b.m.clone() * dot(&v, &v)
+                + k::<R>(2.0) * dot(&v, &cross(&w, &b.h))
+                + dot(&w, &iw);
+        }
+        k::<R>(0.5) * twice
+    }
+
     /// The outward pass of Newton-Euler: for each joint frame K_j, its angular velocity,
     /// angular acceleration and the linear acceleration of its origin (local coordinates),
     /// given the base's linear acceleration `a0`.

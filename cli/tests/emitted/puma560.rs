@@ -1509,6 +1509,245 @@ pub mod puma560 {
                 * inv0;
             Some(na::SVector::<T, DOF>::from([x0, x1, x2, x3, x4, x5]))
         }
+        ///Kinetic energy T(q, q̇) = ½ q̇ᵀ D(q) q̇ of the links and rotors.
+        #[doc(alias = "computeKineticEnergy")]
+        #[must_use]
+        pub fn kinetic_energy(&self, qd: &impl ::dhgen::JointArray<T, DOF>) -> T {
+            let qd = &qd.to_array();
+            let out: T;
+            let qd1: T = qd[0];
+            let qd2: T = qd[1];
+            let qd3: T = qd[2];
+            let qd4: T = qd[3];
+            let qd5: T = qd[4];
+            let qd6: T = qd[5];
+            let c2: T = self.c[1];
+            let s2: T = self.s[1];
+            let c3: T = self.c[2];
+            let s3: T = self.s[2];
+            let c4: T = self.c[3];
+            let s4: T = self.s[3];
+            let c5: T = self.c[4];
+            let s5: T = self.s[4];
+            let c6: T = self.c[5];
+            let s6: T = self.s[5];
+            let k0: T = ::dhgen::nalgebra::convert::<f64, T>(0.35f64);
+            let k1: T = ::dhgen::nalgebra::convert::<f64, T>(1.0311851499999998f64);
+            let k2: T = ::dhgen::nalgebra::convert::<f64, T>(0.0070992f64);
+            let k3: T = ::dhgen::nalgebra::convert::<f64, T>(0.26917800000000003f64);
+            let k4: T = ::dhgen::nalgebra::convert::<f64, T>(1.50501635f64);
+            let k5: T = ::dhgen::nalgebra::convert::<f64, T>(0.023750999999999998f64);
+            let k6: T = ::dhgen::nalgebra::convert::<f64, T>(0.023751f64);
+            let k7: T = ::dhgen::nalgebra::convert::<f64, T>(0.620084f64);
+            let k8: T = ::dhgen::nalgebra::convert::<f64, T>(0.15005f64);
+            let k9: T = ::dhgen::nalgebra::convert::<f64, T>(0.4318f64);
+            let k10: T = ::dhgen::nalgebra::convert::<f64, T>(0.090474288f64);
+            let k11: T = ::dhgen::nalgebra::convert::<f64, T>(0.013454287999999998f64);
+            let k12: T = ::dhgen::nalgebra::convert::<f64, T>(0.0047376f64);
+            let k13: T = ::dhgen::nalgebra::convert::<f64, T>(0.10951999999999999f64);
+            let k14: T = ::dhgen::nalgebra::convert::<f64, T>(4.8f64);
+            let k15: T = ::dhgen::nalgebra::convert::<f64, T>(0.06767999999999999f64);
+            let k16: T = ::dhgen::nalgebra::convert::<f64, T>(0.336f64);
+            let k17: T = ::dhgen::nalgebra::convert::<f64, T>(2f64);
+            let k18: T = ::dhgen::nalgebra::convert::<f64, T>(0.0203f64);
+            let k19: T = ::dhgen::nalgebra::convert::<f64, T>(0.00209602f64);
+            let k20: T = ::dhgen::nalgebra::convert::<f64, T>(0.0013f64);
+            let k21: T = ::dhgen::nalgebra::convert::<f64, T>(0.82f64);
+            let k22: T = ::dhgen::nalgebra::convert::<f64, T>(0.015579999999999998f64);
+            let k23: T = ::dhgen::nalgebra::convert::<f64, T>(0.0003f64);
+            let k24: T = ::dhgen::nalgebra::convert::<f64, T>(0.0004f64);
+            let k25: T = ::dhgen::nalgebra::convert::<f64, T>(0.34f64);
+            let k26: T = ::dhgen::nalgebra::convert::<f64, T>(0.00024216f64);
+            let k27: T = ::dhgen::nalgebra::convert::<f64, T>(0.00004f64);
+            let k28: T = ::dhgen::nalgebra::convert::<f64, T>(0.09f64);
+            let k29: T = ::dhgen::nalgebra::convert::<f64, T>(0.0028799999999999997f64);
+            let k30: T = ::dhgen::nalgebra::convert::<f64, T>(0.5f64);
+            let t30: T = qd1 * k0;
+            let t31: T = qd1 * t30;
+            let t32: T = qd1 * s2;
+            let t35: T = t32 * k1;
+            let t33: T = qd1 * c2;
+            let t38: T = t33 * k2;
+            let t40: T = t35 - t38;
+            let t43: T = qd2 * k3;
+            let t45: T = t40 - t43;
+            let t79: T = t32 * t45;
+            let t49: T = t33 * k4;
+            let t46: T = t32 * k2;
+            let t50: T = t49 - t46;
+            let t53: T = qd2 * k5;
+            let t55: T = t50 - t53;
+            let t80: T = t33 * t55;
+            let t81: T = t79 + t80;
+            let t65: T = qd2 * k7;
+            let t56: T = t32 * k3;
+            let t60: T = t33 * k6;
+            let t62: T = t56 + t60;
+            let t66: T = t65 - t62;
+            let t82: T = qd2 * t66;
+            let t83: T = t81 + t82;
+            let t84: T = t31 + t83;
+            let t86: T = t33 * k8;
+            let t93: T = c3 * t86;
+            let t88: T = qd2 * k9;
+            let t89: T = t32 * k8;
+            let t90: T = t88 - t89;
+            let t94: T = s3 * t90;
+            let t95: T = t93 + t94;
+            let t122: T = t95 * t95;
+            let t98: T = c3 * t90;
+            let t96: T = s3 * t86;
+            let t99: T = t98 - t96;
+            let t123: T = t99 * t99;
+            let t124: T = t122 + t123;
+            let t91: T = t33 * k9;
+            let t125: T = t91 * t91;
+            let t126: T = t124 + t125;
+            let t128: T = t126 * k14;
+            let t129: T = t84 + t128;
+            let t105: T = c3 * t33;
+            let t103: T = s3 * t32;
+            let t106: T = t105 - t103;
+            let t131: T = t106 * k15;
+            let t107: T = qd2 + qd3;
+            let t133: T = t107 * k16;
+            let t134: T = t131 - t133;
+            let t138: T = t95 * t134;
+            let t100: T = c3 * t32;
+            let t101: T = s3 * t33;
+            let t102: T = t100 + t101;
+            let t135: T = t102 * k15;
+            let t139: T = t99 * t135;
+            let t141: T = t138 - t139;
+            let t137: T = t102 * k16;
+            let t142: T = t91 * t137;
+            let t144: T = t141 - t142;
+            let t146: T = t144 * k17;
+            let t147: T = t129 + t146;
+            let t109: T = t102 * k10;
+            let t148: T = t102 * t109;
+            let t111: T = t106 * k11;
+            let t114: T = t107 * k12;
+            let t116: T = t111 - t114;
+            let t149: T = t106 * t116;
+            let t150: T = t148 + t149;
+            let t120: T = t107 * k13;
+            let t117: T = t106 * k12;
+            let t121: T = t120 - t117;
+            let t151: T = t107 * t121;
+            let t152: T = t150 + t151;
+            let t153: T = t147 + t152;
+            let t154: T = k9 * t107;
+            let t161: T = t95 - t154;
+            let t164: T = c4 * t161;
+            let t158: T = k9 * t102;
+            let t159: T = t106 * k18;
+            let t160: T = t158 - t159;
+            let t163: T = t160 - t91;
+            let t165: T = s4 * t163;
+            let t167: T = t164 - t165;
+            let t191: T = t167 * t167;
+            let t168: T = s4 * t161;
+            let t170: T = c4 * t163;
+            let t172: T = t168 + t170;
+            let t192: T = t172 * t172;
+            let t193: T = t191 + t192;
+            let t157: T = t107 * k18;
+            let t162: T = t99 + t157;
+            let t194: T = t162 * t162;
+            let t195: T = t193 + t194;
+            let t197: T = t195 * k21;
+            let t198: T = t153 + t197;
+            let t174: T = c4 * t102;
+            let t175: T = s4 * t107;
+            let t177: T = t174 - t175;
+            let t202: T = t177 * k22;
+            let t206: T = t172 * t202;
+            let t178: T = s4 * t102;
+            let t180: T = c4 * t107;
+            let t182: T = t178 + t180;
+            let t200: T = t182 * k22;
+            let t204: T = t167 * t200;
+            let t207: T = t206 - t204;
+            let t208: T = k17 * t207;
+            let t209: T = t198 + t208;
+            let t186: T = t177 * k19;
+            let t210: T = t177 * t186;
+            let t187: T = t182 * k19;
+            let t211: T = t182 * t187;
+            let t212: T = t210 + t211;
+            let t184: T = qd4 + t106;
+            let t190: T = t184 * k20;
+            let t213: T = t184 * t190;
+            let t214: T = t212 + t213;
+            let t215: T = t209 + t214;
+            let t216: T = c5 * t167;
+            let t217: T = s5 * t162;
+            let t218: T = t216 + t217;
+            let t236: T = t218 * t218;
+            let t221: T = c5 * t162;
+            let t219: T = s5 * t167;
+            let t222: T = t221 - t219;
+            let t237: T = t222 * t222;
+            let t238: T = t236 + t237;
+            let t239: T = t192 + t238;
+            let t241: T = t239 * k25;
+            let t242: T = t215 + t241;
+            let t223: T = c5 * t177;
+            let t224: T = s5 * t184;
+            let t225: T = t223 + t224;
+            let t232: T = t225 * k23;
+            let t243: T = t225 * t232;
+            let t228: T = c5 * t184;
+            let t226: T = s5 * t177;
+            let t229: T = t228 - t226;
+            let t233: T = t229 * k23;
+            let t244: T = t229 * t233;
+            let t245: T = t243 + t244;
+            let t230: T = qd5 + t182;
+            let t235: T = t230 * k24;
+            let t246: T = t230 * t235;
+            let t247: T = t245 + t246;
+            let t248: T = t242 + t247;
+            let t249: T = c6 * t218;
+            let t250: T = s6 * t172;
+            let t252: T = t249 - t250;
+            let t276: T = t252 * t252;
+            let t253: T = s6 * t218;
+            let t255: T = c6 * t172;
+            let t257: T = t253 + t255;
+            let t277: T = t257 * t257;
+            let t278: T = t276 + t277;
+            let t279: T = t237 + t278;
+            let t281: T = t279 * k28;
+            let t282: T = t248 + t281;
+            let t259: T = c6 * t225;
+            let t260: T = s6 * t230;
+            let t262: T = t259 - t260;
+            let t286: T = t262 * k29;
+            let t290: T = t257 * t286;
+            let t263: T = s6 * t225;
+            let t265: T = c6 * t230;
+            let t267: T = t263 + t265;
+            let t284: T = t267 * k29;
+            let t288: T = t252 * t284;
+            let t291: T = t290 - t288;
+            let t292: T = k17 * t291;
+            let t293: T = t282 + t292;
+            let t271: T = t262 * k26;
+            let t294: T = t262 * t271;
+            let t272: T = t267 * k26;
+            let t295: T = t267 * t272;
+            let t296: T = t294 + t295;
+            let t269: T = qd6 + t229;
+            let t275: T = t269 * k27;
+            let t297: T = t269 * t275;
+            let t298: T = t296 + t297;
+            let t299: T = t293 + t298;
+            let t301: T = t299 * k30;
+            out = t301;
+            out
+        }
         ///D, C, g and J at once, as a controller needs them, sharing one state's sines and cosines.
         #[doc(alias = "computeAllTerms")]
         #[must_use]
@@ -4688,6 +4927,29 @@ pub mod puma560 {
             State { c, s, d }
         }
         #[inline]
+        fn for_kinetic_energy(q: &impl ::dhgen::JointArray<T, DOF>) -> Self {
+            let q = q.to_array();
+            let mut c = [T::zero(); DOF];
+            let mut s = [T::zero(); DOF];
+            let d = [T::zero(); DOF];
+            let (sj, cj) = ::dhgen::Real::sincos(q[1]);
+            s[1] = sj;
+            c[1] = cj;
+            let (sj, cj) = ::dhgen::Real::sincos(q[2]);
+            s[2] = sj;
+            c[2] = cj;
+            let (sj, cj) = ::dhgen::Real::sincos(q[3]);
+            s[3] = sj;
+            c[3] = cj;
+            let (sj, cj) = ::dhgen::Real::sincos(q[4]);
+            s[4] = sj;
+            c[4] = cj;
+            let (sj, cj) = ::dhgen::Real::sincos(q[5]);
+            s[5] = sj;
+            c[5] = cj;
+            State { c, s, d }
+        }
+        #[inline]
         fn for_terms(q: &impl ::dhgen::JointArray<T, DOF>) -> Self {
             let q = q.to_array();
             let mut c = [T::zero(); DOF];
@@ -4843,6 +5105,15 @@ pub mod puma560 {
     ) -> Option<na::SVector<T, DOF>> {
         State::for_forward_dynamics(q).forward_dynamics(qd, tau)
     }
+    ///Kinetic energy T(q, q̇) = ½ q̇ᵀ D(q) q̇ of the links and rotors.
+    #[doc(alias = "computeKineticEnergy")]
+    #[must_use]
+    pub fn kinetic_energy<T: ::dhgen::Real>(
+        q: &impl ::dhgen::JointArray<T, DOF>,
+        qd: &impl ::dhgen::JointArray<T, DOF>,
+    ) -> T {
+        State::for_kinetic_energy(q).kinetic_energy(qd)
+    }
     ///D, C, g and J at once, as a controller needs them, sharing one state's sines and cosines.
     #[doc(alias = "computeAllTerms")]
     #[must_use]
@@ -4957,6 +5228,13 @@ pub mod puma560 {
             tau: &na::SVector<f64, DOF>,
         ) -> Option<na::SVector<f64, DOF>> {
             State::for_forward_dynamics(q).forward_dynamics(qd, tau)
+        }
+        fn kinetic_energy(
+            &self,
+            q: &na::SVector<f64, DOF>,
+            qd: &na::SVector<f64, DOF>,
+        ) -> f64 {
+            State::for_kinetic_energy(q).kinetic_energy(qd)
         }
     }
     fn isometry<T: ::dhgen::Real>(m: &na::Matrix4<T>) -> na::Isometry3<T> {

@@ -22,6 +22,7 @@ use dhgen_model::{ChainRef, JointKind, RobotModel};
 use proc_macro2::{Ident, Span, TokenStream};
 use quantities::{ArmMethod, Availability, Input, Made, QUANTITIES, Quantity};
 use quote::{format_ident, quote};
+use shape::Shape;
 use std::cell::OnceCell;
 use std::collections::HashMap;
 
@@ -117,27 +118,12 @@ impl Items {
     /// Makes one quantity: its `State` method (and parts), preparer, free function and
     /// trait method.
     fn add(&mut self, cx: &Context<'_>, q: &Quantity) {
-        let n = cx.chain.dof();
         let name = format_ident!("{}", q.name);
         let t = quote!(T);
         let ty = q.shape.ty(&t);
         let inputs = idents(q.inputs);
         let body = match (q.make)(cx) {
-            Made::Derived(graph, exprs) => {
-                let targets = q.shape.targets(n);
-                assert_eq!(
-                    targets.len(),
-                    exprs.len(),
-                    "{}: shape and derivation",
-                    q.name
-                );
-                let outputs = targets
-                    .into_iter()
-                    .zip(exprs)
-                    .map(|(target, value)| Output { target, value })
-                    .collect();
-                self.straight_line(cx, q, &graph, outputs)
-            }
+            Made::Derived(graph, exprs) => self.straight_line(cx, q, &graph, exprs),
             Made::Composed { body, reads, ops } => {
                 let mut joints: Vec<usize> = reads
                     .iter()
@@ -219,11 +205,30 @@ impl Items {
         cx: &Context<'_>,
         q: &Quantity,
         graph: &SharedGraph,
-        outputs: Vec<Output>,
+        exprs: Vec<E>,
     ) -> TokenStream {
         let t = quote!(T);
-        let ty = q.shape.ty(&t);
-        let emitted = emit::emit(graph, outputs);
+        let outputs = |targets: Vec<TokenStream>| -> Vec<Output> {
+            assert_eq!(
+                targets.len(),
+                exprs.len(),
+                "{}: shape and derivation",
+                q.name
+            );
+            targets
+                .into_iter()
+                .zip(exprs.iter().cloned())
+                .map(|(target, value)| Output { target, value })
+                .collect()
+        };
+        let mut ty = q.shape.ty(&t);
+        let mut emitted = emit::emit(graph, outputs(q.shape.targets(cx.chain.dof())));
+        // A scalar split into parts is passed between them as a one-element array.
+        let scalar_in_parts = q.shape == Shape::Scalar && emitted.parts.len() > 1;
+        if scalar_in_parts {
+            ty = quote!([T; 1]);
+            emitted = emit::emit(graph, outputs(vec![quote!(out[0])]));
+        }
         let mut ops = emitted.ops;
         ops.sincos = emitted
             .joints
@@ -261,14 +266,15 @@ impl Items {
             quote!(#(#calls)*)
         };
         // A scalar is assigned exactly once: declare it without a dead initial value.
-        let declare = match q.shape.init() {
-            Some(init) => quote!(let mut out: #ty = #init;),
-            None => quote!(let out: #ty;),
+        let (declare, value) = match q.shape.init() {
+            _ if scalar_in_parts => (quote!(let mut out: #ty = [T::zero()];), quote!(out[0])),
+            Some(init) => (quote!(let mut out: #ty = #init;), quote!(out)),
+            None => (quote!(let out: #ty;), quote!(out)),
         };
         quote! {
             #declare
             #computed
-            out
+            #value
         }
     }
 }

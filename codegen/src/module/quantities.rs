@@ -9,7 +9,7 @@
 
 use super::shape::Shape;
 use super::{Context, cholesky};
-use crate::derive::{christoffel, gravity, inertia, kinematics, newton_euler, singularity};
+use crate::derive::{christoffel, energy, gravity, inertia, kinematics, newton_euler, singularity};
 use crate::graph::{E, SharedGraph};
 use crate::poly::Poly;
 use proc_macro2::TokenStream;
@@ -449,6 +449,20 @@ pub const QUANTITIES: &[Quantity] = &[
                 reads: &["mass_matrix", "bias"],
                 ops: Some(("cholesky_solve", ops)),
             }
+        },
+        arm: Some(ArmMethod::Dynamics),
+    },
+    Quantity {
+        name: "kinetic_energy",
+        doc: "Kinetic energy T(q, q̇) = ½ q̇ᵀ D(q) q̇ of the links and rotors.",
+        aliases: &["computeKineticEnergy"],
+        inputs: &[Input::Qd],
+        shape: Shape::Scalar,
+        available: Availability::Dynamics,
+        public: true,
+        make: |cx| {
+            let (graph, t) = energy::kinetic_energy(&cx.derivation);
+            derived(graph, t)
         },
         arm: Some(ArmMethod::Dynamics),
     },

@@ -1,0 +1,42 @@
+//! The kinetic energy `T(q, q̇) = ½ q̇ᵀ D(q) q̇` (armature included): the quadratic form over
+//! the cheapest D(q), or the links' energies summed along the velocity recursion, whichever is
+//! cheaper.
+
+use super::Derivation;
+use crate::graph::{E, SharedGraph, Sym};
+
+/// `[T]`, in a new graph.
+pub fn kinetic_energy(dv: &Derivation<'_>) -> (SharedGraph, Vec<E>) {
+    let chain = dv.chain;
+    let n = chain.dof();
+    let quadratic = {
+        let (graph, d) = super::inertia::mass_matrix(dv);
+        let qd: Vec<E> = (0..n).map(|i| E::sym(&graph, Sym::Qd(i))).collect();
+        // ½ Σ_i d_ii q̇_i² + Σ_{i<j} d_ij q̇_i q̇_j, D being symmetric.
+        let mut t = E::K(0.0);
+        for i in 0..n {
+            let row = (i..n).fold(
+                E::K(0.5) * d[i * n + i].clone() * qd[i].clone(),
+                |acc, j| {
+                    if j == i {
+                        acc
+                    } else {
+                        acc + d[i * n + j].clone() * qd[j].clone()
+                    }
+                },
+            );
+            t = t + row * qd[i].clone();
+        }
+        (graph, vec![t])
+    };
+    let recursive = {
+        let graph = SharedGraph::default();
+        let qd: Vec<E> = (0..n).map(|i| E::sym(&graph, Sym::Qd(i))).collect();
+        let links = super::graph_chain(chain, &graph).kinetic_energy(&qd);
+        let rotors = chain.bodies.iter().zip(&qd).fold(E::K(0.0), |acc, (b, w)| {
+            acc + E::K(0.5 * b.armature) * (w.clone() * w.clone())
+        });
+        (graph, vec![links + rotors])
+    };
+    super::cheapest(vec![quadratic, recursive])
+}
