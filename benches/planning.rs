@@ -19,7 +19,7 @@ use rand::{Rng, SeedableRng};
 use std::hint::black_box;
 use std::time::Duration;
 
-#[path = "../tests/planning_support/mod.rs"]
+#[path = "../tests/integration/planning_support.rs"]
 pub mod scenes;
 
 dhgen::robot!(mod puma560 = "robots/puma560.toml");

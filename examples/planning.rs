@@ -19,7 +19,7 @@
 //! statistics and the path, and writes `puma_views.svg` (the arm along the path, from the
 //! side and from above).
 //!
-//! The scenes and budgets are those of the tests, in `tests/planning_support/mod.rs`.
+//! The scenes and budgets are those of the tests, in `tests/integration/planning_support.rs`.
 
 use std::error::Error;
 use std::path::{Path, PathBuf};
@@ -33,7 +33,7 @@ use dhgen::planning::{
 };
 use plotters::prelude::*;
 
-#[path = "../tests/planning_support/mod.rs"]
+#[path = "../tests/integration/planning_support.rs"]
 pub mod scenes;
 use scenes::PlanarScene;
 

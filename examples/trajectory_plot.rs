@@ -177,9 +177,9 @@ fn plot(dir: &Path, figure: &Figure<'_>, profile: &dyn MultiProfile) -> Result<(
     let (t0, tf) = (profile.start_time(), profile.end_time());
 
     for (panel_index, panel) in panels.iter().enumerate() {
-        let value = |s: dhgen::trajectory::State| [s.q, s.qd, s.qdd][panel_index];
+        let value = |s: dhgen::trajectory::Setpoint| [s.q, s.qd, s.qdd][panel_index];
         let (mut lo, mut hi) = samples
-            .states
+            .setpoints
             .iter()
             .map(|&s| value(s))
             .fold((0.0f64, 0.0f64), |(lo, hi), v| (lo.min(v), hi.max(v)));

@@ -14,7 +14,7 @@
 //! | ZYZ Euler angles | `Rotation3::euler_angles_ordered([z, y, z], false)` gives one branch and panics on non-orthonormal axes; [`EulerZyz`] gives both branches (section 3.5.1) with a documented choice at θ = 0 and θ = π |
 //!
 //! Every function here takes `atan2` in Rust's order, `y.atan2(x)`: the text's `atan2(x, y)`
-//! is `y.atan2(x)` (see ERRATA.md).
+//! is `y.atan2(x)` (see the errata in docs/references.md).
 //!
 //! ```
 //! use dhgen::nalgebra::{Rotation3, Vector3};
@@ -73,7 +73,7 @@ pub fn vee<T: RealField + Copy>(m: &Matrix3<T>) -> Vector3<T> {
 /// about the current axes z, y, z.
 ///
 /// This is the convention of section 3.5.1 and of the whole library (section 5.5 of the text
-/// names the angles the other way round; see ERRATA.md).
+/// names the angles the other way round; see the errata in docs/references.md).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct EulerZyz<T> {
     /// φ: first rotation, about z.

@@ -464,7 +464,7 @@ where
 }
 
 /// `B(α)` of the ZYZ Euler angles `α = (φ, θ, ψ)` (`R = Rz(φ) Ry(θ) Rz(ψ)`): `ω = B(α) α̇`,
-/// with rows `(0, −s_φ, c_φ s_θ)`, `(0, c_φ, s_φ s_θ)`, `(1, 0, c_θ)` (ERRATA.md, section 5.5);
+/// with rows `(0, −s_φ, c_φ s_θ)`, `(0, c_φ, s_φ s_θ)`, `(1, 0, c_θ)` (section 5.5 with the errata in docs/references.md);
 /// `det B = −s_θ`, singular at θ = 0, π.
 pub fn euler_rate_matrix(e: &EulerZyz<f64>) -> Matrix3<f64> {
     let (sf, cf) = e.phi.sin_cos();

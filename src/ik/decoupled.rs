@@ -179,9 +179,10 @@ pub enum StructureError {
     },
 }
 
-/// The arm geometry that [`DecoupledIk`] recognised; see the module documentation.
+/// The kind of arm (the geometry of joints 1–3) that [`DecoupledIk`] recognised; see the
+/// module documentation.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum ArmGeometry {
+pub enum ArmKind {
     /// Revolute joints 1 and 2 with intersecting axes (Pieper's case); joint 3 revolute or
     /// prismatic. PUMA 560, Stanford arm.
     IntersectingShoulder,
@@ -254,7 +255,7 @@ pub struct DecoupledIk {
     /// The wrist centre in the frame in which joint 3 moves: `P3 c_3`.
     w: Vector3<f64>,
     position: Position,
-    geometry: ArmGeometry,
+    arm: ArmKind,
     /// `Rz(a) Rx(90°) Rz(b)` of `Q4` and `Q5`.
     wrist4: (f64, f64),
     wrist5: (f64, f64),
@@ -487,7 +488,7 @@ impl DecoupledIk {
                         p2,
                         m,
                     },
-                    ArmGeometry::IntersectingShoulder,
+                    ArmKind::IntersectingShoulder,
                 )
             } else if !prismatic[2] && parallel_23 {
                 let m = p2.r.transpose() * p2.p;
@@ -505,7 +506,7 @@ impl DecoupledIk {
                         offset: a2.dot(&p1.p) + p2.p.z + sigma * w.z,
                         m,
                     },
-                    ArmGeometry::ParallelElbow,
+                    ArmKind::ParallelElbow,
                 )
             } else {
                 return Err(unsupported(
@@ -533,7 +534,7 @@ impl DecoupledIk {
                     v,
                     lead_is_2,
                 },
-                ArmGeometry::Cylindrical,
+                ArmKind::Cylindrical,
             )
         } else {
             return Err(unsupported(
@@ -548,7 +549,7 @@ impl DecoupledIk {
             centre_tool,
             w,
             position,
-            geometry,
+            arm: geometry,
             wrist4: (a4, b4),
             wrist5: (a5, b5),
             scale,
@@ -556,8 +557,8 @@ impl DecoupledIk {
     }
 
     /// The arm geometry recognised.
-    pub fn geometry(&self) -> ArmGeometry {
-        self.geometry
+    pub fn arm_kind(&self) -> ArmKind {
+        self.arm
     }
 
     /// The wrist centre (the point where axes 4, 5, 6 meet) in the tool frame.

@@ -33,7 +33,7 @@
 mod decoupled;
 mod numeric;
 
-pub use decoupled::{ArmGeometry, DecoupledIk, Solutions, StructureError, VERIFY_TOLERANCE};
+pub use decoupled::{ArmKind, DecoupledIk, Solutions, StructureError, VERIFY_TOLERANCE};
 pub use numeric::{IkError, NumericIk, Solution};
 
 use nalgebra::Isometry3;

@@ -1,6 +1,6 @@
 //! Cubic polynomial: position and velocity given at both ends (section 6.5.1.1, equation 15).
 
-use super::{Profile, State, TrajectoryError, displacement, finite, interval};
+use super::{Profile, Setpoint, TrajectoryError, displacement, finite, interval};
 
 /// The cubic `q(t)` with `q(t0) = q0`, `q̇(t0) = v0`, `q(tf) = qf`, `q̇(tf) = vf`.
 ///
@@ -80,12 +80,12 @@ impl Profile for Cubic {
         self.tf
     }
 
-    fn eval(&self, t: f64) -> State {
+    fn eval(&self, t: f64) -> Setpoint {
         if t < self.t0 {
-            return State::rest(self.q0);
+            return Setpoint::rest(self.q0);
         }
         if t > self.tf {
-            return State::rest(self.qf);
+            return Setpoint::rest(self.qf);
         }
         let s = (t - self.t0) / self.duration;
         let r = 1.0 - s;
@@ -102,6 +102,6 @@ impl Profile for Cubic {
         let qdd =
             ((6.0 - 12.0 * s) * self.slope + self.v0 * (6.0 * s - 4.0) + self.vf * (6.0 * s - 2.0))
                 / big_t;
-        State { q, qd, qdd }
+        Setpoint { q, qd, qdd }
     }
 }

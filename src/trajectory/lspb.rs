@@ -1,7 +1,8 @@
 //! Linear segment with parabolic blends (section 6.5.1.2, with the erratum for the third segment).
 
 use super::{
-    Location, Profile, State, TrajectoryError, abs, displacement, finite, interval, positive, sqrt,
+    Location, Profile, Setpoint, TrajectoryError, abs, displacement, finite, interval, positive,
+    sqrt,
 };
 
 /// Rest-to-rest LSPB ("trapezoidal velocity") profile: constant acceleration `α` for the blend
@@ -229,33 +230,33 @@ impl Profile for Lspb {
         self.tf
     }
 
-    fn eval(&self, t: f64) -> State {
+    fn eval(&self, t: f64) -> Setpoint {
         if t < self.t0 {
-            return State::rest(self.q0);
+            return Setpoint::rest(self.q0);
         }
         if t > self.tf {
-            return State::rest(self.qf);
+            return Setpoint::rest(self.qf);
         }
         // Time since the start and time to go, each measured from its own end so that both
-        // boundary states are exact even when tf = t0 + T was rounded.
+        // boundary setpoints are exact even when tf = t0 + T was rounded.
         let tau = t - self.t0;
         let to_go = self.tf - t;
         let (alpha, tb) = (self.acceleration, self.blend_time);
         if tau <= tb {
-            State {
+            Setpoint {
                 q: self.q0 + 0.5 * alpha * tau * tau,
                 qd: alpha * tau,
                 qdd: alpha,
             }
         } else if to_go > tb {
             let q = 0.5 * (self.q0 + self.qf - self.velocity * self.duration) + self.velocity * tau;
-            State {
+            Setpoint {
                 q,
                 qd: self.velocity,
                 qdd: 0.0,
             }
         } else {
-            State {
+            Setpoint {
                 q: self.qf - 0.5 * alpha * to_go * to_go,
                 qd: alpha * to_go,
                 qdd: -alpha,

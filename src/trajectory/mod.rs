@@ -66,7 +66,7 @@ use core::fmt;
 
 /// Position, velocity and acceleration of one joint at one instant.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct State {
+pub struct Setpoint {
     /// Position `q`.
     pub q: f64,
     /// Velocity `q̇`.
@@ -75,7 +75,7 @@ pub struct State {
     pub qdd: f64,
 }
 
-impl State {
+impl Setpoint {
     /// A state with the given position, velocity and acceleration.
     pub const fn new(q: f64, qd: f64, qdd: f64) -> Self {
         Self { q, qd, qdd }
@@ -91,8 +91,8 @@ impl State {
     }
 }
 
-impl From<State> for (f64, f64, f64) {
-    fn from(s: State) -> Self {
+impl From<Setpoint> for (f64, f64, f64) {
+    fn from(s: Setpoint) -> Self {
         (s.q, s.qd, s.qdd)
     }
 }
@@ -111,7 +111,7 @@ pub trait Profile {
         self.start_time() + self.duration()
     }
     /// Position, velocity and acceleration at time `t`.
-    fn eval(&self, t: f64) -> State;
+    fn eval(&self, t: f64) -> Setpoint;
 }
 
 /// A trajectory of several joints sharing one time interval.
@@ -128,7 +128,7 @@ pub trait MultiProfile {
     }
     /// Writes the state of every joint at time `t` into `out` (`out.len()` must equal
     /// [`dof`](MultiProfile::dof)).
-    fn eval_into(&self, t: f64, out: &mut [State]) -> Result<(), TrajectoryError>;
+    fn eval_into(&self, t: f64, out: &mut [Setpoint]) -> Result<(), TrajectoryError>;
 }
 
 /// Where in a multi-joint or via-point input a problem was found (indices are 0-based).
@@ -480,7 +480,7 @@ pub fn uniform_time(t0: f64, tf: f64, n: usize, i: usize) -> f64 {
 /// (both included), without allocating.
 pub fn sample_into<P: Profile + ?Sized>(
     profile: &P,
-    out: &mut [State],
+    out: &mut [Setpoint],
 ) -> Result<(), TrajectoryError> {
     let n = out.len();
     if n < 2 {
@@ -497,7 +497,7 @@ pub fn sample_into<P: Profile + ?Sized>(
 pub fn sample_times_into<P: Profile + ?Sized>(
     profile: &P,
     times: &[f64],
-    out: &mut [State],
+    out: &mut [Setpoint],
 ) -> Result<(), TrajectoryError> {
     if out.len() != times.len() {
         return Err(TrajectoryError::LengthMismatch {
@@ -514,10 +514,10 @@ pub fn sample_times_into<P: Profile + ?Sized>(
 }
 
 /// Samples every joint of `profile` at `n` equally spaced times, where `out` holds `n` rows of
-/// `dof` states (row-major: `out[i * dof + j]` is joint `j` at time `i`), without allocating.
+/// `dof` setpoints (row-major: `out[i * dof + j]` is joint `j` at time `i`), without allocating.
 pub fn sample_multi_into<M: MultiProfile + ?Sized>(
     profile: &M,
-    out: &mut [State],
+    out: &mut [Setpoint],
 ) -> Result<(), TrajectoryError> {
     let dof = profile.dof();
     if dof == 0 {
@@ -525,7 +525,7 @@ pub fn sample_multi_into<M: MultiProfile + ?Sized>(
     }
     if !out.len().is_multiple_of(dof) {
         return Err(TrajectoryError::LengthMismatch {
-            name: "out (whole rows of dof states)",
+            name: "out (whole rows of dof setpoints)",
             expected: (out.len() / dof + 1) * dof,
             found: out.len(),
             at: Location::NONE,
@@ -542,14 +542,14 @@ pub fn sample_multi_into<M: MultiProfile + ?Sized>(
     Ok(())
 }
 
-/// Uniform samples of one joint: `states[i]` at `times[i]`.
+/// Uniform samples of one joint: `setpoints[i]` at `times[i]`.
 #[cfg(feature = "std")]
 #[derive(Clone, Debug, PartialEq)]
 pub struct Samples {
     /// The sample times, from the start to the end time.
     pub times: Vec<f64>,
     /// The state at each time.
-    pub states: Vec<State>,
+    pub setpoints: Vec<Setpoint>,
 }
 
 /// Samples `profile` at `n >= 2` equally spaced times from its start to its end time.
@@ -560,8 +560,8 @@ pub fn sample<P: Profile + ?Sized>(profile: &P, n: usize) -> Result<Samples, Tra
     }
     let (t0, tf) = (profile.start_time(), profile.end_time());
     let times: Vec<f64> = (0..n).map(|i| uniform_time(t0, tf, n, i)).collect();
-    let states = times.iter().map(|&t| profile.eval(t)).collect();
-    Ok(Samples { times, states })
+    let setpoints = times.iter().map(|&t| profile.eval(t)).collect();
+    Ok(Samples { times, setpoints })
 }
 
 /// Uniform samples of several joints.
@@ -572,32 +572,32 @@ pub struct MultiSamples {
     pub times: Vec<f64>,
     /// Number of joints.
     pub dof: usize,
-    /// `times.len()` rows of `dof` states: `states[i * dof + j]` is joint `j` at `times[i]`.
-    pub states: Vec<State>,
+    /// `times.len()` rows of `dof` setpoints: `setpoints[i * dof + j]` is joint `j` at `times[i]`.
+    pub setpoints: Vec<Setpoint>,
 }
 
 #[cfg(feature = "std")]
 impl MultiSamples {
     /// Joint `joint` at sample `i`, or `None` if either index is out of range.
-    pub fn get(&self, i: usize, joint: usize) -> Option<State> {
+    pub fn get(&self, i: usize, joint: usize) -> Option<Setpoint> {
         if joint >= self.dof {
             return None;
         }
-        self.states.get(i * self.dof + joint).copied()
+        self.setpoints.get(i * self.dof + joint).copied()
     }
 
     /// The `(time, state)` series of one joint (empty if `joint >= dof`).
-    pub fn joint(&self, joint: usize) -> impl Iterator<Item = (f64, State)> + '_ {
+    pub fn joint(&self, joint: usize) -> impl Iterator<Item = (f64, Setpoint)> + '_ {
         let dof = self.dof;
-        let states = if joint < dof {
-            &self.states[joint..]
+        let setpoints = if joint < dof {
+            &self.setpoints[joint..]
         } else {
             &[]
         };
         self.times
             .iter()
             .copied()
-            .zip(states.iter().step_by(dof.max(1)).copied())
+            .zip(setpoints.iter().step_by(dof.max(1)).copied())
     }
 }
 
@@ -614,9 +614,13 @@ pub fn sample_multi<M: MultiProfile + ?Sized>(
     if n < 2 {
         return Err(TrajectoryError::TooFewSamples { found: n });
     }
-    let mut states = vec![State::default(); n * dof];
-    sample_multi_into(profile, &mut states)?;
+    let mut setpoints = vec![Setpoint::default(); n * dof];
+    sample_multi_into(profile, &mut setpoints)?;
     let (t0, tf) = (profile.start_time(), profile.end_time());
     let times = (0..n).map(|i| uniform_time(t0, tf, n, i)).collect();
-    Ok(MultiSamples { times, dof, states })
+    Ok(MultiSamples {
+        times,
+        dof,
+        setpoints,
+    })
 }

@@ -1,7 +1,7 @@
 //! Many joints moving together: one profile per joint over one common time interval.
 
 use super::{
-    Cubic, Location, Lspb, MultiProfile, Profile, Quintic, State, TrajectoryError,
+    Cubic, Location, Lspb, MultiProfile, Profile, Quintic, Setpoint, TrajectoryError,
     bang_bang_duration, finite, velocity_limited_duration,
 };
 
@@ -72,7 +72,7 @@ impl<P: Profile, const N: usize> Synchronized<P, N> {
     }
 
     /// Every joint's state at time `t`.
-    pub fn eval(&self, t: f64) -> [State; N] {
+    pub fn eval(&self, t: f64) -> [Setpoint; N] {
         core::array::from_fn(|j| self.joints[j].eval(t))
     }
 }
@@ -94,7 +94,7 @@ impl<P: Profile, const N: usize> MultiProfile for Synchronized<P, N> {
         self.joints.first().map_or(0.0, Profile::end_time)
     }
 
-    fn eval_into(&self, t: f64, out: &mut [State]) -> Result<(), TrajectoryError> {
+    fn eval_into(&self, t: f64, out: &mut [Setpoint]) -> Result<(), TrajectoryError> {
         if out.len() != N {
             return Err(TrajectoryError::LengthMismatch {
                 name: "out",
@@ -130,8 +130,8 @@ impl<const N: usize> Synchronized<Quintic, N> {
     pub fn quintic(
         t0: f64,
         tf: f64,
-        start: &[State; N],
-        end: &[State; N],
+        start: &[Setpoint; N],
+        end: &[Setpoint; N],
     ) -> Result<Self, TrajectoryError> {
         let joints = try_joints(|j| Quintic::new(t0, tf, start[j], end[j]))?;
         Self::new(joints)

@@ -1,6 +1,6 @@
 //! Quintic polynomial: position, velocity and acceleration given at both ends (section 6.5.1.1).
 
-use super::{Profile, State, TrajectoryError, displacement, finite, interval};
+use super::{Profile, Setpoint, TrajectoryError, displacement, finite, interval};
 
 /// The quintic `q(t)` matching position, velocity and acceleration at `t0` and `tf`.
 ///
@@ -14,15 +14,15 @@ pub struct Quintic {
     t0: f64,
     tf: f64,
     duration: f64,
-    start: State,
-    end: State,
+    start: Setpoint,
+    end: Setpoint,
     /// `(qf - q0) / (tf - t0)`, the average velocity.
     slope: f64,
 }
 
 impl Quintic {
     /// The quintic from `start` at `t0` to `end` at `tf`; needs `tf > t0` and finite inputs.
-    pub fn new(t0: f64, tf: f64, start: State, end: State) -> Result<Self, TrajectoryError> {
+    pub fn new(t0: f64, tf: f64, start: Setpoint, end: Setpoint) -> Result<Self, TrajectoryError> {
         let duration = interval(t0, tf)?;
         let dq = displacement(start.q, end.q)?;
         finite("v0", start.qd)?;
@@ -41,7 +41,7 @@ impl Quintic {
 
     /// The quintic from rest at `q0` to rest at `qf` (what Robotics Toolbox's `jtraj` does by default).
     pub fn rest_to_rest(t0: f64, tf: f64, q0: f64, qf: f64) -> Result<Self, TrajectoryError> {
-        Self::new(t0, tf, State::rest(q0), State::rest(qf))
+        Self::new(t0, tf, Setpoint::rest(q0), Setpoint::rest(qf))
     }
 
     /// The monomial coefficients `[a0, ..., a5]` of `q = Σ a_k τ^k` in the local time `τ = t - t0`.
@@ -76,12 +76,12 @@ impl Profile for Quintic {
         self.tf
     }
 
-    fn eval(&self, t: f64) -> State {
+    fn eval(&self, t: f64) -> Setpoint {
         if t < self.t0 {
-            return State::rest(self.start.q);
+            return Setpoint::rest(self.start.q);
         }
         if t > self.tf {
-            return State::rest(self.end.q);
+            return Setpoint::rest(self.end.q);
         }
         let big_t = self.duration;
         let s = (t - self.t0) / big_t;
@@ -112,6 +112,6 @@ impl Profile for Quintic {
             + big_t * big_t * (a0 * h2 + a1 * h3);
         let qd = self.slope * d5 + v0 * d1 + v1 * d4 + big_t * (a0 * d2 + a1 * d3);
         let qdd = (self.slope * dd5 + v0 * dd1 + v1 * dd4) / big_t + a0 * dd2 + a1 * dd3;
-        State { q, qd, qdd }
+        Setpoint { q, qd, qdd }
     }
 }

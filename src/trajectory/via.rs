@@ -3,7 +3,9 @@
 //!
 //! Both store their knots on the heap, so they need the `std` feature.
 
-use super::{Location, MultiProfile, Profile, State, TrajectoryError, abs, finite, positive, sqrt};
+use super::{
+    Location, MultiProfile, Profile, Setpoint, TrajectoryError, abs, finite, positive, sqrt,
+};
 
 /// Checks the via points and returns the number of joints: at least two points, all finite and
 /// of one common, non-zero length.
@@ -347,14 +349,14 @@ impl CubicSpline {
     }
 
     /// The state of one joint (`joint < dof`) at time `t`.
-    fn joint_state(&self, t: f64, joint: usize) -> State {
+    fn joint_setpoint(&self, t: f64, joint: usize) -> Setpoint {
         let dof = self.dof;
         let last = self.times.len() - 1;
         if t < self.times[0] {
-            return State::rest(self.values[joint]);
+            return Setpoint::rest(self.values[joint]);
         }
         if t > self.times[last] {
-            return State::rest(self.values[last * dof + joint]);
+            return Setpoint::rest(self.values[last * dof + joint]);
         }
         let k = segment_index(&self.times, t);
         let h = self.times[k + 1] - self.times[k];
@@ -368,7 +370,7 @@ impl CubicSpline {
             self.accelerations[k * dof + joint],
             self.accelerations[(k + 1) * dof + joint],
         );
-        State {
+        Setpoint {
             q: a * y0 + b * y1 + ((a * a * a - a) * m0 + (b * b * b - b) * m1) * h * h / 6.0,
             qd: (y1 - y0) / h + ((1.0 - 3.0 * a * a) * m0 + (3.0 * b * b - 1.0) * m1) * h / 6.0,
             qdd: a * m0 + b * m1,
@@ -570,16 +572,16 @@ impl BlendedSegments {
     }
 
     /// The state of one joint (`joint < dof`) at time `t`.
-    fn joint_state(&self, t: f64, joint: usize) -> State {
+    fn joint_setpoint(&self, t: f64, joint: usize) -> Setpoint {
         let dof = self.dof;
         let m = self.corners.len() - 1;
         let point = |k: usize| self.values[k * dof + joint];
         let velocity = |k: usize| self.velocities[k * dof + joint];
         if t < self.times[0] {
-            return State::rest(point(0));
+            return Setpoint::rest(point(0));
         }
         if t > self.times[m] {
-            return State::rest(point(m));
+            return Setpoint::rest(point(m));
         }
         let half = 0.5 * self.blend_time;
         // The first blend that has not ended at t (the last one at t = tf).
@@ -600,7 +602,7 @@ impl BlendedSegments {
                 } else {
                     (s + half).max(0.0)
                 };
-                State {
+                Setpoint {
                     q: point(k) + velocity(k) * s + 0.5 * acceleration * since * since,
                     qd: velocity(k) + acceleration * since,
                     qdd: acceleration,
@@ -612,7 +614,7 @@ impl BlendedSegments {
                 } else {
                     (half - s).max(0.0)
                 };
-                State {
+                Setpoint {
                     q: point(k) + velocity(k + 1) * s + 0.5 * acceleration * until * until,
                     qd: velocity(k + 1) - acceleration * until,
                     qdd: acceleration,
@@ -620,7 +622,7 @@ impl BlendedSegments {
             }
         } else {
             // Linear segment k, through via point k at its corner time.
-            State {
+            Setpoint {
                 q: point(k) + velocity(k) * s,
                 qd: velocity(k),
                 qdd: 0.0,
@@ -634,7 +636,7 @@ impl BlendedSegments {
 trait ViaPath {
     fn joints(&self) -> usize;
     fn knot_times(&self) -> &[f64];
-    fn eval_joint(&self, t: f64, joint: usize) -> State;
+    fn eval_joint(&self, t: f64, joint: usize) -> Setpoint;
 }
 
 impl ViaPath for CubicSpline {
@@ -644,8 +646,8 @@ impl ViaPath for CubicSpline {
     fn knot_times(&self) -> &[f64] {
         &self.times
     }
-    fn eval_joint(&self, t: f64, joint: usize) -> State {
-        self.joint_state(t, joint)
+    fn eval_joint(&self, t: f64, joint: usize) -> Setpoint {
+        self.joint_setpoint(t, joint)
     }
 }
 
@@ -656,8 +658,8 @@ impl ViaPath for BlendedSegments {
     fn knot_times(&self) -> &[f64] {
         &self.times
     }
-    fn eval_joint(&self, t: f64, joint: usize) -> State {
-        self.joint_state(t, joint)
+    fn eval_joint(&self, t: f64, joint: usize) -> Setpoint {
+        self.joint_setpoint(t, joint)
     }
 }
 
@@ -678,7 +680,7 @@ impl<P: ViaPath> MultiProfile for P {
         self.knot_times()[self.knot_times().len() - 1]
     }
 
-    fn eval_into(&self, t: f64, out: &mut [State]) -> Result<(), TrajectoryError> {
+    fn eval_into(&self, t: f64, out: &mut [Setpoint]) -> Result<(), TrajectoryError> {
         if out.len() != self.joints() {
             return Err(TrajectoryError::LengthMismatch {
                 name: "out",
@@ -707,7 +709,7 @@ impl<P: ViaPath> Profile for JointView<'_, P> {
         MultiProfile::end_time(self.path)
     }
 
-    fn eval(&self, t: f64) -> State {
+    fn eval(&self, t: f64) -> Setpoint {
         self.path.eval_joint(t, self.joint)
     }
 }

@@ -61,14 +61,14 @@ impl<'c> Derivation<'c> {
             .get_or_init(|| gravity::gravity_polys(self.chain))
     }
 
-    /// D(q) as Horner-factored expressions in `g`, flattened row-major.
-    pub fn mass_matrix_exprs(&self, g: &SharedGraph) -> Vec<E> {
+    /// D(q) as Horner-factored expressions in `graph`, flattened row-major.
+    pub fn mass_matrix_exprs(&self, graph: &SharedGraph) -> Vec<E> {
         let flat: Vec<Poly> = self.mass_matrix_polys().iter().flatten().cloned().collect();
-        polys_to_exprs(&flat, g, self.chain)
+        polys_to_exprs(&flat, graph, self.chain)
     }
 
-    /// `c[i][j][k]` as Horner-factored expressions in `g`, flattened `(i·n + j)·n + k`.
-    pub fn christoffel_exprs(&self, g: &SharedGraph) -> Vec<E> {
+    /// `c[i][j][k]` as Horner-factored expressions in `graph`, flattened `(i·n + j)·n + k`.
+    pub fn christoffel_exprs(&self, graph: &SharedGraph) -> Vec<E> {
         let flat: Vec<Poly> = self
             .christoffel_polys()
             .iter()
@@ -76,12 +76,12 @@ impl<'c> Derivation<'c> {
             .flatten()
             .cloned()
             .collect();
-        polys_to_exprs(&flat, g, self.chain)
+        polys_to_exprs(&flat, graph, self.chain)
     }
 
-    /// g(q) as Horner-factored expressions in `g`.
-    pub fn gravity_exprs(&self, g: &SharedGraph) -> Vec<E> {
-        polys_to_exprs(self.gravity_polys(), g, self.chain)
+    /// g(q) as Horner-factored expressions in `graph`.
+    pub fn gravity_exprs(&self, graph: &SharedGraph) -> Vec<E> {
+        polys_to_exprs(self.gravity_polys(), graph, self.chain)
     }
 
     /// Whether the normal form is small enough for its candidates to be worth building.
@@ -147,9 +147,9 @@ pub fn poly_chain(chain: ChainRef<'_>) -> RingChain<'_, P> {
 pub fn cheapest(candidates: Vec<(SharedGraph, Vec<E>)>) -> (SharedGraph, Vec<E>) {
     candidates
         .into_iter()
-        .min_by_key(|(g, outs)| {
-            let roots: Vec<_> = outs.iter().map(|e| e.id_in(g)).collect();
-            count(&g.borrow(), roots).total()
+        .min_by_key(|(graph, outs)| {
+            let roots: Vec<_> = outs.iter().map(|e| e.id_in(graph)).collect();
+            count(&graph.borrow(), roots).total()
         })
         .expect("at least one candidate")
 }
@@ -166,9 +166,9 @@ pub fn parallel_runs(chain: ChainRef<'_>) -> Basis {
     Basis { start }
 }
 
-/// Polynomials as expressions in `g`, Horner-factored; each polynomial is written in
+/// Polynomials as expressions in `graph`, Horner-factored; each polynomial is written in
 /// cumulative angles of parallel axes when that gives fewer terms.
-pub fn polys_to_exprs(polys: &[Poly], g: &SharedGraph, chain: ChainRef<'_>) -> Vec<E> {
+pub fn polys_to_exprs(polys: &[Poly], graph: &SharedGraph, chain: ChainRef<'_>) -> Vec<E> {
     let v = vars(chain);
     let runs = parallel_runs(chain);
     let plain = Basis::joint_angles(chain.dof());
@@ -176,7 +176,7 @@ pub fn polys_to_exprs(polys: &[Poly], g: &SharedGraph, chain: ChainRef<'_>) -> V
         .iter()
         .map(|p| {
             if runs == plain {
-                return crate::poly::to_expr(p, g, &v);
+                return crate::poly::to_expr(p, graph, &v);
             }
             let mut q = p.clone();
             for k in 1..chain.dof() {
@@ -185,9 +185,9 @@ pub fn polys_to_exprs(polys: &[Poly], g: &SharedGraph, chain: ChainRef<'_>) -> V
                 }
             }
             if q.terms().len() < p.terms().len() {
-                crate::poly::to_expr_in(&q, g, &v, &runs)
+                crate::poly::to_expr_in(&q, graph, &v, &runs)
             } else {
-                crate::poly::to_expr(p, g, &v)
+                crate::poly::to_expr(p, graph, &v)
             }
         })
         .collect()

@@ -1,0 +1,22 @@
+//! Every robot the tests use, expanded by `robot!` once for the whole binary: the catalogue
+//! of `robots/` and the fixtures of `tests/fixtures/` (each fixture says what it exercises).
+//! Test modules import what they need, under another name where they read better:
+//! `use crate::catalogue::puma560 as puma;`.
+
+// The catalogue, robots/*.toml.
+dhgen::robot!(pub mod cylindrical = "robots/cylindrical.toml");
+dhgen::robot!(pub mod panda = "robots/panda.toml");
+dhgen::robot!(pub mod planar_elbow = "robots/planar_elbow.toml");
+dhgen::robot!(pub mod puma560 = "robots/puma560.toml");
+dhgen::robot!(pub mod scara = "robots/scara.toml");
+dhgen::robot!(pub mod stanford = "robots/stanford.toml");
+dhgen::robot!(pub mod ur5 = "robots/ur5.toml");
+
+// Fixtures, tests/fixtures/*.toml.
+dhgen::robot!(pub mod craig = "tests/fixtures/craig.toml");
+dhgen::robot!(pub mod elbow = "tests/fixtures/elbow.toml");
+dhgen::robot!(pub mod gantry = "tests/fixtures/gantry.toml");
+dhgen::robot!(pub mod odd = "tests/fixtures/odd.toml");
+dhgen::robot!(pub mod offset_elbow = "tests/fixtures/offset_elbow.toml");
+dhgen::robot!(pub mod puma_offsets = "tests/fixtures/puma_offsets.toml");
+dhgen::robot!(pub mod shoulder_singular_elbow = "tests/fixtures/shoulder_singular_elbow.toml");

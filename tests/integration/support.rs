@@ -1,0 +1,66 @@
+//! Helpers shared by the test modules: loading robots for the runtime path, a comparison
+//! helper, and the counting global allocator behind the "allocates nothing" tests.
+
+use dhgen::Robot;
+use std::alloc::{GlobalAlloc, Layout, System};
+use std::cell::Cell;
+use std::path::PathBuf;
+
+/// A catalogue robot, `robots/<name>.toml`, for the runtime path.
+pub fn runtime(name: &str) -> Robot {
+    Robot::from_toml_file(format!("{}/robots/{name}.toml", env!("CARGO_MANIFEST_DIR"))).unwrap()
+}
+
+/// The path of the fixture `tests/fixtures/<name>.toml`.
+pub fn fixture_path(name: &str) -> PathBuf {
+    PathBuf::from(format!(
+        "{}/tests/fixtures/{name}.toml",
+        env!("CARGO_MANIFEST_DIR")
+    ))
+}
+
+/// The fixture `tests/fixtures/<name>.toml`, for the runtime path.
+pub fn fixture(name: &str) -> Robot {
+    Robot::from_toml_file(fixture_path(name)).unwrap()
+}
+
+/// The largest magnitude among `values` (0 for none).
+pub fn max_abs(values: impl IntoIterator<Item = f64>) -> f64 {
+    values.into_iter().map(f64::abs).fold(0.0, f64::max)
+}
+
+/// Counts the heap allocations made by each thread (tests run on several threads), to check
+/// that code paths allocate nothing: see [`allocations_during`].
+struct CountingAllocator;
+
+thread_local! {
+    static ALLOCATIONS: Cell<usize> = const { Cell::new(0) };
+}
+
+// A counting global allocator is the one way to prove "no allocation": it must implement the
+// unsafe `GlobalAlloc` trait, delegating to the system allocator.
+#[expect(
+    unsafe_code,
+    reason = "a GlobalAlloc that counts and delegates to System"
+)]
+unsafe impl GlobalAlloc for CountingAllocator {
+    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
+        // try_with: the thread-local may already be gone while a thread shuts down.
+        let _ = ALLOCATIONS.try_with(|n| n.set(n.get() + 1));
+        unsafe { System.alloc(layout) }
+    }
+
+    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
+        unsafe { System.dealloc(ptr, layout) }
+    }
+}
+
+#[global_allocator]
+static GLOBAL: CountingAllocator = CountingAllocator;
+
+/// Runs `f` and returns how many allocations it made on this thread.
+pub fn allocations_during(f: impl FnOnce()) -> usize {
+    let before = ALLOCATIONS.with(Cell::get);
+    f();
+    ALLOCATIONS.with(Cell::get) - before
+}

@@ -1,0 +1,349 @@
+//! Cubic and quintic point-to-point profiles (section 6.5.1.1), checked against an independent
+//! solve of the boundary-condition systems (equation 15 and its quintic analogue).
+
+use crate::trajectory_support::*;
+use dhgen::nalgebra::{SMatrix, SVector};
+use dhgen::trajectory::{Cubic, Profile, Quintic, Setpoint, TrajectoryError};
+use proptest::prelude::*;
+
+/// Coefficients `c` of `q = Σ c_k s^k` in the normalized time `s = (t - t0)/T`, solved by LU from
+/// the boundary conditions: `q(0) = q0, q'(0) = v0 T, q(1) = qf, q'(1) = vf T` (equation 15 with
+/// `t0 = 0, tf = 1` after scaling time).
+fn cubic_by_lu(big_t: f64, q0: f64, v0: f64, qf: f64, vf: f64) -> [f64; 4] {
+    #[rustfmt::skip]
+    let a = SMatrix::<f64, 4, 4>::new(
+        1.0, 0.0, 0.0, 0.0,
+        0.0, 1.0, 0.0, 0.0,
+        1.0, 1.0, 1.0, 1.0,
+        0.0, 1.0, 2.0, 3.0,
+    );
+    let b = SVector::<f64, 4>::new(q0, v0 * big_t, qf, vf * big_t);
+    let c = a
+        .lu()
+        .solve(&b)
+        .expect("the matrix of equation 15 is invertible");
+    [c[0], c[1], c[2], c[3]]
+}
+
+/// As [`cubic_by_lu`] for the quintic: rows are q, q', q'' at s = 0 and at s = 1.
+fn quintic_by_lu(big_t: f64, start: Setpoint, end: Setpoint) -> [f64; 6] {
+    #[rustfmt::skip]
+    let a = SMatrix::<f64, 6, 6>::from_row_slice(&[
+        1.0, 0.0, 0.0, 0.0, 0.0, 0.0,
+        0.0, 1.0, 0.0, 0.0, 0.0, 0.0,
+        0.0, 0.0, 2.0, 0.0, 0.0, 0.0,
+        1.0, 1.0, 1.0, 1.0, 1.0, 1.0,
+        0.0, 1.0, 2.0, 3.0, 4.0, 5.0,
+        0.0, 0.0, 2.0, 6.0, 12.0, 20.0,
+    ]);
+    let t2 = big_t * big_t;
+    let b = SVector::<f64, 6>::from_row_slice(&[
+        start.q,
+        start.qd * big_t,
+        start.qdd * t2,
+        end.q,
+        end.qd * big_t,
+        end.qdd * t2,
+    ]);
+    let c = a
+        .lu()
+        .solve(&b)
+        .expect("the quintic boundary matrix is invertible");
+    core::array::from_fn(|k| c[k])
+}
+
+/// The polynomial `Σ c_k s^k` with `s = (t - t0)/T`, and its first three time derivatives.
+fn poly_eval(c: &[f64], big_t: f64, s: f64) -> [f64; 4] {
+    let mut out = [0.0; 4];
+    for (d, slot) in out.iter_mut().enumerate() {
+        let mut sum = 0.0;
+        for (k, &ck) in c.iter().enumerate().skip(d) {
+            let falling: f64 = (k - d + 1..=k).map(|x| x as f64).product();
+            sum += ck * falling * s.powi((k - d) as i32);
+        }
+        *slot = sum / big_t.powi(d as i32);
+    }
+    out
+}
+
+/// Bounds of |q|, |q̇|, |q̈|, |q⃛| on s in [0, 1]: sums of the absolute coefficients.
+fn poly_bounds(c: &[f64], big_t: f64) -> [f64; 4] {
+    core::array::from_fn(|d| {
+        let sum: f64 = c
+            .iter()
+            .enumerate()
+            .skip(d)
+            .map(|(k, ck)| ck.abs() * (k - d + 1..=k).map(|x| x as f64).product::<f64>())
+            .sum();
+        sum / big_t.powi(d as i32)
+    })
+}
+
+fn start_time() -> impl Strategy<Value = f64> {
+    -100.0..100.0f64
+}
+
+/// Durations from 1 ms to 100 s, log-uniform.
+fn duration() -> impl Strategy<Value = f64> {
+    (-3.0..2.0f64).prop_map(|e| 10f64.powf(e))
+}
+
+fn position() -> impl Strategy<Value = f64> {
+    prop_oneof![4 => -100.0..100.0f64, 1 => Just(0.0), 1 => -1e-3..1e-3f64]
+}
+
+/// A velocity or acceleration as a multiple of (100 / T^order).
+fn rate() -> impl Strategy<Value = f64> {
+    prop_oneof![3 => -2.0..2.0f64, 1 => Just(0.0)]
+}
+
+/// Checks a polynomial profile against its LU coefficients: boundary values, interior values,
+/// derivative consistency, holding outside.
+fn check_polynomial<P: Profile>(
+    p: &P,
+    c: &[f64],
+    t0: f64,
+    big_t: f64,
+    start: Setpoint,
+    end: Setpoint,
+) {
+    let bounds = poly_bounds(c, big_t);
+    let scales = Scales {
+        q: bounds[0],
+        qd: bounds[1],
+        qdd: bounds[2],
+    };
+    let at_end = poly_eval(c, big_t, 1.0);
+    let at_start = poly_eval(c, big_t, 0.0);
+    // Boundary conditions: the prescribed ones, and the unprescribed accelerations of the cubic
+    // as the independent solve gives them.
+    assert_state(
+        "state at t0",
+        p.eval(t0),
+        Setpoint::new(start.q, start.qd, at_start[2]),
+        scales,
+    );
+    assert_state(
+        "state at tf",
+        p.eval(p.end_time()),
+        Setpoint::new(end.q, end.qd, at_end[2]),
+        scales,
+    );
+    assert_close("prescribed qdd at t0", at_start[2], start.qdd, scales.qdd);
+    assert_close("prescribed qdd at tf", at_end[2], end.qdd, scales.qdd);
+    for t in interior_times(t0, p.end_time(), 9) {
+        let s = (t - t0) / big_t;
+        let want = poly_eval(c, big_t, s);
+        let got = p.eval(t);
+        assert_state(
+            &format!("interior t = {t}"),
+            got,
+            Setpoint::new(want[0], want[1], want[2]),
+            scales,
+        );
+    }
+    let derivative_bounds = Bounds {
+        qd: bounds[1],
+        qdd: bounds[2],
+        jerk: Some(bounds[3]),
+    };
+    let h = 1e-4 * big_t;
+    for t in interior_times(t0 + h, p.end_time() - h, 7) {
+        assert_derivatives_at(p, t, h, derivative_bounds, scales);
+    }
+    assert_held_outside(p, start.q, end.q);
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(10_000))]
+
+    #[test]
+    fn cubic_matches_equation_15(t0 in start_time(), big_t in duration(), q0 in position(), qf in position(),
+                                 v0 in rate(), vf in rate()) {
+        let (v0, vf) = (v0 * 100.0 / big_t, vf * 100.0 / big_t);
+        let tf = t0 + big_t;
+        let big_t = tf - t0;
+        let p = Cubic::new(t0, tf, q0, v0, qf, vf).unwrap();
+        prop_assert_eq!(p.duration(), big_t);
+        let c = cubic_by_lu(big_t, q0, v0, qf, vf);
+        // The cubic cannot prescribe accelerations: pass the solved ones through.
+        let [_, _, a0, _] = poly_eval(&c, big_t, 0.0);
+        let [_, _, af, _] = poly_eval(&c, big_t, 1.0);
+        check_polynomial(&p, &c, t0, big_t, Setpoint::new(q0, v0, a0), Setpoint::new(qf, vf, af));
+        // The monomial coefficients in τ = t - t0 are c_k / T^k.
+        let scale = poly_bounds(&c, big_t)[0];
+        for (k, (&a, &ck)) in p.coefficients().iter().zip(&c).enumerate() {
+            assert_close(&format!("a{k} T^{k}"), a * big_t.powi(k as i32), ck, scale);
+        }
+    }
+
+    #[test]
+    fn quintic_matches_its_boundary_system(t0 in start_time(), big_t in duration(), q0 in position(), qf in position(),
+                                           v0 in rate(), vf in rate(), a0 in rate(), af in rate()) {
+        let (v0, vf) = (v0 * 100.0 / big_t, vf * 100.0 / big_t);
+        let (a0, af) = (a0 * 100.0 / (big_t * big_t), af * 100.0 / (big_t * big_t));
+        let tf = t0 + big_t;
+        let big_t = tf - t0;
+        let (start, end) = (Setpoint::new(q0, v0, a0), Setpoint::new(qf, vf, af));
+        let p = Quintic::new(t0, tf, start, end).unwrap();
+        let c = quintic_by_lu(big_t, start, end);
+        check_polynomial(&p, &c, t0, big_t, start, end);
+        let scale = poly_bounds(&c, big_t)[0];
+        for (k, (&a, &ck)) in p.coefficients().iter().zip(&c).enumerate() {
+            assert_close(&format!("a{k} T^{k}"), a * big_t.powi(k as i32), ck, scale);
+        }
+    }
+
+    /// Rest to rest, both profiles are continuous in position and velocity across t0 and tf
+    /// (holding outside), the quintic in acceleration too; peak values match the closed forms.
+    #[test]
+    fn rest_to_rest_is_continuous_across_the_ends(t0 in start_time(), big_t in duration(), q0 in position(), qf in position()) {
+        let tf = t0 + big_t;
+        let big_t = tf - t0;
+        let dq = qf - q0;
+        let scale_q = q0.abs().max(qf.abs());
+        let eps = 1e-9 * big_t;
+
+        let cubic = Cubic::rest_to_rest(t0, tf, q0, qf).unwrap();
+        let scales = Scales { q: scale_q, qd: 1.5 * dq.abs() / big_t, qdd: 6.0 * dq.abs() / (big_t * big_t) };
+        let bounds = Bounds { qd: scales.qd, qdd: scales.qdd, jerk: None };
+        for t in [t0, tf] {
+            assert_continuous_at(&cubic, t, eps, bounds, scales);
+        }
+        // Peak velocity 1.5 Δ/T at the midpoint; acceleration ±6 Δ/T² at the ends.
+        let t_mid = t0 + 0.5 * big_t;
+        let mid = cubic.eval(t_mid);
+        assert_close("cubic peak velocity", mid.qd, 1.5 * dq / big_t, scales.qd);
+        // t_mid is only the midpoint up to the rounding of t0 + T/2: use its actual s.
+        let s = (t_mid - t0) / big_t;
+        assert_close("cubic midpoint", mid.q, q0 + dq * s * s * (3.0 - 2.0 * s), scale_q);
+        assert_close("cubic qdd(t0)", cubic.eval(t0).qdd, 6.0 * dq / (big_t * big_t), scales.qdd);
+        assert_close("cubic qdd(tf)", cubic.eval(tf).qdd, -6.0 * dq / (big_t * big_t), scales.qdd);
+
+        let quintic = Quintic::rest_to_rest(t0, tf, q0, qf).unwrap();
+        let peak_a = 10.0 / 3f64.sqrt() * dq.abs() / (big_t * big_t);
+        let scales = Scales { q: scale_q, qd: 1.875 * dq.abs() / big_t, qdd: peak_a };
+        let bounds = Bounds { qd: scales.qd, qdd: peak_a, jerk: Some(60.0 * dq.abs() / big_t.powi(3)) };
+        for t in [t0, tf] {
+            assert_continuous_at(&quintic, t, eps, bounds, scales);
+        }
+        let mid = quintic.eval(t0 + 0.5 * big_t);
+        assert_close("quintic peak velocity", mid.qd, 1.875 * dq / big_t, scales.qd);
+        // Peak acceleration 10/√3 Δ/T² at s = 1/2 - √3/6.
+        let s_peak = 0.5 - 3f64.sqrt() / 6.0;
+        assert_close("quintic peak acceleration", quintic.eval(t0 + s_peak * big_t).qdd, peak_a * dq.signum(), scales.qdd);
+    }
+
+    /// A negative move is the mirror image of the positive one.
+    #[test]
+    fn negative_moves_mirror_positive_ones(t0 in start_time(), big_t in duration(), q0 in position(), qf in position(),
+                                           v0 in rate(), vf in rate()) {
+        let (v0, vf) = (v0 * 100.0 / big_t, vf * 100.0 / big_t);
+        let tf = t0 + big_t;
+        let p = Cubic::new(t0, tf, q0, v0, qf, vf).unwrap();
+        let m = Cubic::new(t0, tf, -q0, -v0, -qf, -vf).unwrap();
+        let pq = Quintic::rest_to_rest(t0, tf, q0, qf).unwrap();
+        let mq = Quintic::rest_to_rest(t0, tf, -q0, -qf).unwrap();
+        for t in interior_times(t0 - big_t, tf + big_t, 11) {
+            let (a, b) = (p.eval(t), m.eval(t));
+            prop_assert_eq!((a.q, a.qd, a.qdd), (-b.q, -b.qd, -b.qdd));
+            let (a, b) = (pq.eval(t), mq.eval(t));
+            prop_assert_eq!((a.q, a.qd, a.qdd), (-b.q, -b.qd, -b.qdd));
+        }
+    }
+}
+
+/// Figure 4 of the text: q0 = 10°, qf = -20° on [0, 1] gives q = 10 - 90 t² + 60 t³.
+#[test]
+fn figure_4_cubic() {
+    let p = Cubic::rest_to_rest(0.0, 1.0, 10.0, -20.0).unwrap();
+    for i in 0..=20 {
+        let t = i as f64 / 20.0;
+        let want = Setpoint::new(
+            10.0 - 90.0 * t * t + 60.0 * t * t * t,
+            -180.0 * t + 180.0 * t * t,
+            -180.0 + 360.0 * t,
+        );
+        assert_state(
+            &format!("t = {t}"),
+            p.eval(t),
+            want,
+            Scales {
+                q: 20.0,
+                qd: 45.0,
+                qdd: 180.0,
+            },
+        );
+    }
+    assert_eq!(p.coefficients(), [10.0, 0.0, -90.0, 60.0]);
+}
+
+#[test]
+fn tf_not_after_t0_is_rejected() {
+    for (t0, tf) in [(1.0, 1.0), (2.0, 1.0)] {
+        let e = Cubic::rest_to_rest(t0, tf, 0.0, 1.0).unwrap_err();
+        assert_eq!(e, TrajectoryError::EmptyTimeInterval { t0, tf });
+        assert_eq!(
+            e.to_string(),
+            format!("final time tf = {tf} must be greater than start time t0 = {t0}")
+        );
+        assert_eq!(Quintic::rest_to_rest(t0, tf, 0.0, 1.0).unwrap_err(), e);
+    }
+}
+
+#[test]
+fn non_finite_inputs_are_named() {
+    let nan = f64::NAN;
+    let cases: [(&str, Result<Cubic, TrajectoryError>); 6] = [
+        ("t0", Cubic::new(nan, 1.0, 0.0, 0.0, 1.0, 0.0)),
+        ("tf", Cubic::new(0.0, f64::INFINITY, 0.0, 0.0, 1.0, 0.0)),
+        ("q0", Cubic::new(0.0, 1.0, nan, 0.0, 1.0, 0.0)),
+        ("v0", Cubic::new(0.0, 1.0, 0.0, nan, 1.0, 0.0)),
+        ("qf", Cubic::new(0.0, 1.0, 0.0, 0.0, f64::NEG_INFINITY, 0.0)),
+        ("vf", Cubic::new(0.0, 1.0, 0.0, 0.0, 1.0, nan)),
+    ];
+    for (name, result) in cases {
+        match result {
+            Err(TrajectoryError::NonFinite { name: got, .. }) => assert_eq!(got, name),
+            other => panic!("{name}: expected NonFinite, got {other:?}"),
+        }
+    }
+    let ok = Setpoint::rest(0.0);
+    let bad = |qd, qdd| Setpoint::new(1.0, qd, qdd);
+    for (name, start, end) in [
+        ("v0", Setpoint::new(0.0, nan, 0.0), Setpoint::rest(1.0)),
+        ("a0", Setpoint::new(0.0, 0.0, nan), Setpoint::rest(1.0)),
+        ("vf", ok, bad(nan, 0.0)),
+        ("af", ok, bad(0.0, f64::INFINITY)),
+    ] {
+        let e = Quintic::new(0.0, 1.0, start, end).unwrap_err();
+        assert!(
+            matches!(e, TrajectoryError::NonFinite { name: got, .. } if got == name),
+            "{name}: {e:?}"
+        );
+        assert!(e.to_string().starts_with(&format!("{name} = ")), "{e}");
+    }
+    // Finite inputs whose difference overflows.
+    let e = Cubic::rest_to_rest(-1e308, 1e308, 0.0, 1.0).unwrap_err();
+    assert!(
+        matches!(
+            e,
+            TrajectoryError::NonFinite {
+                name: "tf - t0",
+                ..
+            }
+        ),
+        "{e:?}"
+    );
+    let e = Quintic::rest_to_rest(0.0, 1.0, -1e308, 1e308).unwrap_err();
+    assert!(
+        matches!(
+            e,
+            TrajectoryError::NonFinite {
+                name: "qf - q0",
+                ..
+            }
+        ),
+        "{e:?}"
+    );
+}
