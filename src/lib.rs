@@ -64,6 +64,16 @@ pub use dhgen_macros::robot;
 // Lets generated code name `::dhgen` inside this crate's own tests and docs too.
 extern crate self as dhgen;
 
+/// What `robot!` generates, browsable: the PUMA 560 of `robots/puma560.toml`, expanded here
+/// for the documentation only (this module exists in `cargo doc` builds, not in the
+/// library). Every generated module has the same items: `DOF`, `CHAIN` and the other
+/// constants, `State` with one method per quantity, a free function per quantity, `Robot`
+/// implementing [`Arm`] and [`ArmDynamics`], and `Terms`.
+#[cfg(doc)]
+pub mod example {
+    crate::robot!(pub mod puma560 = "robots/puma560.toml");
+}
+
 mod arm;
 mod joints;
 mod real;

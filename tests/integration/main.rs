@@ -16,7 +16,7 @@
 //!
 //! Reference values are in `tests/data/`; proptest's saved failure cases in
 //! `tests/proptest-regressions/<area>.txt`, where proptest looks for them. The compile-fail
-//! tests of `robot!` are a binary of their own (`tests/compile_fail.rs`, trybuild).
+//! tests of `robot!` live with the macro (`macros/tests/compile_fail.rs`, trybuild).
 
 mod catalogue;
 mod support;

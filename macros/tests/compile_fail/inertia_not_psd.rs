@@ -1,6 +1,6 @@
 // An inertia tensor with a negative principal moment (rejected even with
 // `allow_nonphysical_inertia`, which only turns off the triangle inequality).
-dhgen::robot! {
+dhgen_macros::robot! {
     pub mod arm {
         convention: standard,
         allow_nonphysical_inertia: true,

@@ -2,8 +2,13 @@
 //! the build with the message committed next to it (`*.stderr`), pointing at the offending
 //! token (inline form) or naming the file, line, link and field (file form).
 //!
-//! Regenerate the snapshots with `TRYBUILD=overwrite cargo test --test compile_fail`, then
-//! read every changed `.stderr` before committing it.
+//! The cases invoke the macro as `dhgen_macros::robot!`, which `dhgen::robot!` re-exports:
+//! the same macro, checked without building the rest of dhgen (nalgebra, the planning
+//! stack), since a rejected description never reaches generated code.
+//!
+//! Regenerate the snapshots with
+//! `TRYBUILD=overwrite cargo test -p dhgen-macros --test compile_fail`, then read every
+//! changed `.stderr` before committing it.
 
 use std::path::{Path, PathBuf};
 use std::process::Command;

@@ -1,5 +1,5 @@
 // A field given twice (TOML forbids this itself; the macro form must check it).
-dhgen::robot! {
+dhgen_macros::robot! {
     pub mod arm {
         convention: standard,
         links: [

@@ -1,5 +1,5 @@
 // A link without its required `alpha`: the error points at that link's table.
-dhgen::robot! {
+dhgen_macros::robot! {
     pub mod arm {
         convention: standard,
         links: [

@@ -1,5 +1,5 @@
 // `mass` alone: `com` and `inertia` must come with it.
-dhgen::robot! {
+dhgen_macros::robot! {
     pub mod arm {
         convention: standard,
         links: [

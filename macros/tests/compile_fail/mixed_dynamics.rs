@@ -1,5 +1,5 @@
 // Link 2 lacks the mass properties that link 1 has.
-dhgen::robot! {
+dhgen_macros::robot! {
     pub mod arm {
         convention: standard,
         links: [

@@ -1,5 +1,5 @@
 // A robot must have at least one link.
-dhgen::robot! {
+dhgen_macros::robot! {
     pub mod arm {
         convention: standard,
         links: [],

@@ -1,5 +1,5 @@
 // Every element of `links` is a table.
-dhgen::robot! {
+dhgen_macros::robot! {
     pub mod arm {
         convention: standard,
         links: [1.0],

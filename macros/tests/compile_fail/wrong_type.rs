@@ -1,5 +1,5 @@
 // A number where a keyword is expected.
-dhgen::robot! {
+dhgen_macros::robot! {
     pub mod arm {
         convention: standard,
         links: [

@@ -1,5 +1,5 @@
 // A joint type that is neither revolute nor prismatic.
-dhgen::robot! {
+dhgen_macros::robot! {
     pub mod arm {
         convention: standard,
         links: [

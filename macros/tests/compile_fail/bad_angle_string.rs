@@ -1,5 +1,5 @@
 // An angle string that cannot be parsed.
-dhgen::robot! {
+dhgen_macros::robot! {
     pub mod arm {
         convention: standard,
         links: [

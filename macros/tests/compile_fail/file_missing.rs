@@ -1,4 +1,4 @@
 // A description file that does not exist: the error points at the path literal.
-dhgen::robot!(pub mod arm = "tests/compile_fail/robots/no_such_robot.toml");
+dhgen_macros::robot!(pub mod arm = "tests/compile_fail/robots/no_such_robot.toml");
 
 fn main() {}

@@ -1,5 +1,5 @@
 // Joint limits with the lower bound above the upper one.
-dhgen::robot! {
+dhgen_macros::robot! {
     pub mod arm {
         convention: standard,
         links: [

@@ -1,7 +1,8 @@
-// Only `standard` and `modified` DH exist.
-dhgen::robot! {
+// Gravity has three components.
+dhgen_macros::robot! {
     pub mod arm {
-        convention: craig,
+        convention: standard,
+        gravity: [0.0, -9.81],
         links: [
             { joint: revolute, a: 1.0, alpha: 0.0, d: 0.0, theta: 0.0 },
         ],

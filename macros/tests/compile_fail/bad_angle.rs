@@ -1,5 +1,5 @@
 // An angle written as tokens that do not read as an angle (`degrees` is not a unit).
-dhgen::robot! {
+dhgen_macros::robot! {
     pub mod arm {
         convention: standard,
         links: [

@@ -1,5 +1,5 @@
 // A misspelt field name: the error points at the key and suggests the right one.
-dhgen::robot! {
+dhgen_macros::robot! {
     pub mod arm {
         convention: standard,
         links: [
