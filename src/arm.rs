@@ -162,7 +162,8 @@ where
         qdd: &OVector<f64, Self::Dof>,
     ) -> OVector<f64, Self::Dof>;
 
-    /// Forward dynamics q̈(q, q̇, τ); `None` where D(q) is not positive definite.
+    /// Forward dynamics q̈(q, q̇, τ); `None` where D(q) is singular to working precision
+    /// (see [`cholesky_pivot_floor`](crate::cholesky_pivot_floor)).
     #[doc(alias = "aba")]
     #[doc(alias = "accel")]
     fn forward_dynamics(

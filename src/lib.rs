@@ -80,7 +80,7 @@ mod real;
 mod rigid;
 pub use arm::{Arm, ArmAllocator, ArmDynamics, JointVector};
 pub use joints::{JointArray, Joints};
-pub use real::Real;
+pub use real::{Real, cholesky_pivot_floor};
 
 // Rotations (section 3.5): ZYZ Euler angles, roll-pitch-yaw, axis-angle; what nalgebra lacks.
 pub mod rotation;

@@ -33,3 +33,23 @@ impl Real for f32 {
         libm::sincosf(self)
     }
 }
+
+/// The rule for "the inertia matrix is singular", the same on the generated and the runtime
+/// path: forward dynamics factors `D(q)` by Cholesky and returns `None` when a pivot (the
+/// square of a diagonal entry of the factor) is at or below
+/// `8 · n · ε · max_i D_ii`, with `ε` the scalar's machine epsilon.
+///
+/// Rounding errors of the factorisation are of the order of `n · ε · max_i D_ii`, so a pivot
+/// below the floor carries no information: the matrix is singular to working precision (a
+/// link without inertia about its own joint axis, for example), and the accelerations a
+/// solve would return are rounding noise. In `f64` the floor rejects matrices whose
+/// condition number exceeds about `10¹³/n`; in `f32` about `10⁵/n`.
+///
+/// ```
+/// // A 2-joint arm whose second joint moves no inertia: D = [[2, 0], [0, 1e-18]].
+/// let floor = dhgen::cholesky_pivot_floor(2, 2.0_f64);
+/// assert!(1e-18 <= floor && 1e-12 > floor);
+/// ```
+pub fn cholesky_pivot_floor<T: Real>(n: usize, max_diagonal: T) -> T {
+    nalgebra::convert::<f64, T>(8.0 * n as f64) * T::default_epsilon() * max_diagonal
+}

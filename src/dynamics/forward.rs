@@ -11,9 +11,11 @@ impl Robot {
     /// friction `viscous·q̇ + coulomb·sign(q̇)` (`sign(0) = 0`, so a joint at rest has no
     /// Coulomb friction). Inverts [`inverse_dynamics`](Robot::inverse_dynamics).
     ///
-    /// Returns `None` where `D(q)` is not positive definite (its Cholesky factorisation
-    /// fails), which a physical description never produces but a description with
-    /// massless links may.
+    /// Returns `None` where `D(q)` is singular to working precision: a pivot of its Cholesky
+    /// factorisation at or below [`cholesky_pivot_floor`](crate::cholesky_pivot_floor),
+    /// the rule generated code follows too. A physical description never produces it; a
+    /// description whose links carry no inertia about their joint axes (Robotics Toolbox's
+    /// UR3 and UR5) does, at every configuration.
     ///
     /// # Panics
     /// If `q`, `qd` or `tau` does not have `self.dof()` entries, or if the robot has no mass
@@ -35,7 +37,17 @@ impl Robot {
         let mut rhs = DVector::from_fn(self.dof(), |i, _| {
             tau[i] - bias[i] - self.friction(i, qd[i])
         });
+        let max_diagonal = d.diagonal().max();
         let cholesky = d.cholesky()?;
+        let floor = crate::cholesky_pivot_floor(self.dof(), max_diagonal);
+        if cholesky
+            .l_dirty()
+            .diagonal()
+            .iter()
+            .any(|l| (l * l).partial_cmp(&floor) != Some(core::cmp::Ordering::Greater))
+        {
+            return None;
+        }
         cholesky.solve_mut(&mut rhs);
         Some(rhs)
     }

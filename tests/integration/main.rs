@@ -39,6 +39,7 @@ mod planning_workspace;
 mod rotation;
 mod runtime_laws;
 mod runtime_reference;
+mod singular_inertia;
 mod trajectory_lspb;
 mod trajectory_min_time;
 mod trajectory_multi;

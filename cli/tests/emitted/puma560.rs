@@ -1424,7 +1424,7 @@ pub mod puma560 {
             let tau = self.bias_smooth(qd);
             tau
         }
-        ///Forward dynamics q̈ = D⁻¹(τ − C q̇ − g − friction) by an unrolled Cholesky solve; `None` where D(q) is not positive definite.
+        ///Forward dynamics q̈ = D⁻¹(τ − C q̇ − g − friction) by an unrolled Cholesky solve; `None` where D(q) is singular to working precision (a pivot at or below `dhgen::cholesky_pivot_floor`, the runtime path's rule too).
         #[doc(alias = "aba")]
         #[doc(alias = "accel")]
         #[doc(alias = "fdyn")]
@@ -1439,8 +1439,17 @@ pub mod puma560 {
             let dm = self.mass_matrix();
             let h = self.bias(qd);
             let rhs: [T; DOF] = ::core::array::from_fn(|i| tau[i] - h[i]);
+            let floor: T = ::dhgen::cholesky_pivot_floor(
+                DOF,
+                dm[(0, 0)]
+                    .max(dm[(1, 1)])
+                    .max(dm[(2, 2)])
+                    .max(dm[(3, 3)])
+                    .max(dm[(4, 4)])
+                    .max(dm[(5, 5)]),
+            );
             let l0_0: T = dm[(0, 0)];
-            if !(l0_0 > T::zero()) {
+            if !(l0_0 > floor) {
                 return None;
             }
             let l0_0: T = l0_0.sqrt();
@@ -1451,7 +1460,7 @@ pub mod puma560 {
             let l4_0: T = (dm[(4, 0)]) * inv0;
             let l5_0: T = (dm[(5, 0)]) * inv0;
             let l1_1: T = dm[(1, 1)] - l1_0 * l1_0;
-            if !(l1_1 > T::zero()) {
+            if !(l1_1 > floor) {
                 return None;
             }
             let l1_1: T = l1_1.sqrt();
@@ -1461,7 +1470,7 @@ pub mod puma560 {
             let l4_1: T = (dm[(4, 1)] - l4_0 * l1_0) * inv1;
             let l5_1: T = (dm[(5, 1)] - l5_0 * l1_0) * inv1;
             let l2_2: T = dm[(2, 2)] - l2_0 * l2_0 - l2_1 * l2_1;
-            if !(l2_2 > T::zero()) {
+            if !(l2_2 > floor) {
                 return None;
             }
             let l2_2: T = l2_2.sqrt();
@@ -1470,7 +1479,7 @@ pub mod puma560 {
             let l4_2: T = (dm[(4, 2)] - l4_0 * l2_0 - l4_1 * l2_1) * inv2;
             let l5_2: T = (dm[(5, 2)] - l5_0 * l2_0 - l5_1 * l2_1) * inv2;
             let l3_3: T = dm[(3, 3)] - l3_0 * l3_0 - l3_1 * l3_1 - l3_2 * l3_2;
-            if !(l3_3 > T::zero()) {
+            if !(l3_3 > floor) {
                 return None;
             }
             let l3_3: T = l3_3.sqrt();
@@ -1479,7 +1488,7 @@ pub mod puma560 {
             let l5_3: T = (dm[(5, 3)] - l5_0 * l3_0 - l5_1 * l3_1 - l5_2 * l3_2) * inv3;
             let l4_4: T = dm[(4, 4)] - l4_0 * l4_0 - l4_1 * l4_1 - l4_2 * l4_2
                 - l4_3 * l4_3;
-            if !(l4_4 > T::zero()) {
+            if !(l4_4 > floor) {
                 return None;
             }
             let l4_4: T = l4_4.sqrt();
@@ -1488,7 +1497,7 @@ pub mod puma560 {
                 - l5_3 * l4_3) * inv4;
             let l5_5: T = dm[(5, 5)] - l5_0 * l5_0 - l5_1 * l5_1 - l5_2 * l5_2
                 - l5_3 * l5_3 - l5_4 * l5_4;
-            if !(l5_5 > T::zero()) {
+            if !(l5_5 > floor) {
                 return None;
             }
             let l5_5: T = l5_5.sqrt();
@@ -5093,7 +5102,7 @@ pub mod puma560 {
     ) -> na::SVector<T, DOF> {
         State::for_bias(q).bias(qd)
     }
-    ///Forward dynamics q̈ = D⁻¹(τ − C q̇ − g − friction) by an unrolled Cholesky solve; `None` where D(q) is not positive definite.
+    ///Forward dynamics q̈ = D⁻¹(τ − C q̇ − g − friction) by an unrolled Cholesky solve; `None` where D(q) is singular to working precision (a pivot at or below `dhgen::cholesky_pivot_floor`, the runtime path's rule too).
     #[doc(alias = "aba")]
     #[doc(alias = "accel")]
     #[doc(alias = "fdyn")]

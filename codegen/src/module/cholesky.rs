@@ -4,14 +4,17 @@ use crate::graph::OpCount;
 use proc_macro2::TokenStream;
 use quote::{format_ident, quote};
 
-/// Unrolled `D x = rhs` by Cholesky, `None` on a non-positive pivot, with its operation
-/// count (the `n` subtractions forming `rhs = τ − bias` included).
+/// Unrolled `D x = rhs` by Cholesky, `None` on a pivot at or below
+/// `dhgen::cholesky_pivot_floor` (the rule both paths share), with its operation count (the
+/// `n` subtractions forming `rhs = τ − bias` and the floor's n − 1 comparisons and two
+/// products included).
 pub fn solve(n: usize) -> (TokenStream, OpCount) {
     // Per pivot j: j squares subtracted, one sqrt, one reciprocal; per entry below it, j
     // products subtracted and one scaling; forward and back substitution: a row's products
     // and one scaling each.
     let mut ops = OpCount {
-        add: n,
+        add: n + (n - 1),
+        mul: 2,
         ..OpCount::default()
     };
     for j in 0..n {
@@ -29,6 +32,10 @@ pub fn solve(n: usize) -> (TokenStream, OpCount) {
     let y = |i: usize| format_ident!("y{}", i);
     let x = |i: usize| format_ident!("x{}", i);
     let mut s = Vec::new();
+    let diagonal = (1..n).map(|j| quote!(.max(dm[(#j, #j)])));
+    s.push(quote! {
+        let floor: T = ::dhgen::cholesky_pivot_floor(DOF, dm[(0, 0)] #(#diagonal)*);
+    });
     for j in 0..n {
         let mut diag = quote!(dm[(#j, #j)]);
         for k in 0..j {
@@ -39,7 +46,7 @@ pub fn solve(n: usize) -> (TokenStream, OpCount) {
         let invj = inv(j);
         s.push(quote! {
             let #ljj: T = #diag;
-            if !(#ljj > T::zero()) {
+            if !(#ljj > floor) {
                 return None;
             }
             let #ljj: T = #ljj.sqrt();

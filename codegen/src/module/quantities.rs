@@ -431,7 +431,8 @@ pub const QUANTITIES: &[Quantity] = &[
     Quantity {
         name: "forward_dynamics",
         doc: "Forward dynamics q̈ = D⁻¹(τ − C q̇ − g − friction) by an unrolled Cholesky \
-              solve; `None` where D(q) is not positive definite.",
+              solve; `None` where D(q) is singular to working precision (a pivot at or below \
+              `dhgen::cholesky_pivot_floor`, the runtime path's rule too).",
         aliases: &["aba", "accel", "fdyn"],
         inputs: &[Input::Qd, Input::Tau],
         shape: Shape::OptionVector,
