@@ -126,7 +126,7 @@ impl Obstacle {
 /// from the box to the segment's bounding box in the box's own axes (a bounding sphere of a
 /// thin panel would be far too loose).
 #[derive(Clone, Debug)]
-struct Body {
+struct ObstacleShape {
     pose: Pose,
     core: Core,
     inflation: f64,
@@ -154,8 +154,8 @@ enum Core {
     Segment(Segment),
 }
 
-impl Body {
-    fn new(obstacle: &Obstacle) -> Body {
+impl ObstacleShape {
+    fn new(obstacle: &Obstacle) -> ObstacleShape {
         let bound = match obstacle {
             Obstacle::Sphere { center, radius } => Bound::Sphere {
                 center: *center,
@@ -174,8 +174,8 @@ impl Body {
                 radius: 0.5 * distance(a, b) + radius,
             },
         };
-        let (pose, core, inflation) = Body::core(obstacle);
-        Body {
+        let (pose, core, inflation) = ObstacleShape::core(obstacle);
+        ObstacleShape {
             pose,
             core,
             inflation,
@@ -334,7 +334,7 @@ pub struct Proximity {
 #[derive(Clone, Debug, Default)]
 pub struct Scene {
     obstacles: Vec<Obstacle>,
-    bodies: Vec<Body>,
+    shapes: Vec<ObstacleShape>,
 }
 
 impl Scene {
@@ -344,8 +344,8 @@ impl Scene {
             o.check()
                 .map_err(|reason| PlanError::InvalidObstacle { index, reason })?;
         }
-        let bodies = obstacles.iter().map(Body::new).collect();
-        Ok(Scene { obstacles, bodies })
+        let shapes = obstacles.iter().map(ObstacleShape::new).collect();
+        Ok(Scene { obstacles, shapes })
     }
 
     /// The obstacles, in the order given.
@@ -359,10 +359,10 @@ impl Scene {
         let (a, b) = (array(a), array(b));
         let mut probe = None;
         let mut nearest = f64::INFINITY;
-        for body in &self.bodies {
-            if body.lower_bound(&a, &b) < nearest {
+        for shape in &self.shapes {
+            if shape.lower_bound(&a, &b) < nearest {
                 let (probe, pose) = probe.get_or_insert_with(|| Probe::new(&a, &b));
-                nearest = nearest.min(body_distance(probe, pose, body));
+                nearest = nearest.min(shape_distance(probe, pose, shape));
             }
         }
         nearest.max(0.0)
@@ -379,26 +379,26 @@ impl Scene {
         let (aa, bb) = (array(a), array(b));
         let (probe, pose) = Probe::new(&aa, &bb);
         let mut best: Option<Proximity> = None;
-        for (index, body) in self.bodies.iter().enumerate() {
+        for (index, shape) in self.shapes.iter().enumerate() {
             let closest_yet = best.map_or(max_distance, |b| b.distance);
-            if body.lower_bound(&aa, &bb) >= closest_yet {
+            if shape.lower_bound(&aa, &bb) >= closest_yet {
                 continue;
             }
-            let reach = max_distance + body.inflation;
+            let reach = max_distance + shape.inflation;
             let found =
-                query::closest_points(&pose, probe.shape(), &body.pose, body.shape(), reach);
+                query::closest_points(&pose, probe.shape(), &shape.pose, shape.shape(), reach);
             let proximity = match found {
                 Ok(ClosestPoints::WithinMargin(on_robot, on_core)) => {
                     let (on_robot, on_core) = (point(on_robot), point(on_core));
                     let gap = on_robot - on_core;
                     let core_distance = gap.norm();
                     let on_obstacle = if core_distance > 0.0 {
-                        on_core + gap * (body.inflation / core_distance)
+                        on_core + gap * (shape.inflation / core_distance)
                     } else {
                         on_core
                     };
                     Proximity {
-                        distance: core_distance - body.inflation,
+                        distance: core_distance - shape.inflation,
                         on_robot,
                         on_obstacle,
                         obstacle: index,
@@ -408,7 +408,7 @@ impl Scene {
                 // meaningful direction. `Unsupported` cannot occur for these shape pairs;
                 // should it, count it as a collision rather than as free space.
                 Ok(ClosestPoints::Intersecting) | Err(_) => Proximity {
-                    distance: -body.inflation,
+                    distance: -shape.inflation,
                     on_robot: *a,
                     on_obstacle: *a,
                     obstacle: index,
@@ -425,10 +425,10 @@ impl Scene {
     }
 }
 
-fn body_distance(probe: &Probe, pose: &Pose, body: &Body) -> f64 {
+fn shape_distance(probe: &Probe, pose: &Pose, shape: &ObstacleShape) -> f64 {
     // `Unsupported` cannot occur for these shape pairs; should it, report contact.
-    query::distance(pose, probe.shape(), &body.pose, body.shape())
-        .map_or(0.0, |d| d.distance - body.inflation)
+    query::distance(pose, probe.shape(), &shape.pose, shape.shape())
+        .map_or(0.0, |d| d.distance - shape.inflation)
 }
 
 /// The collision model of an arm, read from its kinematic structure
@@ -789,12 +789,12 @@ where
             // The parry shape is only built when some obstacle is too near for the cheap
             // bound to clear it.
             let mut probe = None;
-            for body in &self.scene.bodies {
-                if body.lower_bound(&a, &b) > limit {
+            for shape in &self.scene.shapes {
+                if shape.lower_bound(&a, &b) > limit {
                     continue;
                 }
                 let (probe, pose) = probe.get_or_insert_with(|| Probe::new(&a, &b));
-                if body_distance(probe, pose, body) <= limit {
+                if shape_distance(probe, pose, shape) <= limit {
                     return false;
                 }
             }
