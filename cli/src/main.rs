@@ -5,7 +5,8 @@
 //!   the runtime path;
 //! - `dhgen emit ROBOT.toml [-o FILE] [--name MOD]`: the module `robot!` generates, formatted;
 //! - `dhgen latex ROBOT.toml`: D(q), c_ijk and g(q) as LaTeX equations;
-//! - `dhgen ops ROBOT.toml`: operation counts of the generated functions.
+//! - `dhgen ops ROBOT.toml`: operation counts of the generated functions;
+//! - `dhgen random --dof N [--style general|industrial] [--seed S]`: a random valid arm.
 //!
 //! Any failure is one line on stderr and a non-zero exit status: 2 for a malformed command
 //! line, 1 for everything else (an unreadable or invalid description, a bad value).
@@ -88,6 +89,32 @@ enum Command {
         /// The robot description (TOML).
         robot: PathBuf,
     },
+    /// Write a random valid arm (a seeded, reproducible description) for scale tests and
+    /// benchmarks: `general` (no exact angles, full inertias) or `industrial` (twists and
+    /// offsets in {0, ±90°}).
+    Random {
+        /// Number of joints.
+        #[arg(long, value_parser = clap::value_parser!(u16).range(1..=1000))]
+        dof: u16,
+        /// `general` or `industrial`.
+        #[arg(long, default_value = "general")]
+        style: RandomStyle,
+        /// The seed: the same seed and size give the same arm.
+        #[arg(long, default_value_t = 1)]
+        seed: u64,
+        /// Output file; standard output if omitted.
+        #[arg(short, long)]
+        output: Option<PathBuf>,
+    },
+}
+
+/// The styles of `dhgen random`.
+#[derive(clap::ValueEnum, Clone, Copy, Debug)]
+enum RandomStyle {
+    /// Twists and offsets anywhere, nothing zero, full inertia tensors.
+    General,
+    /// Twists and offsets in {0, ±90°}, some lengths zero.
+    Industrial,
 }
 
 /// Loads a description; the error names the file (and for a rule violation the line,
@@ -168,14 +195,31 @@ fn run(command: Command) -> Result<String, String> {
                 cumulative,
                 ..Style::default()
             };
-            dynamics_equations(r.model(), &style).ok_or_else(|| {
-                format!(
-                    "{}: the description has no mass properties, so there is no D(q), c_ijk or g(q) to print",
-                    robot.display()
-                )
-            })
+            dynamics_equations(r.model(), &style)
+                .map_err(|why| format!("{}: {why}", robot.display()))
         }
         Command::Ops { robot } => emit::ops_report(load(&robot)?.model()),
+        Command::Random {
+            dof,
+            style,
+            seed,
+            output,
+        } => {
+            use dhgen_model::random::{ArmStyle, random_arm};
+            let style = match style {
+                RandomStyle::General => ArmStyle::General,
+                RandomStyle::Industrial => ArmStyle::Industrial,
+            };
+            let text = random_arm(usize::from(dof), style, seed).to_toml();
+            match output {
+                Some(path) => {
+                    std::fs::write(&path, text)
+                        .map_err(|e| format!("{}: cannot write: {e}", path.display()))?;
+                    Ok(String::new())
+                }
+                None => Ok(text),
+            }
+        }
     }
 }
 
@@ -190,7 +234,7 @@ fn main() -> ExitCode {
                 }
                 ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand => {
                     eprintln!(
-                        "dhgen: missing command: info, eval, emit, latex or ops (see dhgen --help)"
+                        "dhgen: missing command: info, eval, emit, latex, ops or random (see dhgen --help)"
                     );
                     ExitCode::from(2)
                 }

@@ -279,14 +279,13 @@ impl<'c, R: Ring> RingChain<'c, R> {
             .collect()
     }
 
-    /// The kinetic energy `½ Σ_k (m v·v + 2 v·(ω × h) + ω·Ī ω)` of the links, from the
-    /// velocities of the joint frames (ω and the origin's v, local coordinates) and each
-    /// link's moments about its joint frame's origin.
-    pub fn kinetic_energy(&self, qd: &[R]) -> R {
+    /// The velocity pass: each joint frame's angular velocity ω and its origin's linear
+    /// velocity v, in local coordinates.
+    pub fn velocities(&self, qd: &[R]) -> Vec<(V3<R>, V3<R>)> {
         let z = || k::<R>(0.0);
         let (mut w, mut v): (V3<R>, V3<R>) = ([z(), z(), z()], [z(), z(), z()]);
-        let mut twice = z();
-        for (((t, kind), b), rate) in self.t.iter().zip(&self.kinds).zip(&self.bodies).zip(qd) {
+        let mut out = Vec::with_capacity(self.dof());
+        for ((t, kind), rate) in self.t.iter().zip(&self.kinds).zip(qd) {
             // The parent's motion seen from frame j, then joint j's own rate.
             v = rot_t(t, &add3(&v, &cross(&w, &t.p)));
             w = rot_t(t, &w);
@@ -295,13 +294,42 @@ impl<'c, R: Ring> RingChain<'c, R> {
                 JointKind::Revolute => w = add3(&w, &rate),
                 JointKind::Prismatic => v = add3(&v, &rate),
             }
-            let iw = mat_vec(&b.i, &w);
-            twice = twice
-                + b.m.clone() * dot(&v, &v)
-                + k::<R>(2.0) * dot(&v, &cross(&w, &b.h))
-                + dot(&w, &iw);
+            out.push((w.clone(), v.clone()));
         }
+        out
+    }
+
+    /// The kinetic energy `½ Σ_k (m v·v + 2 v·(ω × h) + ω·Ī ω)` of the links, from the
+    /// velocities of the joint frames and each link's moments about its joint frame's origin.
+    pub fn kinetic_energy(&self, qd: &[R]) -> R {
+        let twice =
+            self.velocities(qd)
+                .iter()
+                .zip(&self.bodies)
+                .fold(k::<R>(0.0), |acc, ((w, v), b)| {
+                    let iw = mat_vec(&b.i, w);
+                    acc + b.m.clone() * dot(v, v)
+                        + k::<R>(2.0) * dot(v, &cross(w, &b.h))
+                        + dot(w, &iw)
+                });
         k::<R>(0.5) * twice
+    }
+
+    /// The generalised momentum `D(q) q̇` (armature not included): each link's momentum
+    /// about its joint frame's origin, linear `m v + ω × h` and angular `Ī ω + h × v`, summed
+    /// tip to base by the inward pass.
+    pub fn momentum(&self, qd: &[R]) -> Vec<R> {
+        let momenta = self
+            .velocities(qd)
+            .into_iter()
+            .zip(&self.bodies)
+            .map(|((w, v), b)| {
+                let linear = add3(&scale3(&b.m, &v), &cross(&w, &b.h));
+                let angular = add3(&mat_vec(&b.i, &w), &cross(&b.h, &v));
+                (linear, angular)
+            })
+            .collect();
+        self.inward(momenta)
     }
 
     /// The outward pass of Newton-Euler: for each joint frame K_j, its angular velocity,
@@ -396,20 +424,27 @@ impl<'c, R: Ring> RingChain<'c, R> {
             );
             forces.push((f, nn));
         }
-        let mut tau = vec![z(); n];
+        self.inward(forces)
+    }
+
+    /// The inward pass: wrenches (force, moment about the frame origin) given per joint frame,
+    /// summed tip to base, each joint taking its component (the moment about its axis, or
+    /// the force along it).
+    fn inward(&self, wrenches: Vec<(V3<R>, V3<R>)>) -> Vec<R> {
+        let n = self.dof();
+        let mut out = vec![k::<R>(0.0); n];
         let mut carry: Option<(V3<R>, V3<R>)> = None;
-        for j in (0..n).rev() {
-            let (mut f, mut nn) = forces[j].clone();
+        for (j, (mut f, mut nn)) in wrenches.into_iter().enumerate().rev() {
             if let Some((fc, nc)) = carry {
                 let t = &self.t[j + 1];
                 let fr = rot(t, &fc);
                 nn = add3(&add3(&nn, &rot(t, &nc)), &cross(&t.p, &fr));
                 f = add3(&f, &fr);
             }
-            tau[j] = self.component(j, &nn, &f);
+            out[j] = self.component(j, &nn, &f);
             carry = Some((f, nn));
         }
-        tau
+        out
     }
 
     /// The joint frames, starting from `start` (the root frame's pose: the identity, or

@@ -127,3 +127,34 @@ impl JointSymbols<Dual> for DualSymbols<'_> {
         self.seeded(E::sym(self.graph, Sym::Len(j)), j, E::K(1.0))
     }
 }
+
+/// Joint variables as duals with one lane: the derivative along the motion `q̇`, so that a
+/// recursion run on them gives a quantity and its rate of change (`D` and `Ḋ`).
+pub struct RateSymbols<'g> {
+    /// The graph the values live in.
+    pub graph: &'g SharedGraph,
+}
+
+impl JointSymbols<Dual> for RateSymbols<'_> {
+    fn angle(&self, j: usize) -> (Dual, Dual) {
+        let c = E::sym(self.graph, Sym::Cos(j));
+        let s = E::sym(self.graph, Sym::Sin(j));
+        let qd = E::sym(self.graph, Sym::Qd(j));
+        (
+            Dual {
+                v: c.clone(),
+                d: Rc::from(vec![-(s.clone() * qd.clone())]),
+            },
+            Dual {
+                v: s,
+                d: Rc::from(vec![c * qd]),
+            },
+        )
+    }
+    fn length(&self, j: usize) -> Dual {
+        Dual {
+            v: E::sym(self.graph, Sym::Len(j)),
+            d: Rc::from(vec![E::sym(self.graph, Sym::Qd(j))]),
+        }
+    }
+}

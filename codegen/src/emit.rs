@@ -8,7 +8,6 @@
 use crate::graph::{E, Id, Node, OpCount, SharedGraph, Sym, count};
 use proc_macro2::{Ident, Literal, Span, TokenStream};
 use quote::quote;
-use std::collections::HashMap;
 
 /// The most statements one generated function may hold.
 pub const MAX_STATEMENTS: usize = 900;
@@ -74,8 +73,9 @@ pub fn constant(x: f64) -> TokenStream {
 /// The nodes are cut, in dependency order, into parts of at most [`MAX_STATEMENTS`]
 /// statements. A value that a later part needs is passed through a scratch array
 /// (`w[slot]`), so every node is computed exactly once however the function is split.
-pub fn emit(g: &SharedGraph, outputs: Vec<Output>) -> Emitted {
-    let graph = g.borrow();
+pub fn emit(graph: &SharedGraph, outputs: Vec<Output>) -> Emitted {
+    let graph = graph.borrow();
+    let size = graph.nodes().len();
     let ids: Vec<Option<Id>> = outputs
         .iter()
         .map(|o| match &o.value {
@@ -86,46 +86,53 @@ pub fn emit(g: &SharedGraph, outputs: Vec<Output>) -> Emitted {
     let order = postorder(&graph, ids.iter().flatten().copied());
     let ops = count(&graph, ids.iter().flatten().copied());
     let is_op = |id: Id| !matches!(graph.node(id), Node::Sym(_) | Node::Const(_));
-    // The outputs stored by the part that computes their node; constant outputs go first.
-    let mut stored_at: HashMap<Id, Vec<usize>> = HashMap::new();
+    // Per node, dense by id: the outputs its part stores, its part, the last later part that
+    // reads it, its scratch slot (NONE where there is none).
+    const NONE: u32 = u32::MAX;
+    let mut stored_at: Vec<Vec<usize>> = vec![Vec::new(); size];
     for (i, id) in ids.iter().enumerate() {
         if let Some(id) = id {
-            stored_at.entry(*id).or_default().push(i);
+            stored_at[*id as usize].push(i);
         }
     }
     // Cut the operation nodes into parts by statement budget (operations + stores +
     // values read from earlier parts, estimated generously by the operands).
-    let mut part_of: HashMap<Id, usize> = HashMap::new();
+    let mut part_of = vec![NONE; size];
     let mut parts_nodes: Vec<Vec<Id>> = vec![Vec::new()];
     let mut budget = 0usize;
     for &id in &order {
         if !is_op(id) {
             continue;
         }
-        let cost = 1 + stored_at.get(&id).map_or(0, Vec::len) + 2;
+        let cost = 1 + stored_at[id as usize].len() + 2;
         if budget + cost > MAX_STATEMENTS && !parts_nodes.last().expect("non-empty").is_empty() {
             parts_nodes.push(Vec::new());
             budget = 0;
         }
         budget += cost;
-        part_of.insert(id, parts_nodes.len() - 1);
+        part_of[id as usize] = (parts_nodes.len() - 1) as u32;
         parts_nodes.last_mut().expect("non-empty").push(id);
     }
     // Values crossing parts get scratch slots, reused once their last reader has run (like
     // registers), so the array stays as small as the most values alive between two parts.
-    let mut last_use: HashMap<Id, usize> = HashMap::new();
+    let mut last_use = vec![NONE; size];
     for &id in &order {
         if !is_op(id) {
             continue;
         }
         for child in children(graph.node(id)) {
-            if is_op(child) && part_of[&child] != part_of[&id] {
-                let e = last_use.entry(child).or_insert(0);
-                *e = (*e).max(part_of[&id]);
+            let c = child as usize;
+            if is_op(child) && part_of[c] != part_of[id as usize] {
+                let here = part_of[id as usize];
+                last_use[c] = if last_use[c] == NONE {
+                    here
+                } else {
+                    last_use[c].max(here)
+                };
             }
         }
     }
-    let mut slot: HashMap<Id, usize> = HashMap::new();
+    let mut slot = vec![NONE; size];
     let mut free: Vec<usize> = Vec::new();
     let mut live: Vec<(usize, usize)> = Vec::new(); // (last part reading it, slot)
     let mut slots = 0usize;
@@ -138,17 +145,27 @@ pub fn emit(g: &SharedGraph, outputs: Vec<Output>) -> Emitted {
                 true
             }
         });
-        for id in nodes {
-            if let Some(&last) = last_use.get(id) {
+        for &id in nodes {
+            let last = last_use[id as usize];
+            if last != NONE {
                 let k = free.pop().unwrap_or_else(|| {
                     slots += 1;
                     slots - 1
                 });
-                slot.insert(*id, k);
-                live.push((last, k));
+                slot[id as usize] = k as u32;
+                live.push((last as usize, k));
             }
         }
     }
+    // Every value has one name wherever it is read: inputs by what they are, constants
+    // `k<id>`, operations `t<id>`.
+    let name = |id: Id| -> Ident {
+        match graph.node(id) {
+            Node::Sym(s) => sym_load(s).0,
+            Node::Const(_) => ident(&format!("k{id}")),
+            _ => ident(&format!("t{id}")),
+        }
+    };
     let mut parts = Vec::new();
     let mut part_inputs = Vec::new();
     let mut part_uses = Vec::new();
@@ -156,13 +173,11 @@ pub fn emit(g: &SharedGraph, outputs: Vec<Output>) -> Emitted {
         let mut uses = PartUse::default();
         let mut inputs: Vec<&'static str> = Vec::new();
         let mut stmts = Vec::new();
-        let mut names: HashMap<Id, TokenStream> = HashMap::new();
-        let mut temp = 0usize;
         // Inputs of this part: symbols, constants and values of earlier parts.
         let mut needed: Vec<Id> = nodes
             .iter()
             .flat_map(|&id| children(graph.node(id)))
-            .filter(|c| !is_op(*c) || part_of[c] != p)
+            .filter(|c| !is_op(*c) || part_of[*c as usize] != p as u32)
             .collect();
         if p == 0 {
             // Outputs that are bare symbols or constants have no operation of their own: part 0
@@ -172,63 +187,57 @@ pub fn emit(g: &SharedGraph, outputs: Vec<Output>) -> Emitted {
         needed.sort_unstable();
         needed.dedup();
         for id in needed {
-            if let Node::Sym(sym) = graph.node(id) {
-                let array = match sym {
-                    Sym::Qd(_) => Some("qd"),
-                    Sym::Qdd(_) => Some("qdd"),
-                    Sym::Tau(_) => Some("tau"),
-                    _ => None,
-                };
-                if let Some(a) = array.filter(|a| !inputs.contains(a)) {
-                    inputs.push(a);
+            let load = match graph.node(id) {
+                Node::Sym(sym) => {
+                    let array = match sym {
+                        Sym::Qd(_) => Some("qd"),
+                        Sym::Qdd(_) => Some("qdd"),
+                        Sym::Tau(_) => Some("tau"),
+                        _ => None,
+                    };
+                    if let Some(a) = array.filter(|a| !inputs.contains(a)) {
+                        inputs.push(a);
+                    }
+                    sym_load(sym).1
                 }
-            }
-            let (n, load) = match graph.node(id) {
-                Node::Sym(s) => sym_load(s),
-                Node::Const(bits) => {
-                    let n = ident(&format!("k{temp}"));
-                    temp += 1;
-                    (n, constant(f64::from_bits(bits)))
-                }
+                Node::Const(bits) => constant(f64::from_bits(bits)),
                 _ => {
-                    let n = ident(&format!("t{id}"));
-                    let k = slot[&id];
+                    let k = slot[id as usize] as usize;
                     uses.scratch = true;
-                    (n, quote!(w[#k]))
+                    quote!(w[#k])
                 }
             };
+            let n = name(id);
             stmts.push(quote!(let #n: T = #load;));
-            names.insert(id, quote!(#n));
         }
         for &id in nodes {
-            let n = ident(&format!("t{id}"));
-            let v = |x: Id| names[&x].clone();
+            let n = name(id);
             let rhs = match graph.node(id) {
                 Node::Add(a, b) => {
-                    let (a, b) = (v(a), v(b));
+                    let (a, b) = (name(a), name(b));
                     quote!(#a + #b)
                 }
                 Node::Sub(a, b) => {
-                    let (a, b) = (v(a), v(b));
+                    let (a, b) = (name(a), name(b));
                     quote!(#a - #b)
                 }
                 Node::Mul(a, b) => {
-                    let (a, b) = (v(a), v(b));
+                    let (a, b) = (name(a), name(b));
                     quote!(#a * #b)
                 }
                 Node::Neg(a) => {
-                    let a = v(a);
+                    let a = name(a);
                     quote!(-#a)
                 }
                 Node::Sym(_) | Node::Const(_) => unreachable!("operations only"),
             };
             stmts.push(quote!(let #n: T = #rhs;));
-            names.insert(id, quote!(#n));
-            if let Some(&k) = slot.get(&id) {
+            if slot[id as usize] != NONE {
+                let k = slot[id as usize] as usize;
                 uses.scratch = true;
                 stmts.push(quote!(w[#k] = #n;));
             }
-            for &i in stored_at.get(&id).map_or(&[][..], Vec::as_slice) {
+            for &i in &stored_at[id as usize] {
                 let target = &outputs[i].target;
                 uses.out = true;
                 stmts.push(quote!(#target = #n;));
@@ -244,7 +253,7 @@ pub fn emit(g: &SharedGraph, outputs: Vec<Output>) -> Emitted {
                         stmts.push(quote!(#target = #c;));
                     }
                     (_, Some(id)) if !is_op(id) => {
-                        let value = names[&id].clone();
+                        let value = name(id);
                         uses.out = true;
                         stmts.push(quote!(#target = #value;));
                     }

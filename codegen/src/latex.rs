@@ -175,12 +175,26 @@ fn in_best_basis(p: &Poly, vars: &[Var], runs: &Basis, plain: &Basis) -> (Poly, 
     }
 }
 
+/// Why [`dynamics_equations`] has nothing to print.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, thiserror::Error)]
+pub enum Unavailable {
+    /// The description has no mass properties.
+    #[error("the description has no mass properties, so there is no D(q), c_ijk or g(q) to print")]
+    NoDynamics,
+    /// The normal form is too large to build (or the arm has more than 16 joints).
+    #[error(
+        "the closed forms of D(q) and g(q) are too large to build and print for this arm \
+         (no exactly parallel or perpendicular axes to simplify them, or more than 16 joints)"
+    )]
+    TooLarge,
+}
+
 /// D(q) (`d_ij`, i ≤ j), the Christoffel symbols (`c_ijk`, i ≤ j) and g(q) of `model` as
 /// LaTeX `align*` blocks, each non-zero entry one equation, with `%` comments saying what
-/// the symbols mean. `None` when the description has no mass properties.
-pub fn dynamics_equations(model: &RobotModel, style: &Style) -> Option<String> {
+/// the symbols mean.
+pub fn dynamics_equations(model: &RobotModel, style: &Style) -> Result<String, Unavailable> {
     if !model.has_dynamics() {
-        return None;
+        return Err(Unavailable::NoDynamics);
     }
     let n = model.dof();
     let structure = model.chain();
@@ -193,9 +207,13 @@ pub fn dynamics_equations(model: &RobotModel, style: &Style) -> Option<String> {
         plain.clone()
     };
     let dv = Derivation::new(chain);
-    let d = dv.mass_matrix_polys();
-    let c = dv.christoffel_polys();
-    let g = dv.gravity_polys();
+    let (Some(d), Some(c), Some(g)) = (
+        dv.mass_matrix_polys(),
+        dv.christoffel_polys(),
+        dv.gravity_polys(),
+    ) else {
+        return Err(Unavailable::TooLarge);
+    };
 
     let idx = |ids: &[usize]| {
         let parts: Vec<String> = ids.iter().map(|i| (i + 1).to_string()).collect();
@@ -303,7 +321,7 @@ pub fn dynamics_equations(model: &RobotModel, style: &Style) -> Option<String> {
         );
         out += &block(lines);
     }
-    Some(out)
+    Ok(out)
 }
 
 #[cfg(test)]
@@ -379,6 +397,7 @@ mod tests {
         };
         let d = Derivation::new(structure.view())
             .mass_matrix_polys()
+            .expect("the PUMA's normal form is small")
             .clone();
         let q = [0.3, -0.7, 1.1, 0.4, -0.9, 2.0];
         let (c, s): (Vec<f64>, Vec<f64>) = q.iter().map(|x: &f64| (x.cos(), x.sin())).unzip();
@@ -442,6 +461,9 @@ mod tests {
     fn no_dynamics_no_equations() {
         let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../robots/cylindrical.toml");
         let model = RobotModel::from_toml_file(path).unwrap();
-        assert!(dynamics_equations(&model, &Style::default()).is_none());
+        assert_eq!(
+            dynamics_equations(&model, &Style::default()),
+            Err(Unavailable::NoDynamics)
+        );
     }
 }

@@ -13,13 +13,44 @@
 
 use crate::graph::{E, SharedGraph, Sym};
 use dhgen_model::Ring;
+use std::cell::Cell;
 use std::collections::HashMap;
+use std::hash::{BuildHasherDefault, Hasher};
+use std::rc::Rc;
 
 /// Variables per polynomial: two per joint.
 pub const MAX_VARS: usize = 32;
 
 /// Relative size below which a cancelled coefficient is rounding noise.
 const CANCEL: f64 = 64.0 * f64::EPSILON;
+
+/// Sums of coefficients (and of their magnitudes, for the cancellation test) per monomial.
+type Accumulator = HashMap<Mono, (f64, f64), BuildHasherDefault<MonoHasher>>;
+
+/// A fast hash of a monomial (Fx-style multiply-rotate over 8-byte words): the default
+/// SipHash guards maps against adversarial keys, which exponent vectors are not, at several
+/// times the cost.
+#[derive(Default)]
+struct MonoHasher(u64);
+
+impl Hasher for MonoHasher {
+    fn write(&mut self, bytes: &[u8]) {
+        for chunk in bytes.chunks(8) {
+            let mut word = [0u8; 8];
+            word[..chunk.len()].copy_from_slice(chunk);
+            self.0 = (self.0.rotate_left(5) ^ u64::from_le_bytes(word))
+                .wrapping_mul(0x51_7c_c1_b7_27_22_0a_95);
+        }
+    }
+
+    fn write_usize(&mut self, i: usize) {
+        self.write(&(i as u64).to_le_bytes());
+    }
+
+    fn finish(&self) -> u64 {
+        self.0
+    }
+}
 
 /// Exponents, indexed by variable: `2j` is `cos θ_j` (or `d_j`), `2j + 1` is `sin θ_j`.
 pub type Mono = [u8; MAX_VARS];
@@ -94,7 +125,7 @@ impl Poly {
     }
 
     /// Builds a polynomial from accumulated `(value, magnitude)` per monomial.
-    fn collect(acc: HashMap<Mono, (f64, f64)>) -> Poly {
+    fn collect(acc: Accumulator) -> Poly {
         let mut terms: Vec<(Mono, f64)> = acc
             .into_iter()
             .filter(|(_, (v, mag))| v.abs() > CANCEL * mag)
@@ -104,20 +135,37 @@ impl Poly {
         Poly { terms }
     }
 
+    /// `self + sign · other`, merging the two sorted term lists.
     fn combine(&self, other: &Poly, sign: f64) -> Poly {
-        let mut acc: HashMap<Mono, (f64, f64)> =
-            HashMap::with_capacity(self.terms.len() + other.terms.len());
-        for (m, c) in &self.terms {
-            let e = acc.entry(*m).or_insert((0.0, 0.0));
-            e.0 += c;
-            e.1 += c.abs();
+        let (a, b) = (&self.terms, &other.terms);
+        let mut terms = Vec::with_capacity(a.len() + b.len());
+        let (mut i, mut j) = (0, 0);
+        while i < a.len() || j < b.len() {
+            match (a.get(i), b.get(j)) {
+                (Some(x), Some(y)) if x.0 == y.0 => {
+                    let v = x.1 + sign * y.1;
+                    if v.abs() > CANCEL * (x.1.abs() + y.1.abs()) {
+                        terms.push((x.0, v));
+                    }
+                    i += 1;
+                    j += 1;
+                }
+                (Some(x), Some(y)) if x.0 < y.0 => {
+                    terms.push(*x);
+                    i += 1;
+                }
+                (Some(x), None) => {
+                    terms.push(*x);
+                    i += 1;
+                }
+                (_, Some(y)) => {
+                    terms.push((y.0, sign * y.1));
+                    j += 1;
+                }
+                (None, None) => unreachable!("the loop runs while a term is left"),
+            }
         }
-        for (m, c) in &other.terms {
-            let e = acc.entry(*m).or_insert((0.0, 0.0));
-            e.0 += sign * c;
-            e.1 += c.abs();
-        }
-        Poly::collect(acc)
+        Poly { terms }
     }
 
     /// `self + other`
@@ -150,8 +198,10 @@ impl Poly {
         if self.is_zero() || other.is_zero() {
             return Poly::zero();
         }
-        let mut acc: HashMap<Mono, (f64, f64)> =
-            HashMap::with_capacity(self.terms.len() * other.terms.len());
+        let mut acc = Accumulator::with_capacity_and_hasher(
+            self.terms.len() * other.terms.len(),
+            Default::default(),
+        );
         let mut expanded: Vec<(Mono, f64)> = Vec::new();
         for (ma, ca) in &self.terms {
             for (mb, cb) in &other.terms {
@@ -172,8 +222,8 @@ impl Poly {
 
     /// `∂/∂q_j` (for an angle: `d cos = −sin`, `d sin = cos`).
     pub fn derivative(&self, j: usize, vars: &[Var]) -> Poly {
-        let mut acc: HashMap<Mono, (f64, f64)> = HashMap::new();
-        let push = |m: Mono, c: f64, acc: &mut HashMap<Mono, (f64, f64)>| {
+        let mut acc = Accumulator::default();
+        let push = |m: Mono, c: f64, acc: &mut Accumulator| {
             let e = acc.entry(m).or_insert((0.0, 0.0));
             e.0 += c;
             e.1 += c.abs();
@@ -281,41 +331,117 @@ fn reduce(m: Mono, c: f64, vars: &[Var], out: &mut Vec<(Mono, f64)>) {
     }
 }
 
-/// A polynomial paired with the variable kinds it is reduced against, so it can implement
-/// [`Ring`] and run the model's generic formulas.
+/// How much polynomial arithmetic one normal form may cost, in term operations (a product
+/// of an `a`-term and a `b`-term polynomial costs `a·b`, a sum `a + b`). The normal form
+/// grows exponentially with the number of joints of an arm without structure; the budget
+/// bounds the time spent before the derivation gives up on it and keeps the recursive
+/// candidates, which grow polynomially.
+#[derive(Debug)]
+pub struct Budget {
+    left: Cell<u64>,
+    exhausted: Cell<bool>,
+}
+
+impl Budget {
+    /// A budget of `work` term operations.
+    pub fn new(work: u64) -> Rc<Budget> {
+        Rc::new(Budget {
+            left: Cell::new(work),
+            exhausted: Cell::new(false),
+        })
+    }
+
+    /// Spends `work`; false (and exhausted from then on) when it does not fit.
+    fn charge(&self, work: u64) -> bool {
+        if self.exhausted.get() {
+            return false;
+        }
+        match self.left.get().checked_sub(work) {
+            Some(left) => {
+                self.left.set(left);
+                true
+            }
+            None => {
+                self.exhausted.set(true);
+                false
+            }
+        }
+    }
+
+    /// Whether some operation did not fit: every result since is meaningless.
+    pub fn exhausted(&self) -> bool {
+        self.exhausted.get()
+    }
+}
+
+/// The variable kinds and the budget of an operation's result.
+type Context = (Rc<[Var]>, Option<Rc<Budget>>);
+
+/// A polynomial paired with the variable kinds it is reduced against (and the budget its
+/// arithmetic draws on), so it can implement [`Ring`] and run the model's generic formulas.
 #[derive(Clone, Debug)]
 pub struct P {
     /// The polynomial.
     pub poly: Poly,
-    vars: std::rc::Rc<[Var]>,
+    vars: Rc<[Var]>,
+    budget: Option<Rc<Budget>>,
 }
 
 impl P {
-    /// Wraps `poly` for the chain with variable kinds `vars`.
-    pub fn new(poly: Poly, vars: &std::rc::Rc<[Var]>) -> P {
+    /// Wraps `poly` for the chain with variable kinds `vars`, its arithmetic drawing on
+    /// `budget`.
+    pub fn new(poly: Poly, vars: &Rc<[Var]>, budget: &Rc<Budget>) -> P {
         P {
             poly,
             vars: vars.clone(),
+            budget: Some(budget.clone()),
         }
     }
 
     /// `∂/∂q_j`
     pub fn derivative(&self, j: usize) -> P {
-        P::new(self.poly.derivative(j, &self.vars), &self.vars)
+        P {
+            poly: self.poly.derivative(j, &self.vars),
+            vars: self.vars.clone(),
+            budget: self.budget.clone(),
+        }
+    }
+
+    /// The variable kinds and budget of whichever operand has them (constants have none),
+    /// after charging `work`; `None` when the budget is spent.
+    fn context(a: &P, b: &P, work: u64) -> Option<Context> {
+        let vars = if a.vars.len() >= b.vars.len() {
+            a.vars.clone()
+        } else {
+            b.vars.clone()
+        };
+        let budget = a.budget.clone().or_else(|| b.budget.clone());
+        match &budget {
+            Some(budget) if !budget.charge(work) => None,
+            _ => Some((vars, budget)),
+        }
+    }
+
+    fn spent(vars: Rc<[Var]>, budget: Option<Rc<Budget>>) -> P {
+        P {
+            poly: Poly::zero(),
+            vars,
+            budget,
+        }
     }
 }
 
 impl core::ops::Add for P {
     type Output = P;
     fn add(self, o: P) -> P {
-        let vars = if self.vars.is_empty() {
-            o.vars
-        } else {
-            self.vars
-        };
-        P {
-            poly: self.poly.combine(&o.poly, 1.0),
-            vars,
+        let work = (self.poly.terms.len() + o.poly.terms.len()) as u64;
+        match P::context(&self, &o, work) {
+            Some((vars, budget)) => P {
+                poly: self.poly.combine(&o.poly, 1.0),
+                vars,
+                budget,
+            },
+            None => P::spent(self.vars, self.budget),
         }
     }
 }
@@ -323,14 +449,14 @@ impl core::ops::Add for P {
 impl core::ops::Sub for P {
     type Output = P;
     fn sub(self, o: P) -> P {
-        let vars = if self.vars.is_empty() {
-            o.vars
-        } else {
-            self.vars
-        };
-        P {
-            poly: self.poly.combine(&o.poly, -1.0),
-            vars,
+        let work = (self.poly.terms.len() + o.poly.terms.len()) as u64;
+        match P::context(&self, &o, work) {
+            Some((vars, budget)) => P {
+                poly: self.poly.combine(&o.poly, -1.0),
+                vars,
+                budget,
+            },
+            None => P::spent(self.vars, self.budget),
         }
     }
 }
@@ -338,10 +464,9 @@ impl core::ops::Sub for P {
 impl core::ops::Mul for P {
     type Output = P;
     fn mul(self, o: P) -> P {
-        let vars = if self.vars.len() >= o.vars.len() {
-            self.vars
-        } else {
-            o.vars
+        let work = (self.poly.terms.len() * o.poly.terms.len()) as u64;
+        let Some((vars, budget)) = P::context(&self, &o, work) else {
+            return P::spent(self.vars, self.budget);
         };
         // A constant factor needs no reduction.
         let poly = match (self.poly.terms.as_slice(), o.poly.terms.as_slice()) {
@@ -349,7 +474,7 @@ impl core::ops::Mul for P {
             (_, [(m, k)]) if *m == ONE => self.poly.scale(*k),
             _ => self.poly.mul_with(&o.poly, &vars),
         };
-        P { poly, vars }
+        P { poly, vars, budget }
     }
 }
 
@@ -359,6 +484,7 @@ impl core::ops::Neg for P {
         P {
             poly: self.poly.scale(-1.0),
             vars: self.vars,
+            budget: self.budget,
         }
     }
 }
@@ -367,7 +493,8 @@ impl Ring for P {
     fn from_f64(x: f64) -> P {
         P {
             poly: Poly::constant(x),
-            vars: std::rc::Rc::from(Vec::new()),
+            vars: Rc::from(Vec::new()),
+            budget: None,
         }
     }
 }

@@ -32,9 +32,13 @@ pub mod chain;
 mod math;
 mod model;
 #[cfg(feature = "std")]
+pub mod random;
+#[cfg(feature = "std")]
 pub mod raw;
 #[cfg(feature = "std")]
 pub mod validate;
+#[cfg(feature = "std")]
+mod write;
 
 pub use angle::Angle;
 #[cfg(feature = "std")]

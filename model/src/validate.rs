@@ -582,6 +582,22 @@ fn inertial<L: Clone>(
     }
 }
 
+/// The principal moments of `tensor`, ascending, and the tolerance the checks use.
+fn principal_moments(tensor: &[[f64; 3]; 3]) -> ([f64; 3], f64) {
+    let m = nalgebra::Matrix3::from_fn(|i, j| tensor[i][j]);
+    let mut e = m.symmetric_eigenvalues();
+    e.as_mut_slice().sort_by(f64::total_cmp);
+    let scale = e.amax().max(f64::MIN_POSITIVE);
+    ([e[0], e[1], e[2]], 1e-9 * scale)
+}
+
+/// Whether the principal moments obey the triangle inequality (the rule
+/// `allow_nonphysical_inertia` lifts).
+pub(crate) fn obeys_triangle_inequality(tensor: &[[f64; 3]; 3]) -> bool {
+    let (e, tol) = principal_moments(tensor);
+    e[0] + e[1] >= e[2] - tol
+}
+
 /// Principal moments must be non-negative (positive semi-definite) and obey the triangle
 /// inequality, unless the description explicitly allows published non-physical values.
 fn check_inertia<L: Clone>(
@@ -590,11 +606,7 @@ fn check_inertia<L: Clone>(
     tensor: &[[f64; 3]; 3],
     allow_nonphysical: bool,
 ) -> Result<(), Error<L>> {
-    let m = nalgebra::Matrix3::from_fn(|i, j| tensor[i][j]);
-    let mut e = m.symmetric_eigenvalues();
-    e.as_mut_slice().sort_by(f64::total_cmp);
-    let scale = e.amax().max(f64::MIN_POSITIVE);
-    let tol = 1e-9 * scale;
+    let (e, tol) = principal_moments(tensor);
     if e[0] < -tol {
         return Err(at.err(
             &loc,
@@ -606,7 +618,7 @@ fn check_inertia<L: Clone>(
             ),
         ));
     }
-    if !allow_nonphysical && e[0] + e[1] < e[2] - tol {
+    if !allow_nonphysical && !obeys_triangle_inequality(tensor) {
         return Err(at.err(
             &loc,
             format!(

@@ -22,3 +22,4 @@ dhgen::robot!(pub mod puma_offsets = "tests/fixtures/puma_offsets.toml");
 dhgen::robot!(pub mod shoulder_singular_elbow = "tests/fixtures/shoulder_singular_elbow.toml");
 dhgen::robot!(pub mod stiff_wrist = "tests/fixtures/stiff_wrist.toml");
 dhgen::robot!(pub mod weightless_wrist = "tests/fixtures/weightless_wrist.toml");
+dhgen::robot!(pub mod snake17 = "tests/fixtures/snake17.toml");

@@ -1,10 +1,10 @@
 //! Generated code against the runtime path, on random configurations, for every catalogue
-//! robot and for the fixtures `odd` and `gantry` (tests/fixtures), which cover what the
-//! reference files do not (prismatic joints, modified DH with base and tool, tilted gravity,
-//! motors and friction).
+//! robot and for the fixtures `odd`, `gantry` and `snake17` (tests/fixtures), which cover
+//! what the reference files do not (prismatic joints, modified DH with base and tool, tilted
+//! gravity, motors and friction, more joints than the normal form holds).
 
 use crate::catalogue::{
-    cylindrical, gantry, odd, panda, planar_elbow, puma560, scara, stanford, ur5,
+    cylindrical, gantry, odd, panda, planar_elbow, puma560, scara, snake17, stanford, ur5,
 };
 use crate::support::{fixture, max_abs, runtime};
 use dhgen::Robot;
@@ -164,6 +164,11 @@ compare!(
 );
 compare!(odd_generated_equals_runtime, odd, fixture("odd"));
 compare!(gantry_generated_equals_runtime, gantry, fixture("gantry"));
+compare!(
+    snake17_generated_equals_runtime,
+    snake17,
+    fixture("snake17")
+);
 
 /// f32 instantiation of the same generated code agrees with f64 to f32 precision.
 #[test]

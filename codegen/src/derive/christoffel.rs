@@ -42,9 +42,10 @@ pub fn christoffel_polys(chain: ChainRef<'_>, d: &[Vec<Poly>]) -> Vec<Vec<Vec<Po
 /// numbers, whichever is cheaper.
 pub fn christoffel(dv: &Derivation<'_>) -> (SharedGraph, Vec<E>) {
     let mut candidates = vec![christoffel_dual(dv.chain)];
-    if dv.normal_form_is_small() {
-        let graph = SharedGraph::default();
-        let e = dv.christoffel_exprs(&graph);
+    let graph = SharedGraph::default();
+    if dv.normal_form_is_small()
+        && let Some(e) = dv.christoffel_exprs(&graph)
+    {
         candidates.push((graph, e));
     }
     super::cheapest(candidates)
@@ -81,4 +82,32 @@ pub fn coriolis_from(n: usize, graph: &SharedGraph, c: &[E]) -> Vec<E> {
             })
         })
         .collect()
+}
+
+/// `C(q, q̇)` row-major in O(n²) operations, from the identity
+/// `C = ½ (Ḋ + M − Mᵀ)` with `M = ∂(D q̇)/∂q`, which follows from the definition of the
+/// symbols (`Σ_i q̇_i ∂d_kj/∂q_i = Ḋ_kj`, `Σ_i q̇_i ∂d_ki/∂q_j = ∂(D q̇)_k/∂q_j`, D symmetric):
+/// `Ḋ` by one lane of dual numbers (the derivative along q̇) over the composite-rigid-body
+/// recursion, `M` by n lanes over the momentum recursion `D q̇`, both O(n²), instead of the n³
+/// symbols.
+pub fn coriolis_recursive(chain: ChainRef<'_>) -> (SharedGraph, Vec<E>) {
+    use crate::chain::RingChain;
+    use crate::dual::{Dual, DualSymbols, RateSymbols};
+    let n = chain.dof();
+    let graph = SharedGraph::default();
+    let d_dot = RingChain::new(chain, &RateSymbols { graph: &graph }).mass_matrix();
+    let qd: Vec<Dual> = (0..n)
+        .map(|i| Dual {
+            v: E::sym(&graph, crate::graph::Sym::Qd(i)),
+            d: std::rc::Rc::from(Vec::new()),
+        })
+        .collect();
+    let momentum = RingChain::new(chain, &DualSymbols { graph: &graph, n }).momentum(&qd);
+    let c = (0..n * n)
+        .map(|idx| {
+            let (k, j) = (idx / n, idx % n);
+            (d_dot[k][j].partial(0) + momentum[k].partial(j) - momentum[j].partial(k)) * E::K(0.5)
+        })
+        .collect();
+    (graph, c)
 }

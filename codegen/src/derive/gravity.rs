@@ -2,12 +2,13 @@
 
 use super::Derivation;
 use crate::graph::{E, SharedGraph};
-use crate::poly::Poly;
+use crate::poly::{Budget, Poly};
 use dhgen_model::ChainRef;
+use std::rc::Rc;
 
 /// g(q) in the normal form.
-pub fn gravity_polys(chain: ChainRef<'_>) -> Vec<Poly> {
-    super::poly_chain(chain)
+pub fn gravity_polys(chain: ChainRef<'_>, budget: &Rc<Budget>) -> Vec<Poly> {
+    super::poly_chain(chain, budget)
         .gravity_torques()
         .into_iter()
         .map(|p| p.poly)
@@ -18,13 +19,12 @@ pub fn gravity_polys(chain: ChainRef<'_>) -> Vec<Poly> {
 pub fn gravity(dv: &Derivation<'_>) -> (SharedGraph, Vec<E>) {
     let expanded = {
         let graph = SharedGraph::default();
-        let e = dv.gravity_exprs(&graph);
-        (graph, e)
+        dv.gravity_exprs(&graph).map(|e| (graph, e))
     };
     let recursive = {
         let graph = SharedGraph::default();
         let e = super::graph_chain(dv.chain, &graph).gravity_torques();
         (graph, e)
     };
-    super::cheapest(vec![expanded, recursive])
+    super::cheapest(expanded.into_iter().chain([recursive]).collect())
 }

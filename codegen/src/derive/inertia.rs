@@ -3,12 +3,13 @@
 
 use super::Derivation;
 use crate::graph::{E, SharedGraph};
-use crate::poly::Poly;
+use crate::poly::{Budget, Poly};
 use dhgen_model::ChainRef;
+use std::rc::Rc;
 
 /// D(q) in the normal form, motor inertia included (row-major).
-pub fn mass_matrix_polys(chain: ChainRef<'_>) -> Vec<Vec<Poly>> {
-    let mut d: Vec<Vec<Poly>> = super::poly_chain(chain)
+pub fn mass_matrix_polys(chain: ChainRef<'_>, budget: &Rc<Budget>) -> Vec<Vec<Poly>> {
+    let mut d: Vec<Vec<Poly>> = super::poly_chain(chain, budget)
         .mass_matrix()
         .into_iter()
         .map(|row| row.into_iter().map(|p| p.poly).collect())
@@ -32,8 +33,7 @@ pub fn mass_matrix(dv: &Derivation<'_>) -> (SharedGraph, Vec<E>) {
     let n = chain.dof();
     let expanded = {
         let graph = SharedGraph::default();
-        let e = dv.mass_matrix_exprs(&graph);
-        (graph, e)
+        dv.mass_matrix_exprs(&graph).map(|e| (graph, e))
     };
     let recursive = {
         let graph = SharedGraph::default();
@@ -43,5 +43,5 @@ pub fn mass_matrix(dv: &Derivation<'_>) -> (SharedGraph, Vec<E>) {
         debug_assert_eq!(e.len(), n * n);
         (graph, e)
     };
-    super::cheapest(vec![expanded, recursive])
+    super::cheapest(expanded.into_iter().chain([recursive]).collect())
 }

@@ -14,23 +14,56 @@ pub mod singularity;
 
 use crate::chain::{JointSymbols, RingChain};
 use crate::graph::{E, SharedGraph, Sym, count};
-use crate::poly::{Basis, P, Poly, Var};
+use crate::poly::{Basis, Budget, P, Poly, Var};
 use dhgen_model::{ChainRef, JointKind};
 use std::cell::OnceCell;
 use std::rc::Rc;
 
-/// One robot's derivations, with the expensive normal forms built at most once.
+/// One robot's derivations, with the expensive normal forms built at most once, or not at
+/// all when they would be too large.
 pub struct Derivation<'c> {
     /// The robot's structure.
     pub chain: ChainRef<'c>,
-    mass_matrix: OnceCell<Vec<Vec<Poly>>>,
-    christoffel: OnceCell<Vec<Vec<Vec<Poly>>>>,
-    gravity: OnceCell<Vec<Poly>>,
+    mass_matrix: OnceCell<Option<Vec<Vec<Poly>>>>,
+    christoffel: OnceCell<Option<Vec<Vec<Vec<Poly>>>>>,
+    gravity: OnceCell<Option<Vec<Poly>>>,
 }
 
-/// Terms in D's normal form above which expanding is not worth trying: arms without
+/// Terms in D's normal form above which its candidates are not worth building: arms without
 /// parallel axes and with full inertia tensors (e.g. 7-DOF) expand to many thousands.
 const NORMAL_FORM_TERMS: usize = 4000;
+
+/// Term operations (see [`Budget`]) D's normal form may cost before it is abandoned for the
+/// recursive candidates. D's normal form wins where the arm has structure (exact quarter
+/// turns, parallel axes): the PUMA 560's costs 1,300, the UR5's 7,600. Without structure it
+/// grows exponentially with the number of joints (a general 10-joint arm's has 1.2 million
+/// terms) and never wins; everything built from it (the Christoffel symbols by
+/// differentiation, τ assembled from D, c and g) costs far more than D itself.
+pub const MASS_MATRIX_WORK: u64 = 30_000;
+
+/// The same for g(q), whose normal form is smaller and wins more often (a general 6-joint
+/// arm's costs 38,000 and saves a fifth of g's operations).
+pub const GRAVITY_WORK: u64 = 100_000;
+
+/// Whether a chain can have a normal form at all: two variables per joint in a monomial.
+fn fits_normal_form(chain: ChainRef<'_>) -> bool {
+    chain.dof() <= crate::poly::MAX_VARS / 2
+}
+
+/// Runs `build` on a fresh budget of `work`; `None` when the budget ran out (or the chain has
+/// too many joints for the normal form).
+pub fn within_budget<T>(
+    chain: ChainRef<'_>,
+    work: u64,
+    build: impl FnOnce(&Rc<Budget>) -> T,
+) -> Option<T> {
+    if !fits_normal_form(chain) {
+        return None;
+    }
+    let budget = Budget::new(work);
+    let out = build(&budget);
+    (!budget.exhausted()).then_some(out)
+}
 
 impl<'c> Derivation<'c> {
     /// Starts the derivations of the robot with structure `chain`.
@@ -43,56 +76,73 @@ impl<'c> Derivation<'c> {
         }
     }
 
-    /// D(q) in the normal form (motor inertia included), row-major.
-    pub fn mass_matrix_polys(&self) -> &Vec<Vec<Poly>> {
+    /// D(q) in the normal form (motor inertia included), row-major; `None` when it is too
+    /// large to build.
+    pub fn mass_matrix_polys(&self) -> Option<&Vec<Vec<Poly>>> {
         self.mass_matrix
-            .get_or_init(|| inertia::mass_matrix_polys(self.chain))
+            .get_or_init(|| {
+                within_budget(self.chain, MASS_MATRIX_WORK, |b| {
+                    inertia::mass_matrix_polys(self.chain, b)
+                })
+            })
+            .as_ref()
     }
 
-    /// `c[i][j][k]` in the normal form.
-    pub fn christoffel_polys(&self) -> &Vec<Vec<Vec<Poly>>> {
+    /// `c[i][j][k]` in the normal form, the derivatives of D's; `None` without it.
+    pub fn christoffel_polys(&self) -> Option<&Vec<Vec<Vec<Poly>>>> {
         self.christoffel
-            .get_or_init(|| christoffel::christoffel_polys(self.chain, self.mass_matrix_polys()))
+            .get_or_init(|| {
+                let d = self.mass_matrix_polys()?;
+                Some(christoffel::christoffel_polys(self.chain, d))
+            })
+            .as_ref()
     }
 
-    /// g(q) in the normal form.
-    pub fn gravity_polys(&self) -> &Vec<Poly> {
+    /// g(q) in the normal form; `None` when it is too large to build.
+    pub fn gravity_polys(&self) -> Option<&Vec<Poly>> {
         self.gravity
-            .get_or_init(|| gravity::gravity_polys(self.chain))
+            .get_or_init(|| {
+                within_budget(self.chain, GRAVITY_WORK, |b| {
+                    gravity::gravity_polys(self.chain, b)
+                })
+            })
+            .as_ref()
     }
 
     /// D(q) as Horner-factored expressions in `graph`, flattened row-major.
-    pub fn mass_matrix_exprs(&self, graph: &SharedGraph) -> Vec<E> {
-        let flat: Vec<Poly> = self.mass_matrix_polys().iter().flatten().cloned().collect();
-        polys_to_exprs(&flat, graph, self.chain)
+    pub fn mass_matrix_exprs(&self, graph: &SharedGraph) -> Option<Vec<E>> {
+        let flat: Vec<Poly> = self
+            .mass_matrix_polys()?
+            .iter()
+            .flatten()
+            .cloned()
+            .collect();
+        Some(polys_to_exprs(&flat, graph, self.chain))
     }
 
     /// `c[i][j][k]` as Horner-factored expressions in `graph`, flattened `(i·n + j)·n + k`.
-    pub fn christoffel_exprs(&self, graph: &SharedGraph) -> Vec<E> {
+    pub fn christoffel_exprs(&self, graph: &SharedGraph) -> Option<Vec<E>> {
         let flat: Vec<Poly> = self
-            .christoffel_polys()
+            .christoffel_polys()?
             .iter()
             .flatten()
             .flatten()
             .cloned()
             .collect();
-        polys_to_exprs(&flat, graph, self.chain)
+        Some(polys_to_exprs(&flat, graph, self.chain))
     }
 
     /// g(q) as Horner-factored expressions in `graph`.
-    pub fn gravity_exprs(&self, graph: &SharedGraph) -> Vec<E> {
-        polys_to_exprs(self.gravity_polys(), graph, self.chain)
+    pub fn gravity_exprs(&self, graph: &SharedGraph) -> Option<Vec<E>> {
+        Some(polys_to_exprs(self.gravity_polys()?, graph, self.chain))
     }
 
-    /// Whether the normal form is small enough for its candidates to be worth building.
+    /// Whether D's normal form exists and is small enough for the candidates built from it
+    /// (the symbols by differentiation, τ assembled from D, c and g) to be worth building.
     pub fn normal_form_is_small(&self) -> bool {
-        let terms: usize = self
-            .mass_matrix_polys()
-            .iter()
-            .flatten()
-            .map(|p| p.terms().len())
-            .sum();
-        terms <= NORMAL_FORM_TERMS
+        self.mass_matrix_polys().is_some_and(|d| {
+            d.iter().flatten().map(|p| p.terms().len()).sum::<usize>() <= NORMAL_FORM_TERMS
+        })
     }
 }
 
@@ -108,15 +158,18 @@ impl JointSymbols<E> for GraphSymbols<'_> {
     }
 }
 
-/// Normal-form variables for the joint variables.
-pub struct PolySymbols(pub Rc<[Var]>);
+/// Normal-form variables for the joint variables, their arithmetic drawing on a budget.
+pub struct PolySymbols(pub Rc<[Var]>, pub Rc<Budget>);
 
 impl JointSymbols<P> for PolySymbols {
     fn angle(&self, j: usize) -> (P, P) {
-        (P::new(Poly::cos(j), &self.0), P::new(Poly::sin(j), &self.0))
+        (
+            P::new(Poly::cos(j), &self.0, &self.1),
+            P::new(Poly::sin(j), &self.0, &self.1),
+        )
     }
     fn length(&self, j: usize) -> P {
-        P::new(Poly::length(j), &self.0)
+        P::new(Poly::length(j), &self.0, &self.1)
     }
 }
 
@@ -137,9 +190,9 @@ pub fn graph_chain<'c>(chain: ChainRef<'c>, graph: &SharedGraph) -> RingChain<'c
     RingChain::new(chain, &GraphSymbols(graph))
 }
 
-/// The chain in normal-form arithmetic.
-pub fn poly_chain(chain: ChainRef<'_>) -> RingChain<'_, P> {
-    RingChain::new(chain, &PolySymbols(vars(chain)))
+/// The chain in normal-form arithmetic, drawing on `budget`.
+pub fn poly_chain<'c>(chain: ChainRef<'c>, budget: &Rc<Budget>) -> RingChain<'c, P> {
+    RingChain::new(chain, &PolySymbols(vars(chain), budget.clone()))
 }
 
 /// Of several candidate derivations of the same outputs, each in its own graph, the one

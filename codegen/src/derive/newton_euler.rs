@@ -54,11 +54,15 @@ pub fn inverse_dynamics(dv: &Derivation<'_>) -> (SharedGraph, Vec<E>) {
     if !dv.normal_form_is_small() {
         return recursive;
     }
+    let graph = SharedGraph::default();
+    let (Some(d), Some(c), Some(gr)) = (
+        dv.mass_matrix_exprs(&graph),
+        dv.christoffel_exprs(&graph),
+        dv.gravity_exprs(&graph),
+    ) else {
+        return recursive;
+    };
     let assembled = {
-        let graph = SharedGraph::default();
-        let d = dv.mass_matrix_exprs(&graph);
-        let c = dv.christoffel_exprs(&graph);
-        let gr = dv.gravity_exprs(&graph);
         let qd: Vec<E> = (0..n).map(|i| E::sym(&graph, Sym::Qd(i))).collect();
         let qdd: Vec<E> = (0..n).map(|i| E::sym(&graph, Sym::Qdd(i))).collect();
         let e = (0..n)

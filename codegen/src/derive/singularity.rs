@@ -18,7 +18,17 @@ pub fn decoupled_determinants(chain: ChainRef<'_>) -> Option<(Poly, Poly)> {
         return None;
     }
     let wrist = chain.spherical_wrist().ok()?;
-    let frames = super::poly_chain(chain).joint_frames();
+    super::within_budget(chain, super::GRAVITY_WORK, |budget| {
+        determinants(chain, &wrist, budget)
+    })?
+}
+
+fn determinants(
+    chain: ChainRef<'_>,
+    wrist: &dhgen_model::SphericalWrist,
+    budget: &std::rc::Rc<crate::poly::Budget>,
+) -> Option<(Poly, Poly)> {
+    let frames = super::poly_chain(chain, budget).joint_frames();
     let c: V3<P> = frames[wrist.first].point(&wrist.centre.map(P::from_f64));
     let column = |j: usize| -> V3<P> {
         let z = frames[j].z_axis();

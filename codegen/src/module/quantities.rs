@@ -299,19 +299,26 @@ pub const QUANTITIES: &[Quantity] = &[
         available: Availability::Dynamics,
         public: true,
         make: |cx| {
-            // C straight from the symbols (zero symbols fold away), unless contracting the
-            // n³ array at run time is cheaper.
-            let (graph, c) = cx.christoffel();
+            // Three candidates: C straight from the symbols (zero symbols fold away), the O(n²)
+            // recursion, or contracting the n³ symbols at run time; the fewest operations win.
             let n = cx.chain.dof();
-            let cor = christoffel::coriolis_from(n, graph, c);
-            let cost = |exprs: &[E]| {
+            let (graph, c) = cx.christoffel();
+            let direct = christoffel::coriolis_from(n, graph, c);
+            let cost = |graph: &SharedGraph, exprs: &[E]| {
                 let roots: Vec<_> = exprs.iter().map(|e| e.id_in(graph)).collect();
                 crate::graph::count(&graph.borrow(), roots).total()
             };
-            if cost(&cor) < cost(c) + 2 * n * n * n {
-                derived(graph.clone(), cor)
-            } else {
-                composed(
+            let (recursive_graph, recursive) = christoffel::coriolis_recursive(cx.chain);
+            let costs = [
+                cost(graph, &direct),
+                cost(&recursive_graph, &recursive),
+                cost(graph, c) + 2 * n * n * n,
+            ];
+            let best = (0..3).min_by_key(|&i| costs[i]).unwrap_or(0);
+            match best {
+                0 => derived(graph.clone(), direct),
+                1 => derived(recursive_graph, recursive),
+                _ => composed(
                     quote! {
                         let c = self.christoffel();
                         let mut out = na::SMatrix::<T, DOF, DOF>::zeros();
@@ -327,7 +334,7 @@ pub const QUANTITIES: &[Quantity] = &[
                         out
                     },
                     &["christoffel"],
-                )
+                ),
             }
         },
         arm: Some(ArmMethod::Dynamics),

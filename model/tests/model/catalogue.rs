@@ -137,3 +137,51 @@ fn scara_geometry_and_actuators() {
     assert_eq!(prismatic.limits, Some([0.0, 0.15]));
     assert!(prismatic.friction.is_some_and(|f| f.viscous > 0.0));
 }
+
+#[test]
+fn descriptions_written_back_read_back_equal() {
+    use dhgen_model::random::{ArmStyle, random_arm};
+    let mut models: Vec<RobotModel> = CATALOGUE.iter().map(|(stem, ..)| load(stem)).collect();
+    for dof in [1, 2, 6, 7, 17, 30] {
+        for style in [ArmStyle::General, ArmStyle::Industrial] {
+            for seed in 0..3 {
+                models.push(random_arm(dof, style, seed));
+            }
+        }
+    }
+    for model in models {
+        let text = model.to_toml();
+        let back = RobotModel::from_toml_str(&text).unwrap_or_else(|e| panic!("{e}\n{text}"));
+        assert_eq!(back, model, "{text}");
+    }
+}
+
+#[test]
+fn random_arms_are_reproducible_and_of_their_style() {
+    use dhgen_model::random::{ArmStyle, random_arm};
+    assert_eq!(
+        random_arm(9, ArmStyle::General, 4),
+        random_arm(9, ArmStyle::General, 4)
+    );
+    assert_ne!(
+        random_arm(9, ArmStyle::General, 4),
+        random_arm(9, ArmStyle::General, 5)
+    );
+    for seed in 0..20 {
+        let general = random_arm(12, ArmStyle::General, seed);
+        assert!(general.has_dynamics());
+        assert!(
+            general
+                .links
+                .iter()
+                .all(|l| l.alpha.quarter_turn().is_none() && l.a != 0.0)
+        );
+        let industrial = random_arm(12, ArmStyle::Industrial, seed);
+        assert!(
+            industrial
+                .links
+                .iter()
+                .all(|l| l.alpha.quarter_turn().is_some() && l.theta.quarter_turn().is_some())
+        );
+    }
+}
