@@ -75,7 +75,7 @@ fn cycle<const N: usize, R>(
 
 fn closed_form(c: &mut Criterion) {
     let puma = cases::<6, _>(&puma560::Robot, 560);
-    let ik = DecoupledIk::from_arm(&puma560::Robot).unwrap();
+    let ik = DecoupledIk::from_chain(puma560::CHAIN).unwrap();
     cycle(
         c,
         "puma560",
@@ -85,7 +85,7 @@ fn closed_form(c: &mut Criterion) {
         |s| ik.solve(&s.pose),
     );
     let st = cases::<6, _>(&stanford::Robot, 1969);
-    let ik = DecoupledIk::from_arm(&stanford::Robot).unwrap();
+    let ik = DecoupledIk::from_chain(stanford::CHAIN).unwrap();
     cycle(c, "stanford", "ik_closed_form", "all_solutions", &st, |s| {
         ik.solve(&s.pose)
     });

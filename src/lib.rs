@@ -77,7 +77,6 @@ pub mod example {
 mod arm;
 mod joints;
 mod real;
-mod rigid;
 pub use arm::{Arm, ArmAllocator, ArmDynamics, JointVector};
 pub use joints::{JointArray, Joints};
 pub use real::{Real, cholesky_pivot_floor};

@@ -2,8 +2,8 @@
 //! needs, computed once at construction (Pinocchio's split between the constant model and
 //! the per-call work, which lives in [`crate::kinematics`] and [`crate::dynamics`]).
 
-pub(crate) use crate::rigid::Rigid;
 use crate::{Error, Joints};
+pub(crate) use dhgen_model::Rigid;
 use dhgen_model::{ChainRef, JointChain, JointKind, RobotModel};
 use nalgebra::{Matrix3, Vector3};
 use std::path::Path;

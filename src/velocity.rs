@@ -560,7 +560,7 @@ pub struct DecoupledDeterminants {
 /// use dhgen::velocity::decoupled_determinants;
 /// dhgen::robot!(mod puma = "robots/puma560.toml");
 ///
-/// let centre = DecoupledIk::from_arm(&puma::Robot).unwrap().wrist_centre_in_tool();
+/// let centre = DecoupledIk::from_chain(puma::CHAIN).unwrap().wrist_centre_in_tool().expect("a spherical wrist");
 /// // θ5 = 0: a wrist singularity, the arm part is regular.
 /// let q = SVector::<f64, 6>::new(0.2, -0.3, 0.4, 0.5, 0.0, 0.7);
 /// let d = decoupled_determinants(&puma::Robot, &q, &centre).unwrap();

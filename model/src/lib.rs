@@ -29,16 +29,22 @@
 
 mod angle;
 pub mod chain;
+pub mod closed_form;
 mod math;
 mod model;
 #[cfg(feature = "std")]
 pub mod random;
 #[cfg(feature = "std")]
 pub mod raw;
+mod rigid;
 #[cfg(feature = "std")]
 pub mod validate;
 #[cfg(feature = "std")]
 mod write;
+
+/// The linear algebra the numeric parts use (`Rigid`, closed-form IK), re-exported so that
+/// generated code and codegen name the same version.
+pub use nalgebra;
 
 pub use angle::Angle;
 #[cfg(feature = "std")]
@@ -50,6 +56,7 @@ pub use model::{
     Collision, Convention, Frame, Friction, Inertial, JointKind, JointValue, Link, Motor, Pose,
     Ring,
 };
+pub use rigid::Rigid;
 
 #[cfg(feature = "std")]
 pub use load::LoadError;

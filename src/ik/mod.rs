@@ -1,11 +1,14 @@
 //! Inverse kinematics (section 4.3): from a desired tool pose to joint values.
 //!
-//! - [`DecoupledIk`]: closed form by kinematic decoupling for six-joint arms with a
-//!   spherical wrist (PUMA 560, Stanford arm, the cylindrical arm, ...). Returns **all**
-//!   solutions (at most 8) in a fixed-capacity [`Solutions`], each verified by forward
-//!   kinematics. Built from the DH table ([`DecoupledIk::from_model`]) or from any
-//!   [`Arm`](crate::Arm) ([`DecoupledIk::from_arm`]: works for generated modules, also without
-//!   `std`); solving allocates nothing.
+//! - [`DecoupledIk`]: closed form by kinematic decoupling for six-joint arms whose last three
+//!   axes meet (Pieper's condition, at any twist angles: PUMA 560, Stanford arm, the
+//!   cylindrical arm, arms with shoulder offsets) or whose axes 2, 3, 4 are parallel (the
+//!   Universal Robots arms). Returns **all** solutions (at most 8) in a fixed-capacity
+//!   [`Solutions`], each verified by forward kinematics. Built from an arm's structure
+//!   ([`DecoupledIk::from_chain`] with [`Arm::chain`](crate::Arm::chain), or a description's);
+//!   a generated module carries its solver precomputed as the constant `IK` (with
+//!   `ik(&pose)`). Solving allocates nothing, also without `std`. The method and the choices
+//!   at singular poses are documented in [`dhgen_model::closed_form`].
 //! - [`NumericIk`]: damped least squares (Levenberg–Marquardt) for any chain (redundant arms,
 //!   prismatic joints), generic over [`Arm`](crate::Arm), with joint limits, tolerances, an
 //!   iteration cap and a seed; allocation-free in its loop for generated robots.
@@ -21,7 +24,8 @@
 //! let pose = puma::fk(&q);
 //!
 //! // Closed form: every solution.
-//! let all = DecoupledIk::from_arm(&puma::Robot).unwrap().solve(&pose);
+//! let all = puma::IK.solve(&pose);
+//! assert_eq!(all, DecoupledIk::from_chain(puma::CHAIN).unwrap().solve(&pose));
 //! assert!(all.len() >= 2);
 //!
 //! // Numeric: one solution near the seed.
@@ -30,10 +34,11 @@
 //! assert!(found.position_error < 1e-10 && found.orientation_error < 1e-10);
 //! ```
 
-mod decoupled;
 mod numeric;
 
-pub use decoupled::{ArmKind, DecoupledIk, Solutions, StructureError, VERIFY_TOLERANCE};
+pub use dhgen_model::closed_form::{
+    ArmKind, DecoupledIk, Solutions, StructureError, VERIFY_TOLERANCE,
+};
 pub use numeric::{IkError, NumericIk, Solution};
 
 use nalgebra::Isometry3;

@@ -125,7 +125,7 @@ fn report(name: &str, f: &Figures) {
 
 #[test]
 fn puma560_ten_thousand_poses() {
-    let ik = DecoupledIk::from_arm(&puma560::Robot).unwrap();
+    let ik = DecoupledIk::from_chain(puma560::CHAIN).unwrap();
     assert_eq!(ik.arm_kind(), ArmKind::IntersectingShoulder);
     let f = acceptance(&puma560::Robot, &ik, 10_000, 560);
     report("puma560", &f);
@@ -135,7 +135,7 @@ fn puma560_ten_thousand_poses() {
 
 #[test]
 fn stanford_ten_thousand_poses() {
-    let ik = DecoupledIk::from_arm(&stanford::Robot).unwrap();
+    let ik = DecoupledIk::from_chain(stanford::CHAIN).unwrap();
     assert_eq!(ik.arm_kind(), ArmKind::IntersectingShoulder);
     let f = acceptance(&stanford::Robot, &ik, 10_000, 1969);
     report("stanford", &f);
@@ -144,7 +144,7 @@ fn stanford_ten_thousand_poses() {
 
 #[test]
 fn cylindrical_ten_thousand_poses() {
-    let ik = DecoupledIk::from_arm(&cylindrical::Robot).unwrap();
+    let ik = DecoupledIk::from_chain(cylindrical::CHAIN).unwrap();
     assert_eq!(ik.arm_kind(), ArmKind::Cylindrical);
     let f = acceptance(&cylindrical::Robot, &ik, 10_000, 42);
     report("cylindrical", &f);
@@ -154,7 +154,7 @@ fn cylindrical_ten_thousand_poses() {
 
 #[test]
 fn offsets_base_and_tool_are_honoured() {
-    let ik = DecoupledIk::from_arm(&puma_offsets::Robot).unwrap();
+    let ik = DecoupledIk::from_chain(puma_offsets::CHAIN).unwrap();
     let f = acceptance(&puma_offsets::Robot, &ik, 2_000, 7);
     report("puma with offsets, base, tool", &f);
     assert!(f.histogram[8] > 1_950, "{:?}", f.histogram);
@@ -162,8 +162,9 @@ fn offsets_base_and_tool_are_honoured() {
 
 #[test]
 fn elbow_with_shoulder_offset_a1() {
-    let ik = DecoupledIk::from_arm(&offset_elbow::Robot).unwrap();
-    assert_eq!(ik.arm_kind(), ArmKind::ParallelElbow);
+    let ik = DecoupledIk::from_chain(offset_elbow::CHAIN).unwrap();
+    // Axes 1 and 2 are skew (offset a1): the quartic case.
+    assert_eq!(ik.arm_kind(), ArmKind::OffsetShoulder);
     let f = acceptance(&offset_elbow::Robot, &ik, 2_000, 11);
     report("elbow arm with a1 offset", &f);
     assert!(f.solutions >= 2_000 * 4);
@@ -171,7 +172,7 @@ fn elbow_with_shoulder_offset_a1() {
 
 #[test]
 fn modified_dh_arm() {
-    let ik = DecoupledIk::from_arm(&craig::Robot).unwrap();
+    let ik = DecoupledIk::from_chain(craig::CHAIN).unwrap();
     let f = acceptance(&craig::Robot, &ik, 2_000, 13);
     report("modified DH PUMA", &f);
     assert!(f.histogram[8] > 1_950, "{:?}", f.histogram);
@@ -183,7 +184,7 @@ fn from_model_and_from_arm_agree_for_generated_and_runtime_robots() {
         let m = model(name);
         let robot = Robot::from_model(m.clone());
         let from_model = DecoupledIk::from_model(&m).unwrap();
-        let from_runtime = DecoupledIk::from_arm(&robot).unwrap();
+        let from_runtime = DecoupledIk::from_chain(robot.chain()).unwrap();
         assert_eq!(from_model.arm_kind(), from_runtime.arm_kind());
         let mut rng = StdRng::seed_from_u64(3);
         for _ in 0..200 {
@@ -245,7 +246,7 @@ fn from_model_honours_offsets_base_tool_and_modified_dh() {
 
 #[test]
 fn wrist_singularity_sets_q4_to_zero() {
-    let ik = DecoupledIk::from_arm(&puma560::Robot).unwrap();
+    let ik = DecoupledIk::from_chain(puma560::CHAIN).unwrap();
     for (q4, q6) in [(0.7, -0.2), (-1.0, 2.0), (0.0, 0.5)] {
         let q = SVector::<f64, 6>::new(0.3, 0.2, -0.9, q4, 0.0, q6);
         let pose = puma560::fk(&q);
@@ -269,11 +270,12 @@ fn wrist_singularity_sets_q4_to_zero() {
 fn shoulder_singularity_sets_q1_to_zero() {
     // An elbow arm without shoulder offset: its wrist centre can sit on axis 1.
     use crate::catalogue::shoulder_singular_elbow as elbow;
-    let ik = DecoupledIk::from_arm(&elbow::Robot).unwrap();
+    let ik = DecoupledIk::from_chain(elbow::CHAIN).unwrap();
     // With q2 = 60°, q3 = −90° puts the wrist centre straight above the base: on axis 1.
     let q = SVector::<f64, 6>::new(1.1, PI / 3.0, -PI / 2.0, 0.4, 0.9, -0.3);
     let pose = elbow::fk(&q);
-    let centre = pose * dhgen::nalgebra::Point3::from(ik.wrist_centre_in_tool());
+    let centre =
+        pose * dhgen::nalgebra::Point3::from(ik.wrist_centre_in_tool().expect("a spherical wrist"));
     assert!(centre.coords.xy().norm() < 1e-12, "{centre:?}");
     let solutions = ik.solve(&pose);
     assert!(!solutions.is_empty());
@@ -286,7 +288,7 @@ fn shoulder_singularity_sets_q1_to_zero() {
 
 #[test]
 fn unreachable_poses_give_no_solution_and_no_nan() {
-    let ik = DecoupledIk::from_arm(&puma560::Robot).unwrap();
+    let ik = DecoupledIk::from_chain(puma560::CHAIN).unwrap();
     let far = Isometry3::from_parts(Translation3::new(3.0, 0.0, 0.5), UnitQuaternion::identity());
     assert!(ik.solve(&far).is_empty());
     let nan = Isometry3::from_parts(
@@ -296,7 +298,7 @@ fn unreachable_poses_give_no_solution_and_no_nan() {
     assert!(ik.solve(&nan).is_empty());
     // Every wrist centre of the cylindrical arm has a solution for some real d2, d3: beyond
     // its reach is a matter of the joint limits.
-    let ik = DecoupledIk::from_arm(&cylindrical::Robot).unwrap();
+    let ik = DecoupledIk::from_chain(cylindrical::CHAIN).unwrap();
     let inf = Isometry3::from_parts(
         Translation3::new(0.3, f64::INFINITY, 0.5),
         UnitQuaternion::identity(),
@@ -306,7 +308,7 @@ fn unreachable_poses_give_no_solution_and_no_nan() {
     let out = Isometry3::from_parts(Translation3::new(2.0, 0.0, 0.5), UnitQuaternion::identity());
     assert!(ik.solve_within_limits(&out).is_empty());
     // The stretched PUMA (elbow singular) is on the boundary: solutions exist and are exact.
-    let ik = DecoupledIk::from_arm(&puma560::Robot).unwrap();
+    let ik = DecoupledIk::from_chain(puma560::CHAIN).unwrap();
     let q = SVector::<f64, 6>::new(
         0.2,
         0.5,
@@ -327,7 +329,7 @@ fn unreachable_poses_give_no_solution_and_no_nan() {
 
 #[test]
 fn solutions_within_limits_respect_them() {
-    let ik = DecoupledIk::from_arm(&puma560::Robot).unwrap();
+    let ik = DecoupledIk::from_chain(puma560::CHAIN).unwrap();
     let mut rng = StdRng::seed_from_u64(99);
     for _ in 0..500 {
         let q = random_q(&puma560::Robot, &mut rng);
@@ -349,25 +351,23 @@ fn solutions_within_limits_respect_them() {
 #[test]
 fn structures_without_a_closed_form_are_rejected_with_the_reason() {
     assert_eq!(
-        DecoupledIk::from_arm(&panda::Robot).unwrap_err(),
+        DecoupledIk::from_chain(panda::CHAIN).unwrap_err(),
         StructureError::NotSixJoints { dof: 7 }
     );
-    let err = DecoupledIk::from_arm(&ur5::Robot).unwrap_err();
-    assert!(
-        matches!(
-            err,
-            StructureError::NoSphericalWrist(NotSpherical::AxesApart { .. })
-        ),
-        "{err}"
-    );
+    // A general six-joint arm: no spherical wrist, no parallel axes.
+    let general = dhgen::model::random::random_arm(6, dhgen::model::random::ArmStyle::General, 1);
+    let err = DecoupledIk::from_model(&general).unwrap_err();
+    assert!(matches!(err, StructureError::NoDecoupling(_)), "{err}");
     assert!(err.to_string().contains("no spherical wrist"), "{err}");
-    let err = DecoupledIk::from_model(&model("ur5")).unwrap_err();
-    assert!(
-        matches!(
-            err,
-            StructureError::NoSphericalWrist(NotSpherical::AxesApart { .. })
-        ),
-        "{err}"
+    // Axes 4, 5, 6 apart (here: joint 4 prismatic) is said in the reason.
+    assert_eq!(
+        err,
+        StructureError::NoDecoupling(NotSpherical::PrismaticJoint { joint: 3 })
+    );
+    // The UR5 decouples the other way: axes 2, 3, 4 parallel, 5 and 6 meeting.
+    assert_eq!(
+        DecoupledIk::from_chain(ur5::CHAIN).unwrap().arm_kind(),
+        ArmKind::ThreeParallel
     );
 }
 
@@ -375,7 +375,8 @@ fn structures_without_a_closed_form_are_rejected_with_the_reason() {
 fn the_solution_list_is_fixed_capacity() {
     assert_eq!(Solutions::CAPACITY, 8);
     assert!(std::mem::size_of::<Solutions>() <= 8 * 6 * 8 + 16);
-    let _: Vector3<f64> = DecoupledIk::from_arm(&puma560::Robot)
+    let _: Vector3<f64> = DecoupledIk::from_chain(puma560::CHAIN)
         .unwrap()
-        .wrist_centre_in_tool();
+        .wrist_centre_in_tool()
+        .expect("a spherical wrist");
 }

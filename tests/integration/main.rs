@@ -31,6 +31,7 @@ mod generated_velocity;
 mod generated_vs_runtime;
 mod ik_closed_form;
 mod ik_numeric;
+mod ik_random;
 mod planar_elbow;
 mod planning_collision;
 mod planning_potential;

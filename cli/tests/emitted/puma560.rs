@@ -13,7 +13,8 @@ pub mod puma560 {
     /// Whether the description has mass properties (dynamics functions exist).
     pub const HAS_DYNAMICS: bool = true;
     /// Whether the last three axes meet in one point (a spherical wrist); for a
-    /// six-joint arm, `det_j11`, `det_j22`, `ik` and `ik_solver` then exist.
+    /// six-joint arm, `det_j11` and `det_j22` then exist (and `IK` and `ik`, which
+    /// also exist for arms with axes 2, 3, 4 parallel).
     pub const SPHERICAL_WRIST: bool = true;
     /// The robot's kinematic structure: fixed transforms, joints (kinds, offsets,
     /// limits, armature, friction), link frames, mass properties and collision
@@ -5169,16 +5170,135 @@ pub mod puma560 {
         pub jacobian: na::SMatrix<T, 6, DOF>,
     }
     /// The closed-form inverse kinematics solver of this arm (kinematic decoupling,
-    /// section 4.3), from its structure: build it once and call `solve` per pose.
-    pub fn ik_solver() -> Result<::dhgen::ik::DecoupledIk, ::dhgen::ik::StructureError> {
-        ::dhgen::ik::DecoupledIk::from_chain(CHAIN)
-    }
+    /// section 4.3), precomputed from its structure when the module was generated.
+    pub const IK: ::dhgen::ik::DecoupledIk = ::dhgen::ik::DecoupledIk {
+        chain: [
+            ::dhgen::model::Rigid {
+                r: ::dhgen::nalgebra::Matrix3::new(
+                    1f64,
+                    0f64,
+                    0f64,
+                    0f64,
+                    1f64,
+                    0f64,
+                    0f64,
+                    0f64,
+                    1f64,
+                ),
+                p: ::dhgen::nalgebra::Vector3::new(0f64, 0f64, 0.6718299999999999f64),
+            },
+            ::dhgen::model::Rigid {
+                r: ::dhgen::nalgebra::Matrix3::new(
+                    1f64,
+                    0f64,
+                    0f64,
+                    0f64,
+                    0f64,
+                    -1f64,
+                    0f64,
+                    1f64,
+                    0f64,
+                ),
+                p: ::dhgen::nalgebra::Vector3::new(0f64, 0f64, 0f64),
+            },
+            ::dhgen::model::Rigid {
+                r: ::dhgen::nalgebra::Matrix3::new(
+                    1f64,
+                    0f64,
+                    0f64,
+                    0f64,
+                    1f64,
+                    0f64,
+                    0f64,
+                    0f64,
+                    1f64,
+                ),
+                p: ::dhgen::nalgebra::Vector3::new(0.4318f64, 0f64, 0.15005f64),
+            },
+            ::dhgen::model::Rigid {
+                r: ::dhgen::nalgebra::Matrix3::new(
+                    1f64,
+                    0f64,
+                    0f64,
+                    0f64,
+                    0f64,
+                    1f64,
+                    0f64,
+                    -1f64,
+                    0f64,
+                ),
+                p: ::dhgen::nalgebra::Vector3::new(0.0203f64, 0.4318f64, 0f64),
+            },
+            ::dhgen::model::Rigid {
+                r: ::dhgen::nalgebra::Matrix3::new(
+                    1f64,
+                    0f64,
+                    0f64,
+                    0f64,
+                    0f64,
+                    -1f64,
+                    0f64,
+                    1f64,
+                    0f64,
+                ),
+                p: ::dhgen::nalgebra::Vector3::new(0f64, 0f64, 0f64),
+            },
+            ::dhgen::model::Rigid {
+                r: ::dhgen::nalgebra::Matrix3::new(
+                    1f64,
+                    0f64,
+                    0f64,
+                    0f64,
+                    0f64,
+                    1f64,
+                    0f64,
+                    -1f64,
+                    0f64,
+                ),
+                p: ::dhgen::nalgebra::Vector3::new(0f64, 0f64, 0f64),
+            },
+            ::dhgen::model::Rigid {
+                r: ::dhgen::nalgebra::Matrix3::new(
+                    1f64,
+                    0f64,
+                    0f64,
+                    0f64,
+                    1f64,
+                    0f64,
+                    0f64,
+                    0f64,
+                    1f64,
+                ),
+                p: ::dhgen::nalgebra::Vector3::new(0f64, 0f64, 0f64),
+            },
+        ],
+        prismatic: [false, false, false, false, false, false],
+        limits: [
+            Some([-2.792526803190927f64, 2.792526803190927f64]),
+            Some([-0.7853981633974483f64, 3.9269908169872414f64]),
+            Some([-3.9269908169872414f64, 0.7853981633974483f64]),
+            Some([-1.9198621771937625f64, 2.9670597283903604f64]),
+            Some([-1.7453292519943295f64, 1.7453292519943295f64]),
+            Some([-4.642575810304916f64, 4.642575810304916f64]),
+        ],
+        scale: 2.5612351696361424f64,
+        kind: ::dhgen::ik::ArmKind::IntersectingShoulder,
+        method: ::dhgen::model::closed_form::Method::Spherical {
+            centre_tool: ::dhgen::nalgebra::Vector3::new(0f64, 0f64, 0f64),
+            w: ::dhgen::nalgebra::Vector3::new(0.0203f64, 0.4318f64, 0f64),
+            shoulder: ::dhgen::model::closed_form::Shoulder::Revolute {
+                shift: 0f64,
+                t1: ::dhgen::nalgebra::Vector3::new(0f64, 0f64, 0f64),
+                u: ::dhgen::nalgebra::Vector3::new(0f64, 0f64, 0f64),
+                n: ::dhgen::nalgebra::Vector3::new(0f64, 1f64, 0f64),
+            },
+        },
+    };
     /// All closed-form inverse kinematics solutions of `pose` (up to 8), each
     /// verified by forward kinematics; empty when the pose is unreachable.
-    pub fn ik(
-        pose: &na::Isometry3<f64>,
-    ) -> Result<::dhgen::ik::Solutions, ::dhgen::ik::StructureError> {
-        Ok(ik_solver()?.solve(pose))
+    #[must_use]
+    pub fn ik(pose: &na::Isometry3<f64>) -> ::dhgen::ik::Solutions {
+        IK.solve(pose)
     }
     /// The robot as a value implementing [`::dhgen::Arm`] (and
     /// [`::dhgen::ArmDynamics`] with mass properties), for `f64`: for algorithms

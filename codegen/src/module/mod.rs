@@ -306,21 +306,23 @@ pub fn generate(model: &RobotModel, vis: TokenStream, name: &Ident) -> Generated
     let spherical_wrist = chain.spherical_wrist().is_ok();
     let chain_const = structure::chain_literal(chain);
     let state = state::definition(&cx);
-    let decoupled = cx.available(Availability::DecoupledWrist);
-    let ik = decoupled.then(|| {
-        quote! {
-            /// The closed-form inverse kinematics solver of this arm (kinematic decoupling,
-            /// section 4.3), from its structure: build it once and call `solve` per pose.
-            pub fn ik_solver() -> Result<::dhgen::ik::DecoupledIk, ::dhgen::ik::StructureError> {
-                ::dhgen::ik::DecoupledIk::from_chain(CHAIN)
+    // Closed-form inverse kinematics where the structure decouples, solved at compile time.
+    let ik = dhgen_model::closed_form::DecoupledIk::from_chain(chain)
+        .ok()
+        .map(|solver| {
+            let solver = structure::ik_literal(&solver);
+            quote! {
+                /// The closed-form inverse kinematics solver of this arm (kinematic decoupling,
+                /// section 4.3), precomputed from its structure when the module was generated.
+                pub const IK: ::dhgen::ik::DecoupledIk = #solver;
+                /// All closed-form inverse kinematics solutions of `pose` (up to 8), each
+                /// verified by forward kinematics; empty when the pose is unreachable.
+                #[must_use]
+                pub fn ik(pose: &na::Isometry3<f64>) -> ::dhgen::ik::Solutions {
+                    IK.solve(pose)
+                }
             }
-            /// All closed-form inverse kinematics solutions of `pose` (up to 8), each
-            /// verified by forward kinematics; empty when the pose is unreachable.
-            pub fn ik(pose: &na::Isometry3<f64>) -> Result<::dhgen::ik::Solutions, ::dhgen::ik::StructureError> {
-                Ok(ik_solver()?.solve(pose))
-            }
-        }
-    });
+        });
     let terms = has_dynamics.then(|| {
         quote! {
             /// D, C, g and J at one configuration, as a controller needs them.
@@ -371,7 +373,8 @@ pub fn generate(model: &RobotModel, vis: TokenStream, name: &Ident) -> Generated
             /// Whether the description has mass properties (dynamics functions exist).
             pub const HAS_DYNAMICS: bool = #has_dynamics;
             /// Whether the last three axes meet in one point (a spherical wrist); for a
-            /// six-joint arm, `det_j11`, `det_j22`, `ik` and `ik_solver` then exist.
+            /// six-joint arm, `det_j11` and `det_j22` then exist (and `IK` and `ik`, which
+            /// also exist for arms with axes 2, 3, 4 parallel).
             pub const SPHERICAL_WRIST: bool = #spherical_wrist;
             /// The robot's kinematic structure: fixed transforms, joints (kinds, offsets,
             /// limits, armature, friction), link frames, mass properties and collision

@@ -1,16 +1,16 @@
-//! The library's working rigid transform: a rotation matrix and a translation. Composing
-//! two is a plain 3×3 product, cheaper than nalgebra's quaternion-based `Isometry3`, which
-//! is only built for results handed to the user. Shared by the runtime path and inverse
-//! kinematics; available without `std`.
+//! The working rigid transform of the numeric code (the runtime path, closed-form inverse
+//! kinematics): a rotation matrix and a translation. Composing two is a plain 3×3 product,
+//! cheaper than nalgebra's quaternion-based `Isometry3`, which is only built for results
+//! handed to the user.
 
-use dhgen_model::JointKind;
+use crate::{Frame, JointKind};
 #[cfg(not(feature = "std"))]
 use nalgebra::ComplexField as _;
 use nalgebra::{Isometry3, Matrix3, Rotation3, Translation3, UnitQuaternion, Vector3};
 
 /// A rigid transform `x ↦ r x + p`.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub(crate) struct Rigid {
+pub struct Rigid {
     /// Rotation: the columns are the frame's axes in the outer frame.
     pub r: Matrix3<f64>,
     /// Origin of the frame in the outer frame.
@@ -19,14 +19,13 @@ pub(crate) struct Rigid {
 
 impl Rigid {
     /// The identity transform.
-    #[cfg(feature = "std")]
     pub const IDENTITY: Rigid = Rigid {
         r: Matrix3::new(1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0),
         p: Vector3::new(0.0, 0.0, 0.0),
     };
 
-    /// Converts the model's row-major frame.
-    pub fn from_frame(f: &dhgen_model::Frame<f64>) -> Rigid {
+    /// Converts a row-major frame.
+    pub fn from_frame(f: &Frame<f64>) -> Rigid {
         Rigid {
             r: Matrix3::from_fn(|i, j| f.r[i][j]),
             p: Vector3::from(f.p),
@@ -70,6 +69,13 @@ impl Rigid {
                 self.r.set_column(1, &(y * c - x * s));
             }
         }
+    }
+
+    /// `self · Z(v)`: the frame right-multiplied by a joint's motion.
+    pub fn moved(&self, joint: JointKind, v: f64) -> Rigid {
+        let mut out = *self;
+        out.apply_joint(joint, v);
+        out
     }
 
     /// From an nalgebra isometry.
