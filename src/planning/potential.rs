@@ -16,10 +16,15 @@
 //! ([`ConvexCSpaceObstacles`], the setting of the text), or the sampled obstacle region of a
 //! 2-joint arm ([`CSpaceGrid`](super::CSpaceGrid)).
 //!
-//! Gradient descent (6.2.3) steps `q ← q + α F/‖F‖` (the last step shortened to land on the
-//! goal) until `‖q − q_final‖ < ε`. Lack of progress (the potential has not dropped by
-//! `min_decrease` over `stall_iterations` steps), a vanishing force, or a step blocked by an
-//! obstacle mark a local minimum; a random walk of `walk_steps` steps, each joint moving
+//! Gradient descent (6.2.3) steps `q ← q + α F/‖F‖` until `‖q − q_final‖ < ε` (for the
+//! workspace field: until every control point is within ε of its goal place). The force
+//! is first projected onto the feasible directions (a joint at a limit that the force
+//! pushes outward does not move), and `α` is at most `step` and at most `‖q − q_final‖`,
+//! halved until the potential drops by at least `10⁻⁴ α ‖F‖` (Armijo's rule): a step never
+//! raises the potential, so the descent cannot overshoot the goal and oscillate around it.
+//! Lack of progress (the potential has not dropped by `min_decrease` over
+//! `stall_iterations` steps), a vanishing projected force, no step that lowers the
+//! potential, or a step blocked by an obstacle mark a local minimum; a random walk of `walk_steps` steps, each joint moving
 //! uniformly within `±walk_step`, then tries to leave it. When `random_walks` walks have
 //! not escaped, planning fails with [`PlanError::LocalMinimum`].
 //!
@@ -362,7 +367,7 @@ impl CSpaceObstacles for ConvexCSpaceObstacles {
 /// Step size, tolerance, budgets and random-walk settings of gradient descent (6.2.3).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct DescentParams {
-    /// Step length α in joint space (> 0).
+    /// Largest step length α in joint space (> 0); the line search shortens it.
     pub step: f64,
     /// Goal tolerance ε: done when `‖q − q_final‖ < ε` (> 0). For the workspace field,
     /// metres: done when every attractive control point is within ε of its goal place.
@@ -477,6 +482,7 @@ pub(crate) fn descend(
     let mut q = start.to_vec();
     let mut next = vec![0.0; n];
     let mut force = vec![0.0; n];
+    let mut trial_force = vec![0.0; n];
     let mut waypoints = vec![q.clone()];
     let mut walks = 0;
     let mut best = field.potential(&q, &mut force);
@@ -501,19 +507,45 @@ pub(crate) fn descend(
         } else {
             since_best += 1;
         }
+        // A joint at a bound whose force pushes outward takes no share of the step (the
+        // gradient projected onto the feasible directions).
+        for (j, f) in force.iter_mut().enumerate() {
+            let [lo, hi] = field.bounds(j);
+            if (q[j] <= lo && *f < 0.0) || (q[j] >= hi && *f > 0.0) {
+                *f = 0.0;
+            }
+        }
         let norm = force.iter().map(|f| f * f).sum::<f64>().sqrt();
         let mut stuck = since_best >= params.stall_iterations || norm.is_nan() || norm <= 1e-12;
         if !stuck {
-            let step = params.step.min(distance(&q, goal));
-            for j in 0..n {
-                let [lo, hi] = field.bounds(j);
-                next[j] = (q[j] + step * force[j] / norm).clamp(lo, hi);
-            }
-            if next != q && field.motion_is_free(&q, &next) {
+            // Backtracking line search: halve the step until the potential drops by a
+            // fraction of what the slope promises (Armijo's rule), so no step overshoots a
+            // goal that the joint-space distance does not see (joints that move no control
+            // point keep that distance large).
+            let mut step = params.step.min(distance(&q, goal));
+            let accepted = loop {
+                for j in 0..n {
+                    let [lo, hi] = field.bounds(j);
+                    next[j] = (q[j] + step * force[j] / norm).clamp(lo, hi);
+                }
+                if next == q {
+                    break false;
+                }
+                let trial = field.potential(&next, &mut trial_force);
+                if trial <= potential - 1e-4 * step * norm {
+                    break true;
+                }
+                step *= 0.5;
+                if step < params.step * 1e-6 {
+                    break false;
+                }
+            };
+            if accepted && field.motion_is_free(&q, &next) {
                 q.copy_from_slice(&next);
                 waypoints.push(q.clone());
             } else {
-                // The field pushes into an obstacle or a joint limit: no way on.
+                // The field pushes into an obstacle or a joint limit, or no step lowers it:
+                // no way on.
                 stuck = true;
             }
         }

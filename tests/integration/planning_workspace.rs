@@ -217,3 +217,96 @@ fn bad_input_is_an_error() {
         .unwrap_err();
     assert!(err.to_string().contains("outside its range"), "{err}");
 }
+
+/// Random configurations of the PUMA 560 within the planners' ranges.
+fn puma_sampler(ranges: &[[f64; 2]]) -> impl FnMut(&mut StdRng) -> Q6 + '_ {
+    |rng| Q6::from_fn(|j, _| rng.random_range(ranges[j][0]..ranges[j][1]))
+}
+
+#[test]
+fn an_empty_scene_reaches_goals_across_the_wrist() {
+    // Without obstacles, from a start to a goal whose arm joints are near but whose wrist
+    // joints (which move no frame origin of the PUMA 560, so feel no attraction) are
+    // anywhere: the joint-space distance to the goal stays large, and a step shortened only
+    // by it overshot the goal places and stalled. With a line search on the potential every
+    // goal is reached without a random walk, at the default step, the tests' 0.02 and larger
+    // steps (the old rule failed from 0.05 on).
+    let mut rng = StdRng::seed_from_u64(17);
+    for step in [DescentParams::default().step, 0.02, 0.05, 0.1] {
+        let params = DescentParams {
+            step,
+            random_walks: 0,
+            ..DescentParams::default()
+        };
+        let mut checker = puma_checker(Vec::new());
+        let ranges: Vec<[f64; 2]> = (0..6).map(|j| checker.joint_range(j)).collect();
+        let mut sample = puma_sampler(&ranges);
+        let field = WorkspaceField::uniform(6, 1.0, 0.3, 0.001, 0.2);
+        let mut planner = WorkspacePlanner::new(&mut checker, field, RESOLUTION).unwrap();
+        for _ in 0..30 {
+            let start = sample(&mut rng);
+            let mut goal = sample(&mut rng);
+            for j in 0..3 {
+                let [lo, hi] = ranges[j];
+                goal[j] = (start[j] + rng.random_range(-0.4..0.4)).clamp(lo, hi);
+            }
+            let path = planner
+                .plan(&start, &goal, &params)
+                .unwrap_or_else(|e| panic!("step {step}, {start} to {goal}: {e}"));
+            assert!(path.ends_at_goal && path.random_walks == 0);
+        }
+    }
+}
+
+#[test]
+fn an_empty_scene_stops_only_at_true_minima() {
+    // Between any two configurations the attraction alone has minima other than the goal
+    // (another arm posture puts the origins nearly in place; a joint limit, or the [−π, π]
+    // range of an unlimited joint, blocks the way round). The descent may stop there, and
+    // only there: where the force left after removing what pushes joints against their
+    // limits vanishes.
+    let mut rng = StdRng::seed_from_u64(18);
+    let params = DescentParams {
+        random_walks: 0,
+        ..DescentParams::default()
+    };
+    let mut checker = puma_checker(Vec::new());
+    let ranges: Vec<[f64; 2]> = (0..6).map(|j| checker.joint_range(j)).collect();
+    let mut sample = puma_sampler(&ranges);
+    let field = WorkspaceField::uniform(6, 1.0, 0.3, 0.001, 0.2);
+    let mut planner = WorkspacePlanner::new(&mut checker, field, RESOLUTION).unwrap();
+    let (mut reached, mut stopped) = (0, 0);
+    for _ in 0..60 {
+        let (start, goal) = (sample(&mut rng), sample(&mut rng));
+        let mut torque = [0.0; 6];
+        planner.potential_towards(&start, &goal, &mut torque);
+        let initial = torque.iter().map(|t| t * t).sum::<f64>().sqrt();
+        match planner.plan(&start, &goal, &params) {
+            Ok(path) => {
+                assert!(path.ends_at_goal && path.random_walks == 0);
+                reached += 1;
+            }
+            Err(PlanError::LocalMinimum { q, potential, .. }) => {
+                assert!(potential > 0.0);
+                let q = Q6::from_column_slice(&q);
+                planner.potential_towards(&q, &goal, &mut torque);
+                let free: f64 = (0..6)
+                    .filter(|&j| {
+                        let [lo, hi] = ranges[j];
+                        !((q[j] == lo && torque[j] < 0.0) || (q[j] == hi && torque[j] > 0.0))
+                    })
+                    .map(|j| torque[j] * torque[j])
+                    .sum::<f64>()
+                    .sqrt();
+                assert!(
+                    free <= 0.02 * initial,
+                    "{start} to {goal}: stopped at {q} with a free torque of {free} (started at {initial})"
+                );
+                stopped += 1;
+            }
+            Err(e) => panic!("{start} to {goal}: {e}"),
+        }
+    }
+    eprintln!("an empty scene: {reached} goals reached, {stopped} true minima");
+    assert!(reached > 0 && stopped > 0);
+}
