@@ -62,7 +62,13 @@ fn main() {
                 std::process::exit(1);
             }
         };
-        let ops = dhgen_codegen::op_counts(&model);
+        let ops = match dhgen_codegen::op_counts(&model) {
+            Ok(ops) => ops,
+            Err(e) => {
+                eprintln!("{robot}: {e}");
+                std::process::exit(1);
+            }
+        };
         let op = |name: &str| ops.iter().find(|(n, _)| n == name).map(|(_, c)| c.total());
         for q in QUANTITIES {
             let dir = criterion.join(robot).join(q);

@@ -163,7 +163,7 @@ where
     ) -> OVector<f64, Self::Dof>;
 
     /// Forward dynamics q̈(q, q̇, τ); `None` where D(q) is singular to working precision
-    /// (see [`cholesky_pivot_floor`](crate::cholesky_pivot_floor)).
+    /// (see [`cholesky_pivot_floor`](crate::cholesky_pivot_floor)) or q̈ is not finite.
     #[doc(alias = "aba")]
     #[doc(alias = "accel")]
     fn forward_dynamics(

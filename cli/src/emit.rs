@@ -22,16 +22,20 @@ pub fn module_ident(model: &RobotModel, name: Option<&str>) -> Result<syn::Ident
 }
 
 /// Runs the generator, timing it.
-pub fn generate_timed(model: &RobotModel, ident: &syn::Ident) -> (Generated, Duration) {
+pub fn generate_timed(
+    model: &RobotModel,
+    ident: &syn::Ident,
+) -> Result<(Generated, Duration), String> {
     let start = Instant::now();
-    let generated = generate(model, quote::quote!(pub), ident);
-    (generated, start.elapsed())
+    let generated = generate(model, quote::quote!(pub), ident).map_err(|e| e.to_string())?;
+    Ok((generated, start.elapsed()))
 }
 
 /// The generated module as a formatted Rust file, under a header naming its source.
 pub fn emit(model: &RobotModel, source: &Path, name: Option<&str>) -> Result<String, String> {
     let ident = module_ident(model, name)?;
-    let (generated, _) = generate_timed(model, &ident);
+    let (generated, _) =
+        generate_timed(model, &ident).map_err(|e| format!("{}: {e}", source.display()))?;
     // The generated module is lint-clean as a source file too (no unused variables, `mut`s
     // or items), so it is written exactly as the macro expands it.
     let file: syn::File = syn::parse2(generated.tokens)
@@ -53,7 +57,7 @@ pub fn emit(model: &RobotModel, source: &Path, name: Option<&str>) -> Result<Str
 /// The operation-count table of every generated function, and the generation time.
 pub fn ops_report(model: &RobotModel) -> Result<String, String> {
     let ident = module_ident(model, None).or_else(|_| module_ident(model, Some("robot")))?;
-    let (generated, elapsed) = generate_timed(model, &ident);
+    let (generated, elapsed) = generate_timed(model, &ident)?;
     let mut t = Table::new(&[
         ("function", Align::Left),
         ("add", Align::Right),

@@ -54,6 +54,34 @@ pub fn positions(robot: &Robot, values: &[String]) -> Result<Vec<f64>, String> {
         .collect()
 }
 
+/// The values of a list argument: separated by commas or white space.
+pub fn split(list: &str) -> Vec<String> {
+    list.split(|c: char| c == ',' || c.is_whitespace())
+        .filter(|v| !v.is_empty())
+        .map(str::to_string)
+        .collect()
+}
+
+/// Reads joint velocities or accelerations (`flag` names them): one finite number per
+/// joint, all zero when the flag is absent.
+pub fn rates(robot: &Robot, flag: &str, list: Option<&str>) -> Result<Vec<f64>, String> {
+    let Some(list) = list else {
+        return Ok(vec![0.0; robot.dof()]);
+    };
+    let values = split(list);
+    check_len(robot, flag, values.len())?;
+    values
+        .iter()
+        .enumerate()
+        .map(|(i, v)| {
+            v.parse::<f64>()
+                .ok()
+                .filter(|x| x.is_finite())
+                .ok_or_else(|| format!("{flag}, joint {}: {v:?} is not a finite number", i + 1))
+        })
+        .collect()
+}
+
 /// Checks that `flag` gave one value per joint.
 pub fn check_len(robot: &Robot, flag: &str, len: usize) -> Result<(), String> {
     let n = robot.dof();
@@ -180,6 +208,9 @@ fn block(out: &mut String, title: &str, m: &DMatrix<f64>) {
         .map(|r| {
             r.iter()
                 .map(|x| {
+                    if x.is_finite() && x.abs() >= 1e9 {
+                        return format!("{x:.6e}");
+                    }
                     let s = format!("{x:.6}");
                     // A rounding residue like -1e-17 prints as 0, not -0.000000.
                     if s.trim_start_matches('-')

@@ -46,15 +46,16 @@ enum Command {
         /// The robot description (TOML).
         robot: PathBuf,
         /// Joint positions, one per joint: radians (or `90deg`, `pi/2`) and metres for
-        /// prismatic joints; comma- or space-separated.
-        #[arg(long, required = true, num_args = 1.., value_delimiter = ',', allow_negative_numbers = true)]
-        q: Vec<String>,
-        /// Joint velocities (rad/s, m/s); zero if omitted.
-        #[arg(long, num_args = 1.., value_delimiter = ',', allow_negative_numbers = true)]
-        qd: Option<Vec<f64>>,
-        /// Joint accelerations (rad/s², m/s²); zero if omitted.
-        #[arg(long, num_args = 1.., value_delimiter = ',', allow_negative_numbers = true)]
-        qdd: Option<Vec<f64>>,
+        /// prismatic joints; one argument, comma-separated (`--q -0.5,0,pi/2,0,0,0`) or
+        /// quoted and space-separated.
+        #[arg(long, required = true, allow_hyphen_values = true, value_name = "LIST")]
+        q: String,
+        /// Joint velocities (rad/s, m/s), a list like `--q`; zero if omitted.
+        #[arg(long, allow_hyphen_values = true, value_name = "LIST")]
+        qd: Option<String>,
+        /// Joint accelerations (rad/s², m/s²), a list like `--q`; zero if omitted.
+        #[arg(long, allow_hyphen_values = true, value_name = "LIST")]
+        qdd: Option<String>,
         /// Print JSON instead of text.
         #[arg(long)]
         json: bool,
@@ -152,15 +153,9 @@ fn run(command: Command) -> Result<String, String> {
             json,
         } => {
             let r = load(&robot)?;
-            let q = eval::positions(&r, &q)?;
-            let n = r.dof();
-            let qd = qd.unwrap_or_else(|| vec![0.0; n]);
-            let qdd = qdd.unwrap_or_else(|| vec![0.0; n]);
-            eval::check_len(&r, "--qd", qd.len())?;
-            eval::check_len(&r, "--qdd", qdd.len())?;
-            if let Some(x) = qd.iter().chain(&qdd).find(|x| !x.is_finite()) {
-                return Err(format!("--qd and --qdd must be finite numbers, not {x}"));
-            }
+            let q = eval::positions(&r, &eval::split(&q))?;
+            let qd = eval::rates(&r, "--qd", qd.as_deref())?;
+            let qdd = eval::rates(&r, "--qdd", qdd.as_deref())?;
             let e = eval::evaluate(&r, q, qd, qdd);
             Ok(if json {
                 format!("{}\n", e.json(&r))
@@ -198,7 +193,9 @@ fn run(command: Command) -> Result<String, String> {
             dynamics_equations(r.model(), &style)
                 .map_err(|why| format!("{}: {why}", robot.display()))
         }
-        Command::Ops { robot } => emit::ops_report(load(&robot)?.model()),
+        Command::Ops { robot } => {
+            emit::ops_report(load(&robot)?.model()).map_err(|e| format!("{}: {e}", robot.display()))
+        }
         Command::Random {
             dof,
             style,

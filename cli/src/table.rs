@@ -83,6 +83,13 @@ impl Table {
 
 /// A number with at most `decimals` decimals and no trailing zeros: `0.4318`, `0`, `-9.81`.
 pub fn trimmed(x: f64, decimals: usize) -> String {
+    // Magnitudes from 1e9 in scientific notation: `1.5e20`, not 21 digits.
+    if x.is_finite() && x.abs() >= 1e9 {
+        let s = format!("{x:.decimals$e}");
+        let (mantissa, exponent) = s.split_once('e').unwrap_or((&s, "0"));
+        let mantissa = mantissa.trim_end_matches('0').trim_end_matches('.');
+        return format!("{mantissa}e{exponent}");
+    }
     let s = format!("{x:.decimals$}");
     let s = if s.contains('.') {
         s.trim_end_matches('0').trim_end_matches('.').to_string()
@@ -107,6 +114,9 @@ mod tests {
         assert_eq!(trimmed(0.0, 6), "0");
         assert_eq!(trimmed(-1e-9, 6), "0");
         assert_eq!(trimmed(12.0, 3), "12");
+        assert_eq!(trimmed(1.5e300, 6), "1.5e300");
+        assert_eq!(trimmed(-2e9, 2), "-2e9");
+        assert_eq!(trimmed(f64::INFINITY, 2), "inf");
         assert_eq!(degrees(core::f64::consts::FRAC_PI_2), "90°");
         assert_eq!(degrees(-core::f64::consts::PI / 8.0), "-22.5°");
     }

@@ -264,17 +264,62 @@ fn eval_reads_angles_and_omits_missing_dynamics() {
         ),
     ]);
     assert_eq!(deg, rad);
-    // Space-separated values and negative numbers work as well.
-    let spaced = stdout(&[
+    // A list may start with a negative number, be space-separated (one quoted argument),
+    // and come before the robot, the order the usage line shows.
+    let lists: [&[&str]; 4] = [
+        &[
+            "eval",
+            "robots/planar_elbow.toml",
+            "--json",
+            "--q",
+            "-0.5,1",
+        ],
+        &[
+            "eval",
+            "robots/planar_elbow.toml",
+            "--json",
+            "--q",
+            "-0.5 1",
+        ],
+        &[
+            "eval",
+            "--q",
+            "-0.5,1",
+            "--json",
+            "robots/planar_elbow.toml",
+        ],
+        &["eval", "--json", "--q=-0.5, 1", "robots/planar_elbow.toml"],
+    ];
+    for args in lists {
+        let out = stdout(args);
+        let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+        assert_eq!(v["q"], serde_json::json!([-0.5, 1.0]), "{args:?}");
+    }
+    let out = stdout(&[
         "eval",
-        "robots/planar_elbow.toml",
         "--q",
-        "-0.5",
-        "1",
+        "-0.5,1",
+        "--qd",
+        "-1,-2",
+        "--qdd",
+        "-3,4",
+        "robots/planar_elbow.toml",
         "--json",
     ]);
-    let v: serde_json::Value = serde_json::from_str(&spaced).unwrap();
-    assert_eq!(v["q"], serde_json::json!([-0.5, 1.0]));
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(v["qd"], serde_json::json!([-1.0, -2.0]));
+    assert_eq!(v["qdd"], serde_json::json!([-3.0, 4.0]));
+    // Huge values print in scientific notation, not as 300 digits.
+    let out = stdout(&[
+        "eval",
+        "--q",
+        "0,0",
+        "--qdd",
+        "1e300,0",
+        "robots/planar_elbow.toml",
+    ]);
+    assert!(out.lines().all(|l| l.len() < 200), "{out}");
+    assert!(out.contains("e30"), "{out}");
 
     let out = stdout(&[
         "eval",
@@ -484,9 +529,24 @@ fn bad_files_and_arguments_fail_with_one_line() {
         "--q",
         "0,0,0,0,0,0",
         "--qdd",
-        "a,b",
+        "0,0,a,0,0,0",
     ]);
-    assert!(err.contains("invalid value 'a'"), "{err}");
+    assert!(
+        err.contains("--qdd, joint 3: \"a\" is not a finite number"),
+        "{err}"
+    );
+    let err = failure(&[
+        "eval",
+        "robots/puma560.toml",
+        "--q",
+        "0,0,0,0,0,0",
+        "--qd",
+        "0,0,0,0,0,inf",
+    ]);
+    assert!(
+        err.contains("--qd, joint 6: \"inf\" is not a finite number"),
+        "{err}"
+    );
     let err = failure(&["frobnicate"]);
     assert!(err.contains("frobnicate"), "{err}");
     failure(&[]);
@@ -500,4 +560,75 @@ fn help_and_version_succeed() {
         assert!(help.contains(command), "{help}");
     }
     assert!(stdout(&["--version"]).starts_with("dhgen "));
+}
+
+/// The generator takes 20-joint arms (a test that expands one, without compiling it) and
+/// refuses, with a one-line error naming the limit, what it does not take: 33 joints with
+/// dynamics, 1000 joints of kinematics (it once ran for minutes on those).
+#[test]
+fn emit_expands_twenty_joints_and_bounds_its_work() {
+    let tmp = Path::new(env!("CARGO_TARGET_TMPDIR"));
+    let path = |name: &str| tmp.join(name).to_str().unwrap().to_string();
+    let twenty = path("random20.toml");
+    stdout(&[
+        "random",
+        "--dof",
+        "20",
+        "--style",
+        "industrial",
+        "--seed",
+        "5",
+        "-o",
+        &twenty,
+    ]);
+    let code = stdout(&["emit", &twenty]);
+    assert!(code.contains("(20 DOF)"), "{}", &code[..300]);
+    for f in [
+        "pub fn mass_matrix",
+        "pub fn christoffel",
+        "pub fn forward_dynamics",
+    ] {
+        assert!(code.contains(f), "no {f}");
+    }
+    syn::parse_file(&code).expect("the emitted 20-joint module parses");
+
+    let long = path("random33.toml");
+    stdout(&["random", "--dof", "33", "--seed", "5", "-o", &long]);
+    let err = failure(&["emit", &long]);
+    assert!(
+        err.contains("random33.toml: field `links`: the robot has 33 joints")
+            && err.contains("at most 32 joints with mass properties")
+            && err.contains("dhgen::Robot"),
+        "{err}"
+    );
+    assert!(failure(&["ops", &long]).contains("at most 32 joints"));
+
+    // 1000 joints without mass properties: refused at once, not after minutes.
+    let dynamics = stdout(&["random", "--dof", "1000", "--style", "industrial"]);
+    let kinematics: String = dynamics
+        .lines()
+        .filter(|l| {
+            !["mass", "com", "inertia", "motor", "friction"]
+                .iter()
+                .any(|k| l.starts_with(k))
+        })
+        .map(|l| format!("{l}\n"))
+        .collect();
+    let thousand = path("kinematics1000.toml");
+    std::fs::write(&thousand, kinematics).unwrap();
+    let err = failure(&["emit", &thousand]);
+    assert!(
+        err.contains("the robot has 1000 joints")
+            && err.contains("at most 100 joints for kinematics"),
+        "{err}"
+    );
+    // The runtime path takes it: `info` and `eval` work at any length.
+    assert!(stdout(&["info", &thousand]).contains("1000"));
+    let zeros = vec!["0"; 1000].join(",");
+    let out = stdout(&["eval", "--json", "--q", &zeros, &thousand]);
+    assert!(
+        out.contains("\"dof\":1000") || out.contains("\"dof\": 1000"),
+        "{}",
+        &out[..200]
+    );
 }

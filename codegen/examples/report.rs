@@ -17,7 +17,13 @@ fn main() {
         };
         let start = Instant::now();
         let name = proc_macro2::Ident::new(&model.name, proc_macro2::Span::call_site());
-        let generated = generate(&model, quote::quote!(pub), &name);
+        let generated = match generate(&model, quote::quote!(pub), &name) {
+            Ok(g) => g,
+            Err(e) => {
+                eprintln!("{path}: {e}");
+                std::process::exit(1);
+            }
+        };
         let elapsed = start.elapsed();
         let lines = generated.tokens.to_string().matches(';').count();
         println!(

@@ -62,9 +62,25 @@ fn sym_load(s: Sym) -> (Ident, TokenStream) {
     (ident(&name), load)
 }
 
+/// `x` as an `f64` expression: a literal, or for a non-finite value (which
+/// [`limits::check`](crate::limits::check) keeps out of generated code, and which
+/// `Literal::f64_suffixed` would panic on) the named constant.
+pub fn float(x: f64) -> TokenStream {
+    if x.is_finite() {
+        let lit = Literal::f64_suffixed(x);
+        quote!(#lit)
+    } else if x.is_nan() {
+        quote!(::core::f64::NAN)
+    } else if x > 0.0 {
+        quote!(::core::f64::INFINITY)
+    } else {
+        quote!(::core::f64::NEG_INFINITY)
+    }
+}
+
 /// A numeric constant converted to the scalar type `T`.
 pub fn constant(x: f64) -> TokenStream {
-    let lit = Literal::f64_suffixed(x);
+    let lit = float(x);
     quote!(::dhgen::nalgebra::convert::<f64, T>(#lit))
 }
 

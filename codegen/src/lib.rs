@@ -19,9 +19,11 @@ pub mod dual;
 pub mod emit;
 pub mod graph;
 pub mod latex;
+pub mod limits;
 pub mod module;
 pub mod poly;
 
 pub use dhgen_model::RobotModel;
 pub use graph::OpCount;
+pub use limits::Unsupported;
 pub use module::{Generated, generate, module_doc, op_counts};

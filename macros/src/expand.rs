@@ -8,6 +8,10 @@ use std::path::PathBuf;
 
 pub fn expand(input: RobotInput) -> syn::Result<proc_macro2::TokenStream> {
     let RobotInput { vis, name, body } = input;
+    let (at, source) = match &body {
+        Body::File(lit) => (lit.span(), format!("{}: ", lit.value())),
+        Body::Inline(_) => (name.span(), String::new()),
+    };
     let (model, tracking) = match body {
         Body::File(lit) => {
             let dir = std::env::var("CARGO_MANIFEST_DIR").unwrap_or_else(|_| ".".into());
@@ -42,7 +46,9 @@ pub fn expand(input: RobotInput) -> syn::Result<proc_macro2::TokenStream> {
             (model, quote!())
         }
     };
-    let generated = dhgen_codegen::generate(&model, vis.to_token_stream(), &name);
+    // The generator's own limits (size, finite constants) are reported at the description.
+    let generated = dhgen_codegen::generate(&model, vis.to_token_stream(), &name)
+        .map_err(|e| syn::Error::new(at, format!("{source}{e}")))?;
     let tokens = generated.tokens;
     Ok(quote! {
         #tokens

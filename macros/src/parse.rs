@@ -3,7 +3,8 @@
 //! - `vis mod name = "path/to/robot.toml";`
 //! - `vis mod name { field: value, ... }` with the fields of the TOML format; values are
 //!   numbers, strings, bare words (`revolute`), `[...]`, `{...}`, and angles written as
-//!   `90 deg` or `PI / 2` (any tokens up to the next comma are read as an angle string).
+//!   `90 deg` or `PI / 2` (any other tokens up to the next comma are an expression, which
+//!   only an angle field accepts).
 
 use dhgen_model::raw::{Table, Value};
 use proc_macro2::{Delimiter, Punct, Spacing, Span, TokenStream, TokenTree};
@@ -125,6 +126,22 @@ fn table(tokens: TokenStream, loc: Loc) -> syn::Result<Table<Loc>> {
             }
         }
         let rest: Vec<TokenTree> = it.collect();
+        // `joint: revolute a: 1.0`: the next field's `name:` inside this value means a
+        // comma is missing before it.
+        if let Some(next) = rest.windows(2).position(|w| {
+            matches!((&w[0], &w[1]), (TokenTree::Ident(_), TokenTree::Punct(p))
+                if p.as_char() == ':' && p.spacing() == Spacing::Alone)
+        }) && (next == 0
+            || !matches!(&rest[next - 1], TokenTree::Punct(p) if p.as_char() == ':'))
+        {
+            return Err(syn::Error::new(
+                rest[next].span(),
+                format!(
+                    "expected `,` before `{}`: fields are separated by commas",
+                    rest[next]
+                ),
+            ));
+        }
         if rest.is_empty() {
             return Err(syn::Error::new(
                 key.span(),
@@ -148,14 +165,19 @@ fn split_commas(tokens: TokenStream) -> Vec<Vec<TokenTree>> {
     items
 }
 
-fn number(lit: &proc_macro2::Literal) -> Option<f64> {
-    let text = lit.to_string().replace('_', "");
-    let text = text
-        .trim_end_matches("f64")
-        .trim_end_matches("f32")
-        .trim_end_matches("i32")
-        .trim_end_matches("u32");
-    text.parse().ok()
+/// A number literal: a float, or an integer within 64 bits (as in TOML, and as rustc requires
+/// of an `i64`); `Err` for an integer beyond that, `Ok(None)` for any other literal.
+fn number(lit: &proc_macro2::Literal) -> Result<Option<f64>, String> {
+    match syn::parse2::<syn::Lit>(TokenTree::Literal(lit.clone()).into()) {
+        Ok(syn::Lit::Float(f)) => Ok(f.base10_parse::<f64>().ok()),
+        Ok(syn::Lit::Int(i)) => match i.base10_parse::<i64>() {
+            Ok(x) => Ok(Some(x as f64)),
+            Err(_) => Err(format!(
+                "the integer `{i}` is outside the 64-bit range; write it as a float, e.g. `1e20`"
+            )),
+        },
+        _ => Ok(None),
+    }
 }
 
 /// The tokens of one value; `tokens` is not empty.
@@ -167,7 +189,7 @@ fn value(tokens: Vec<TokenTree>) -> syn::Result<Value<Loc>> {
                 if let Ok(s) = syn::parse2::<LitStr>(TokenTree::Literal(lit.clone()).into()) {
                     return Ok(Value::Str(s.value(), loc));
                 }
-                if let Some(x) = number(lit) {
+                if let Some(x) = number(lit).map_err(|m| loc.error(m))? {
                     return Ok(Value::Number(x, loc));
                 }
                 return Err(loc.error("expected a number or a string"));
@@ -193,17 +215,13 @@ fn value(tokens: Vec<TokenTree>) -> syn::Result<Value<Loc>> {
     }
     if let [TokenTree::Punct(p), TokenTree::Literal(lit)] = tokens.as_slice()
         && p.as_char() == '-'
-        && let Some(x) = number(lit)
+        && let Some(x) = number(lit).map_err(|m| loc.error(m))?
     {
         return Ok(Value::Number(-x, loc));
     }
     // Anything else (`90 deg`, `PI / 2`, `-3 * PI / 4`) is an angle expression, read by
-    // the same parser as the TOML strings, which ignores spaces. The tokens are joined
-    // with spaces so that an error quotes them much as they were written.
-    let text = tokens
-        .iter()
-        .map(ToString::to_string)
-        .collect::<Vec<_>>()
-        .join(" ");
-    Ok(Value::Str(text, loc))
+    // the same parser as the TOML strings, which ignores spaces. The tokens are printed
+    // the way rustc prints them, so that an error quotes them much as they were written.
+    let text = tokens.into_iter().collect::<TokenStream>().to_string();
+    Ok(Value::Expr(text, loc))
 }

@@ -107,7 +107,13 @@ impl Angle {
                 Some(d) => num(d).filter(|d| *d != 0.0).ok_or_else(bad)?,
                 None => 1.0,
             };
-            return Ok(Angle::from_radians(sign * factor * PI / div));
+            let rad = sign * factor * PI / div;
+            if !rad.is_finite() {
+                return Err(format!(
+                    "angle {text:?} is {rad} rad; give an angle of finite size"
+                ));
+            }
+            return Ok(Angle::from_radians(rad));
         }
         num(&t).map(Angle::from_radians).ok_or_else(bad)
     }
@@ -135,7 +141,17 @@ mod tests {
         assert!((a - 3.0 * PI / 4.0).abs() < 1e-15);
         assert!((Angle::parse("0.25rad").unwrap().radians() - 0.25).abs() < 1e-15);
         assert!((Angle::parse("45deg").unwrap().radians() - PI / 4.0).abs() < 1e-15);
-        for bad in ["", "ninety", "pi/0", "2pi", "deg", "nan", "infdeg"] {
+        for bad in [
+            "",
+            "ninety",
+            "pi/0",
+            "2pi",
+            "deg",
+            "nan",
+            "infdeg",
+            "1e308*pi",
+            "pi/1e-320",
+        ] {
             assert!(Angle::parse(bad).is_err(), "{bad}");
         }
     }

@@ -15,6 +15,9 @@ pub enum Value<L> {
     Str(String, L),
     /// A bare word, as written in the macro form (`revolute`, `standard`).
     Word(String, L),
+    /// Several tokens of the macro form (`PI / 2`, `90 deg`, `f64::NAN`), as text: read as
+    /// an angle where one is expected, an error anywhere else.
+    Expr(String, L),
     /// `true` / `false`.
     Bool(bool, L),
     /// `[a, b, ...]`.
@@ -39,6 +42,7 @@ impl<L> Value<L> {
             Value::Number(_, l)
             | Value::Str(_, l)
             | Value::Word(_, l)
+            | Value::Expr(_, l)
             | Value::Bool(_, l)
             | Value::Array(_, l) => l,
             Value::Table(t) => &t.loc,
@@ -51,6 +55,7 @@ impl<L> Value<L> {
             Value::Number(..) => "a number",
             Value::Str(..) => "a string",
             Value::Word(..) => "a word",
+            Value::Expr(..) => "an expression",
             Value::Bool(..) => "a boolean",
             Value::Array(..) => "an array",
             Value::Table(..) => "a table",
@@ -143,7 +148,18 @@ pub fn from_toml_text(text: &str) -> Result<Table<Position>, String> {
         let loc = lines.position(span.start);
         Ok(match v {
             DeValue::String(s) => Value::Str(s.to_string(), loc),
-            DeValue::Integer(i) => Value::Number(integer(i.as_str(), i.radix()), loc),
+            DeValue::Integer(i) => match integer(i.as_str(), i.radix()) {
+                Some(x) => Value::Number(x, loc),
+                None => {
+                    return Err(format!(
+                        "TOML parse error at line {}, column {}: the integer `{}` is outside \
+                         the 64-bit range of TOML integers; write it as a float, e.g. `1e20`",
+                        loc.line,
+                        loc.column,
+                        i.as_str()
+                    ));
+                }
+            },
             // The parser hands over the float's text without underscores: `1e3`, `-inf`,
             // `nan`, all of which Rust reads. A value too large for f64 reads as infinite
             // and is then rejected by validation with its location.
@@ -170,23 +186,14 @@ pub fn from_toml_text(text: &str) -> Result<Table<Position>, String> {
         })
     }
 
-    /// Every number of the description is an f64, and an integer too long for i64 is
-    /// still a number: decimal digits parse as a float (correctly rounded); binary, octal
-    /// and hex digits (never signed in TOML) are summed, exactly up to 2^53.
-    fn integer(digits: &str, radix: u32) -> f64 {
-        if radix == 10
-            && let Ok(x) = digits.parse::<f64>()
-        {
-            return x;
-        }
-        let (sign, digits) = match digits.strip_prefix('-') {
-            Some(rest) => (-1.0, rest),
-            None => (1.0, digits.strip_prefix('+').unwrap_or(digits)),
-        };
-        sign * digits
-            .chars()
-            .filter_map(|c| c.to_digit(radix))
-            .fold(0.0, |acc, d| acc * f64::from(radix) + f64::from(d))
+    /// Every number of the description is an f64. An integer is one of TOML's 64-bit
+    /// signed integers (the TOML specification requires an error for any other), in decimal,
+    /// hex, octal or binary; `None` when it is out of that range.
+    fn integer(digits: &str, radix: u32) -> Option<f64> {
+        // i64's range includes -2^63 only with its sign: parse signed.
+        i64::from_str_radix(&digits.replace('_', ""), radix)
+            .ok()
+            .map(|i| i as f64)
     }
 
     let lines = LineIndex::new(text);
@@ -211,9 +218,16 @@ mod tests {
             .unwrap();
         let values: Vec<f64> = t.entries.iter().map(|(_, _, v)| number(v)).collect();
         assert_eq!(values, [31.0, 15.0, 5.0, 1000.0, -2.5e-3, -7.0]);
-        // Larger than i64: still a number, rounded like any float.
-        let t = from_toml_text("big = 99999999999999999999").unwrap();
-        assert_eq!(number(&t.entries[0].2), 1e20);
+        // TOML integers are 64-bit: beyond that is an error, at the number.
+        let t = from_toml_text("big = -9223372036854775808").unwrap();
+        assert_eq!(number(&t.entries[0].2), i64::MIN as f64);
+        let e = from_toml_text("a = 1\nbig = 99999999999999999999").unwrap_err();
+        assert!(
+            e.contains("line 2, column 7") && e.contains("64-bit"),
+            "{e}"
+        );
+        let e = from_toml_text("big = 0xFFFFFFFFFFFFFFFF").unwrap_err();
+        assert!(e.contains("64-bit"), "{e}");
     }
 
     #[test]

@@ -178,9 +178,14 @@ impl<'t, L: Clone> Fields<'t, L> {
 
 /// `x` to 6 significant digits, without trailing zeros: computed values such as
 /// eigenvalues carry rounding noise that would only distract in a message.
+/// Very large and very small magnitudes in scientific notation (`1e308`, not 309 digits).
 fn short(x: f64) -> String {
     let rounded: f64 = format!("{x:.5e}").parse().unwrap_or(x);
-    format!("{rounded}")
+    if rounded != 0.0 && !(1e-4..1e6).contains(&rounded.abs()) {
+        format!("{rounded:e}")
+    } else {
+        format!("{rounded}")
+    }
 }
 
 /// " (did you mean `x`?)" when an allowed name is one or two edits away from `key`.
@@ -227,6 +232,13 @@ fn number<L: Clone>(at: At<'_>, v: &Value<L>) -> Result<f64, Error<L>> {
             Err(at.err(loc, format!("the value is {x}; give a finite number")))
         }
         Value::Number(x, _) => Ok(*x),
+        Value::Expr(text, loc) => Err(at.err(
+            loc,
+            format!(
+                "expected a number, found the expression `{text}`; write the number itself \
+                 (only angles may be expressions, such as `PI / 2` or `90 deg`)"
+            ),
+        )),
         other => Err(at.err(
             other.loc(),
             format!("expected a number, found {}", other.kind()),
@@ -234,9 +246,125 @@ fn number<L: Clone>(at: At<'_>, v: &Value<L>) -> Result<f64, Error<L>> {
     }
 }
 
+/// The range of one kind of quantity: magnitudes beyond `max` belong to no robot, and
+/// accepting them would only let arithmetic overflow later (1e308 squared is infinite).
+/// The ranges are generous by orders of magnitude and listed in docs/robot-description.md.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Range {
+    /// What the quantity is, for messages ("length").
+    pub what: &'static str,
+    /// Its unit ("m").
+    pub unit: &'static str,
+    /// The largest magnitude accepted.
+    pub max: f64,
+    /// The smallest non-zero magnitude accepted (0 when any is).
+    pub min: f64,
+}
+
+impl Range {
+    fn check<L: Clone>(self, at: At<'_>, loc: &L, x: f64) -> Result<f64, Error<L>> {
+        let m = x.abs();
+        if m > self.max || (m < self.min && m != 0.0) {
+            let unit = if self.unit.is_empty() {
+                String::new()
+            } else {
+                format!(" {}", self.unit)
+            };
+            let bounds = if self.min > 0.0 {
+                format!("{:e} to {:e}", self.min, self.max)
+            } else {
+                format!("at most {:e}", self.max)
+            };
+            return Err(at.err(
+                loc,
+                format!(
+                    "{} {}{unit} is outside the range of any robot (magnitude {bounds}{unit}; \
+                     see \"Ranges\" in docs/robot-description.md)",
+                    self.what,
+                    short(x),
+                ),
+            ));
+        }
+        Ok(x)
+    }
+}
+
+/// Lengths: `a`, `d`, `com`, `xyz`, prismatic limits, collision radii.
+pub const LENGTH: Range = Range {
+    what: "length",
+    unit: "m",
+    max: 1e3,
+    min: 0.0,
+};
+/// Angles: `alpha`, `theta`, `rpy`, revolute limits (1000 rad is 159 turns).
+pub const ANGLE: Range = Range {
+    what: "angle",
+    unit: "rad",
+    max: 1e3,
+    min: 0.0,
+};
+/// Link masses.
+pub const MASS: Range = Range {
+    what: "mass",
+    unit: "kg",
+    max: 1e6,
+    min: 0.0,
+};
+/// Entries of an inertia tensor.
+pub const INERTIA: Range = Range {
+    what: "inertia",
+    unit: "kg·m²",
+    max: 1e9,
+    min: 0.0,
+};
+/// Components of `gravity`.
+pub const GRAVITY: Range = Range {
+    what: "gravity component",
+    unit: "m/s²",
+    max: 1e3,
+    min: 0.0,
+};
+/// Rotor inertias of motors.
+pub const ROTOR_INERTIA: Range = Range {
+    what: "rotor inertia",
+    unit: "kg·m²",
+    max: 1e3,
+    min: 0.0,
+};
+/// Gear ratios (non-zero; a ratio below 1e-6 or above 1e6 is a typing error).
+pub const GEAR_RATIO: Range = Range {
+    what: "gear ratio",
+    unit: "",
+    max: 1e6,
+    min: 1e-6,
+};
+/// Friction coefficients (N·m·s/rad and N·m, or N·s/m and N).
+pub const FRICTION: Range = Range {
+    what: "friction coefficient",
+    unit: "",
+    max: 1e6,
+    min: 0.0,
+};
+
+/// A finite number within `range`.
+fn quantity<L: Clone>(at: At<'_>, v: &Value<L>, range: Range) -> Result<f64, Error<L>> {
+    let x = number(at, v)?;
+    range.check(at, v.loc(), x)
+}
+
+fn length<L: Clone>(at: At<'_>, v: &Value<L>) -> Result<f64, Error<L>> {
+    quantity(at, v, LENGTH)
+}
+
 fn angle<L: Clone>(at: At<'_>, v: &Value<L>) -> Result<Angle, Error<L>> {
+    let a = angle_value(at, v)?;
+    ANGLE.check(at, v.loc(), a.radians())?;
+    Ok(a)
+}
+
+fn angle_value<L: Clone>(at: At<'_>, v: &Value<L>) -> Result<Angle, Error<L>> {
     match v {
-        Value::Str(s, loc) => Angle::parse(s).map_err(|m| at.err(loc, m)),
+        Value::Str(s, loc) | Value::Expr(s, loc) => Angle::parse(s).map_err(|m| at.err(loc, m)),
         Value::Number(..) => number(at, v).map(Angle::from_radians),
         other => Err(at.err(
             other.loc(),
@@ -304,12 +432,12 @@ fn array<'v, L: Clone>(
     }
 }
 
-fn vec3<L: Clone>(at: At<'_>, v: &Value<L>) -> Result<[f64; 3], Error<L>> {
+fn vec3<L: Clone>(at: At<'_>, v: &Value<L>, range: Range) -> Result<[f64; 3], Error<L>> {
     let items = array(at, v, 3)?;
     Ok([
-        number(at, &items[0])?,
-        number(at, &items[1])?,
-        number(at, &items[2])?,
+        quantity(at, &items[0], range)?,
+        quantity(at, &items[1], range)?,
+        quantity(at, &items[2], range)?,
     ])
 }
 
@@ -336,7 +464,9 @@ fn boolean<L: Clone>(at: At<'_>, v: &Value<L>) -> Result<bool, Error<L>> {
 fn pose<L: Clone>(at: At<'_>, v: &Value<L>) -> Result<Pose, Error<L>> {
     let t = table(at, v)?;
     let f = Fields::new(t, at.link, at.field, &["xyz", "rpy"])?;
-    let xyz = f.with("xyz", vec3)?.unwrap_or([0.0; 3]);
+    let xyz = f
+        .with("xyz", |at, v| vec3(at, v, LENGTH))?
+        .unwrap_or([0.0; 3]);
     let rpy = f
         .with("rpy", |at, v| {
             let items = array(at, v, 3)?;
@@ -368,7 +498,9 @@ pub fn validate<L: Clone>(
         let conventions = [Convention::Standard, Convention::Modified];
         keyword(at, v, "convention", &["standard", "modified"]).map(|i| conventions[i])
     })?;
-    let gravity = f.with("gravity", vec3)?.unwrap_or([0.0, 0.0, -9.81]);
+    let gravity = f
+        .with("gravity", |at, v| vec3(at, v, GRAVITY))?
+        .unwrap_or([0.0, 0.0, -9.81]);
     let base = f.with("base", pose)?;
     let tool = f.with("tool", pose)?;
     let allow_nonphysical = f
@@ -430,15 +562,15 @@ fn link<L: Clone>(index: usize, v: &Value<L>, allow_nonphysical: bool) -> Result
         let kinds = [JointKind::Revolute, JointKind::Prismatic];
         keyword(at, v, "joint type", &["revolute", "prismatic"]).map(|i| kinds[i])
     })?;
-    let a = f.with_required("a", number)?;
+    let a = f.with_required("a", length)?;
     let alpha = f.with_required("alpha", angle)?;
-    let d = f.with_required("d", number)?;
+    let d = f.with_required("d", length)?;
     let theta = f.with_required("theta", angle)?;
     let limits = f.with("limits", |at, v| {
         let items = array(at, v, 2)?;
         let bound = |item: &Value<L>| match joint {
             JointKind::Revolute => angle(at, item).map(Angle::radians),
-            JointKind::Prismatic => number(at, item),
+            JointKind::Prismatic => length(at, item),
         };
         let (lo, hi) = (bound(&items[0])?, bound(&items[1])?);
         if lo >= hi {
@@ -466,7 +598,7 @@ fn link<L: Clone>(index: usize, v: &Value<L>, allow_nonphysical: bool) -> Result
     let motor = f.with("motor", |at, v| {
         let m = Fields::new(table(at, v)?, at.link, at.field, &["inertia", "gear"])?;
         let inertia = m.with_required("inertia", |at, v| {
-            let x = number(at, v)?;
+            let x = quantity(at, v, ROTOR_INERTIA)?;
             if x < 0.0 {
                 return Err(at.err(v.loc(), format!("rotor inertia {x} is negative")));
             }
@@ -477,14 +609,14 @@ fn link<L: Clone>(index: usize, v: &Value<L>, allow_nonphysical: bool) -> Result
             if g == 0.0 {
                 return Err(at.err(v.loc(), "gear ratio is 0; it must be non-zero"));
             }
-            Ok(g)
+            GEAR_RATIO.check(at, v.loc(), g)
         })?;
         Ok(Motor { inertia, gear })
     })?;
     let friction = f.with("friction", |at, v| {
         let m = Fields::new(table(at, v)?, at.link, at.field, &["viscous", "coulomb"])?;
         let coefficient = |at: At<'_>, v: &Value<L>| {
-            let x = number(at, v)?;
+            let x = quantity(at, v, FRICTION)?;
             if x < 0.0 {
                 return Err(at.err(v.loc(), format!("friction coefficient {x} is negative")));
             }
@@ -498,7 +630,7 @@ fn link<L: Clone>(index: usize, v: &Value<L>, allow_nonphysical: bool) -> Result
     let collision = f.with("collision", |at, v| {
         let c = Fields::new(table(at, v)?, at.link, at.field, &["radius"])?;
         let radius = c.with_required("radius", |at, v| {
-            let r = number(at, v)?;
+            let r = length(at, v)?;
             if r <= 0.0 {
                 return Err(at.err(
                     v.loc(),
@@ -528,19 +660,21 @@ fn inertial<L: Clone>(
     allow_nonphysical: bool,
 ) -> Result<Option<Inertial>, Error<L>> {
     let mass = f.with("mass", |at, v| {
-        let m = number(at, v)?;
+        let m = quantity(at, v, MASS)?;
         if m < 0.0 {
             return Err(at.err(v.loc(), format!("mass {m} is negative")));
         }
         Ok(m)
     })?;
-    let com = f.with("com", vec3)?;
+    let com = f.with("com", |at, v| vec3(at, v, LENGTH))?;
     let inertia = f.with("inertia", |at, v| {
         let t = table(at, v)?;
         let fields = Fields::new(t, at.link, at.field, INERTIA_FIELDS)?;
         let mut e = [0.0; 6];
         for (slot, key) in e.iter_mut().zip(INERTIA_FIELDS) {
-            *slot = fields.with(key, number)?.unwrap_or(0.0);
+            *slot = fields
+                .with(key, |at, v| quantity(at, v, INERTIA))?
+                .unwrap_or(0.0);
         }
         let [xx, yy, zz, xy, yz, xz] = e;
         let tensor = [[xx, xy, xz], [xy, yy, yz], [xz, yz, zz]];

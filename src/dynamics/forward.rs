@@ -15,7 +15,9 @@ impl Robot {
     /// factorisation at or below [`cholesky_pivot_floor`](crate::cholesky_pivot_floor),
     /// the rule generated code follows too. A physical description never produces it; a
     /// description whose links carry no inertia about their joint axes (Robotics Toolbox's
-    /// UR3 and UR5) does, at every configuration.
+    /// UR3 and UR5) does, at every configuration. It also returns `None` when the acceleration
+    /// it finds is not finite: an input that is NaN or infinite, or one so large that the
+    /// arithmetic overflows (see "Non-finite input" in docs/conventions.md).
     ///
     /// # Panics
     /// If `q`, `qd` or `tau` does not have `self.dof()` entries, or if the robot has no mass
@@ -49,6 +51,7 @@ impl Robot {
             return None;
         }
         cholesky.solve_mut(&mut rhs);
-        Some(rhs)
+        // Only a finite acceleration is an answer (the generated code's rule too).
+        rhs.iter().all(|x| x.is_finite()).then_some(rhs)
     }
 }

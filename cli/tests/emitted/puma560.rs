@@ -1431,7 +1431,7 @@ pub mod puma560 {
             let tau = self.bias_smooth(qd);
             tau
         }
-        ///Forward dynamics q̈ = D⁻¹(τ − C q̇ − g − friction) by an unrolled Cholesky solve; `None` where D(q) is singular to working precision (a pivot at or below `dhgen::cholesky_pivot_floor`, the runtime path's rule too).
+        ///Forward dynamics q̈ = D⁻¹(τ − C q̇ − g − friction) by an unrolled Cholesky solve; `None` where D(q) is singular to working precision (a pivot at or below `dhgen::cholesky_pivot_floor`, the runtime path's rule too) or the acceleration is not finite (non-finite or overflowing inputs).
         #[doc(alias = "aba")]
         #[doc(alias = "accel")]
         #[doc(alias = "fdyn")]
@@ -1523,6 +1523,11 @@ pub mod puma560 {
             let x1: T = (y1 - l2_1 * x2 - l3_1 * x3 - l4_1 * x4 - l5_1 * x5) * inv1;
             let x0: T = (y0 - l1_0 * x1 - l2_0 * x2 - l3_0 * x3 - l4_0 * x4 - l5_0 * x5)
                 * inv0;
+            if !x0.is_finite() || !x1.is_finite() || !x2.is_finite() || !x3.is_finite()
+                || !x4.is_finite() || !x5.is_finite()
+            {
+                return None;
+            }
             Some(na::SVector::<T, DOF>::from([x0, x1, x2, x3, x4, x5]))
         }
         ///Kinetic energy T(q, q̇) = ½ q̇ᵀ D(q) q̇ of the links and rotors.
@@ -5127,7 +5132,7 @@ pub mod puma560 {
     ) -> na::SVector<T, DOF> {
         State::for_bias(q).bias(qd)
     }
-    ///Forward dynamics q̈ = D⁻¹(τ − C q̇ − g − friction) by an unrolled Cholesky solve; `None` where D(q) is singular to working precision (a pivot at or below `dhgen::cholesky_pivot_floor`, the runtime path's rule too).
+    ///Forward dynamics q̈ = D⁻¹(τ − C q̇ − g − friction) by an unrolled Cholesky solve; `None` where D(q) is singular to working precision (a pivot at or below `dhgen::cholesky_pivot_floor`, the runtime path's rule too) or the acceleration is not finite (non-finite or overflowing inputs).
     #[doc(alias = "aba")]
     #[doc(alias = "accel")]
     #[doc(alias = "fdyn")]

@@ -83,9 +83,14 @@ pub fn solve(n: usize) -> (TokenStream, OpCount) {
         let (xi, invi) = (x(i), inv(i));
         s.push(quote!(let #xi: T = (#e) * #invi;));
     }
-    let xs = (0..n).map(x);
+    let xs: Vec<_> = (0..n).map(x).collect();
+    // Only a finite acceleration is an answer (non-finite inputs give `None`, as on the
+    // runtime path).
     let solve = quote! {
         #(#s)*
+        if #(!#xs.is_finite())||* {
+            return None;
+        }
         Some(na::SVector::<T, DOF>::from([#(#xs),*]))
     };
     (solve, ops)

@@ -18,6 +18,7 @@ pub mod tidy;
 use crate::derive::{Derivation, christoffel};
 use crate::emit::{self, Output};
 use crate::graph::{E, OpCount, SharedGraph};
+use crate::limits::Unsupported;
 use dhgen_model::{ChainRef, JointKind, RobotModel};
 use proc_macro2::{Ident, Span, TokenStream};
 use quantities::{ArmMethod, Availability, Input, Made, QUANTITIES, Quantity};
@@ -88,9 +89,12 @@ pub fn module_doc(model: &RobotModel) -> String {
 }
 
 /// Operation counts of every function generated for `model`.
-pub fn op_counts(model: &RobotModel) -> Vec<(String, OpCount)> {
+///
+/// # Errors
+/// [`Unsupported`] when the generator does not take the description (see [`generate`]).
+pub fn op_counts(model: &RobotModel) -> Result<Vec<(String, OpCount)>, Unsupported> {
     let name = Ident::new("robot", Span::call_site());
-    generate(model, TokenStream::new(), &name).ops
+    Ok(generate(model, TokenStream::new(), &name)?.ops)
 }
 
 /// The items the table makes, collected in module order.
@@ -280,8 +284,17 @@ impl Items {
 }
 
 /// Generates the module `vis mod name { ... }` for `model`.
-pub fn generate(model: &RobotModel, vis: TokenStream, name: &Ident) -> Generated {
+///
+/// # Errors
+/// [`Unsupported`] for a description beyond what the generator takes
+/// ([`limits`](crate::limits): too many joints, a non-finite constant).
+pub fn generate(
+    model: &RobotModel,
+    vis: TokenStream,
+    name: &Ident,
+) -> Result<Generated, Unsupported> {
     let structure = model.chain();
+    crate::limits::check(structure.view())?;
     let cx = Context::new(structure.view());
     let chain = cx.chain;
     let n = chain.dof();
@@ -426,8 +439,8 @@ pub fn generate(model: &RobotModel, vis: TokenStream, name: &Ident) -> Generated
             #sign_fn
         }
     };
-    Generated {
+    Ok(Generated {
         tokens: tidy::unsuffix_indices(tokens),
         ops,
-    }
+    })
 }

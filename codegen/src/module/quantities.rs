@@ -439,7 +439,8 @@ pub const QUANTITIES: &[Quantity] = &[
         name: "forward_dynamics",
         doc: "Forward dynamics q̈ = D⁻¹(τ − C q̇ − g − friction) by an unrolled Cholesky \
               solve; `None` where D(q) is singular to working precision (a pivot at or below \
-              `dhgen::cholesky_pivot_floor`, the runtime path's rule too).",
+              `dhgen::cholesky_pivot_floor`, the runtime path's rule too) or the acceleration is \
+              not finite (non-finite or overflowing inputs).",
         aliases: &["aba", "accel", "fdyn"],
         inputs: &[Input::Qd, Input::Tau],
         shape: Shape::OptionVector,

@@ -6,11 +6,7 @@ use dhgen_model::{ChainRef, JointKind, Rigid};
 use proc_macro2::TokenStream;
 use quote::quote;
 
-/// `x` as an `f64` literal.
-fn lit(x: f64) -> TokenStream {
-    let l = proc_macro2::Literal::f64_suffixed(x);
-    quote!(#l)
-}
+use crate::emit::float as lit;
 
 fn frame_literal(f: &dhgen_model::Frame<f64>) -> TokenStream {
     let rows = f.r.iter().map(|row| {

@@ -547,6 +547,145 @@ fn com_or_inertia_without_mass() {
     );
 }
 
+/// Finite values no robot has (1e308 m, 1e200 gear ratios) would overflow inside the
+/// symbolic engine; each kind of quantity has a documented range.
+#[test]
+fn magnitudes_outside_the_physical_ranges() {
+    let out = "is outside the range of any robot";
+    let cases = [
+        (
+            LINK.replace("a = 0.5", "a = 1e308"),
+            "1e308",
+            "a",
+            "length 1e308 m",
+        ),
+        (
+            LINK.replace("a = 0.5", "a = -1e308"),
+            "-1e308",
+            "a",
+            "length -1e308 m",
+        ),
+        (
+            LINK.replace("d = 0.1", "d = 1001.0"),
+            "1001.0",
+            "d",
+            "length 1001 m",
+        ),
+        (
+            LINK.replace("theta = 0", "theta = 1e308"),
+            "1e308",
+            "theta",
+            "angle 1e308 rad",
+        ),
+        (
+            LINK.replace("alpha = \"90deg\"", "alpha = \"1e300deg\""),
+            "\"1e300deg\"",
+            "alpha",
+            "angle",
+        ),
+        (
+            LINK.replace("theta = 0", "theta = \"1e308*pi\""),
+            "\"1e308*pi\"",
+            "theta",
+            "give an angle of finite size",
+        ),
+        (
+            LINK.replace("theta = 0", "theta = \"pi/1e-320\""),
+            "\"pi/1e-320\"",
+            "theta",
+            "give an angle of finite size",
+        ),
+        (
+            format!("{LINK}limits = [-1e10, 1e10]\n"),
+            "-1e10",
+            "limits",
+            "angle -1e10 rad",
+        ),
+        (
+            format!("{LINK}motor = {{ inertia = 1e-4, gear = 1e200 }}\n"),
+            "1e200",
+            "motor.gear",
+            "gear ratio 1e200",
+        ),
+        (
+            format!("{LINK}motor = {{ inertia = 1e-4, gear = 1e-9 }}\n"),
+            "1e-9",
+            "motor.gear",
+            "gear ratio 1e-9",
+        ),
+        (
+            format!("{LINK}motor = {{ inertia = 1e4, gear = 1 }}\n"),
+            "1e4",
+            "motor.inertia",
+            "rotor inertia 10000",
+        ),
+        (
+            format!("{LINK}friction = {{ viscous = 1e7 }}\n"),
+            "1e7",
+            "friction.viscous",
+            "friction coefficient 1e7",
+        ),
+        (
+            format!("{LINK}collision = {{ radius = 1e5 }}\n"),
+            "1e5",
+            "collision.radius",
+            "length 100000 m",
+        ),
+    ];
+    for (link, needle, field, what) in &cases {
+        let text = robot("", &[LINK, link]);
+        check(&text, needle, 1, Some(2), field, what);
+        if !what.contains("finite") {
+            check(&text, needle, 1, Some(2), field, out);
+        }
+    }
+    let mass_cases = [
+        ("mass = 2.0", "mass = 1e7", "1e7", "mass", "mass 1e7 kg"),
+        (
+            "com = [-0.25",
+            "com = [-1e308",
+            "-1e308",
+            "com",
+            "length -1e308 m",
+        ),
+        (
+            "xx = 0.001",
+            "xx = 1e308",
+            "1e308",
+            "inertia.xx",
+            "inertia 1e308 kg·m²",
+        ),
+    ];
+    for (from, to, needle, field, what) in mass_cases {
+        let text = robot("", &[&massive("").replace(from, to)]);
+        check(&text, needle, 1, Some(1), field, what);
+    }
+    let text = robot("gravity = [0, 0, -1e5]\n", &[LINK]);
+    check(
+        &text,
+        "-1e5",
+        1,
+        None,
+        "gravity",
+        "gravity component -100000 m/s²",
+    );
+    let text = robot("tool = { xyz = [0, 0, 2e3] }\n", &[LINK]);
+    check(&text, "2e3", 1, None, "tool.xyz", "length 2000 m");
+    // The edges of the ranges are accepted; so are exact zeros and tiny lengths.
+    let text = robot(
+        "gravity = [0, 0, -1e3]\n",
+        &[
+            &massive("motor = { inertia = 1e3, gear = 1e6 }\nfriction = { viscous = 1e6 }\n")
+                .replace("a = 0.5", "a = 1e3")
+                .replace("d = 0.1", "d = 1e-300")
+                .replace("mass = 2.0", "mass = 1e6"),
+        ],
+    );
+    if let Err(e) = RobotModel::from_toml_named(&text, FILE) {
+        panic!("rejected a description at the edges of the ranges: {e}\n{text}");
+    }
+}
+
 #[test]
 fn gear_ratio_zero() {
     let text = robot(
