@@ -118,28 +118,10 @@ enum RandomStyle {
     Industrial,
 }
 
-/// Loads a description; the error names the file (and for a rule violation the line,
-/// column, link and field) on one line.
+/// Loads a description; the error (one line) names the file, and for a syntax error or a
+/// rule violation the line, column, link and field.
 fn load(path: &Path) -> Result<Robot, String> {
-    Robot::from_toml_file(path).map_err(|e| one_line(&e.to_string()))
-}
-
-/// Multi-line messages (TOML syntax errors quote the offending line under a caret) folded
-/// into one line: the lines that say something, joined.
-fn one_line(message: &str) -> String {
-    let lines: Vec<&str> = message
-        .lines()
-        .map(str::trim)
-        .filter(|l| {
-            // Drop the quoted source and caret lines: `|`, `3 | text`, `^^^`.
-            let quoted = l.starts_with('|')
-                || l.starts_with('^')
-                || l.split_once('|')
-                    .is_some_and(|(n, _)| n.trim().parse::<u32>().is_ok());
-            !l.is_empty() && !quoted
-        })
-        .collect();
-    lines.join(": ")
+    Robot::from_toml_file(path).map_err(|e| e.to_string())
 }
 
 fn run(command: Command) -> Result<String, String> {
@@ -275,15 +257,6 @@ fn main() -> ExitCode {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn toml_errors_fold_into_one_line() {
-        let msg = "robots/x.toml: invalid TOML: TOML parse error at line 3, column 5\n  |\n3 | a = \n  |     ^\nstring values must be quoted\n";
-        assert_eq!(
-            one_line(msg),
-            "robots/x.toml: invalid TOML: TOML parse error at line 3, column 5: string values must be quoted"
-        );
-    }
 
     #[test]
     fn command_line_is_consistent() {

@@ -30,6 +30,8 @@
 mod angle;
 pub mod chain;
 pub mod closed_form;
+#[cfg(feature = "std")]
+pub mod hostile;
 mod math;
 mod model;
 #[cfg(feature = "std")]
@@ -81,15 +83,15 @@ mod load {
             source: std::io::Error,
         },
         /// The text is not valid TOML.
-        #[error("{origin}: invalid TOML: {message}")]
+        #[error("{}:{}: invalid TOML: {}", validate::OneLine(origin), error.loc, validate::OneLine(&error.message))]
         Syntax {
             /// The file, or `<string>`.
             origin: String,
-            /// The TOML parser's message.
-            message: String,
+            /// Where, and the TOML parser's message.
+            error: raw::SyntaxError,
         },
         /// The description breaks a rule of the format, at a line and column of the text.
-        #[error("{origin}:{}: {error}", error.loc)]
+        #[error("{}:{}: {error}", validate::OneLine(origin), error.loc)]
         Invalid {
             /// The file, or `<string>`.
             origin: String,
@@ -120,17 +122,40 @@ mod load {
         pub fn from_toml_file(path: impl AsRef<Path>) -> Result<RobotModel, LoadError> {
             let path = path.as_ref();
             let origin = path.display().to_string();
-            match std::fs::read_to_string(path) {
-                Ok(text) => Self::from_toml_named(&text, &origin),
-                Err(source) => Err(LoadError::Io { origin, source }),
+            let bytes = std::fs::read(path).map_err(|source| LoadError::Io {
+                origin: origin.clone(),
+                source,
+            })?;
+            Self::from_toml_bytes(&bytes, &origin)
+        }
+
+        /// Parses and validates a TOML description given as bytes (a file's contents);
+        /// `origin` names it in error messages. Bytes that are not UTF-8 are a syntax error
+        /// at the first one that is not.
+        pub fn from_toml_bytes(bytes: &[u8], origin: &str) -> Result<RobotModel, LoadError> {
+            match core::str::from_utf8(bytes) {
+                Ok(text) => Self::from_toml_named(text, origin),
+                // TOML is UTF-8: say where the text stops being that.
+                Err(e) => {
+                    let valid = core::str::from_utf8(&bytes[..e.valid_up_to()]).unwrap_or("");
+                    let line = valid.matches('\n').count() + 1;
+                    let column = valid.rsplit('\n').next().unwrap_or("").chars().count() + 1;
+                    Err(LoadError::Syntax {
+                        origin: origin.to_string(),
+                        error: raw::SyntaxError {
+                            loc: raw::Position { line, column },
+                            message: "the file is not UTF-8 text (TOML is UTF-8)".into(),
+                        },
+                    })
+                }
             }
         }
 
         /// Parses and validates TOML text; `origin` names it in error messages.
         pub fn from_toml_named(text: &str, origin: &str) -> Result<RobotModel, LoadError> {
-            let table = raw::from_toml_text(text).map_err(|message| LoadError::Syntax {
+            let table = raw::from_toml_text(text).map_err(|error| LoadError::Syntax {
                 origin: origin.to_string(),
-                message: message.trim_end().to_string(),
+                error,
             })?;
             validate::validate(&table, None).map_err(|error| LoadError::Invalid {
                 origin: origin.to_string(),

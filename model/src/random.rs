@@ -34,10 +34,10 @@ pub enum ArmStyle {
 }
 
 /// SplitMix64: a fixed stream of uniform numbers.
-struct Stream(u64);
+pub(crate) struct Stream(pub(crate) u64);
 
 impl Stream {
-    fn next(&mut self) -> f64 {
+    pub(crate) fn next(&mut self) -> f64 {
         self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
         let mut z = self.0;
         z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
@@ -50,7 +50,7 @@ impl Stream {
         lo + (hi - lo) * self.next()
     }
 
-    fn pick<T: Copy>(&mut self, options: &[T]) -> T {
+    pub(crate) fn pick<T: Copy>(&mut self, options: &[T]) -> T {
         let i = (self.next() * options.len() as f64) as usize;
         options[i.min(options.len() - 1)]
     }

@@ -109,18 +109,28 @@ impl<'t> LineIndex<'t> {
     }
 }
 
+/// Text that is not a TOML document (or holds a number TOML does not allow): where, and
+/// what is wrong, on one line.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct SyntaxError {
+    /// Where the parser stopped.
+    pub loc: Position,
+    /// The TOML parser's message, its lines joined.
+    pub message: String,
+}
+
 /// Parses TOML text into the tree, each value and key located by its line and column.
 ///
 /// Entries keep their order in the text, so the first of several faults in a table is
-/// the one reported. The error is the TOML parser's message (it names line and column).
-pub fn from_toml_text(text: &str) -> Result<Table<Position>, String> {
+/// the one reported.
+pub fn from_toml_text(text: &str) -> Result<Table<Position>, SyntaxError> {
     use toml::de::{DeTable, DeValue};
 
     fn table(
         lines: &LineIndex<'_>,
         t: &DeTable<'_>,
         span: core::ops::Range<usize>,
-    ) -> Result<Table<Position>, String> {
+    ) -> Result<Table<Position>, SyntaxError> {
         let mut entries = t.iter().collect::<Vec<_>>();
         // DeTable sorts its keys; the text's order is what a reader expects.
         entries.sort_by_key(|(k, _)| k.span().start);
@@ -135,7 +145,7 @@ pub fn from_toml_text(text: &str) -> Result<Table<Position>, String> {
                         value(lines, v.get_ref(), v.span())?,
                     ))
                 })
-                .collect::<Result<_, String>>()?,
+                .collect::<Result<_, SyntaxError>>()?,
             loc: lines.position(span.start),
         })
     }
@@ -144,20 +154,21 @@ pub fn from_toml_text(text: &str) -> Result<Table<Position>, String> {
         lines: &LineIndex<'_>,
         v: &DeValue<'_>,
         span: core::ops::Range<usize>,
-    ) -> Result<Value<Position>, String> {
+    ) -> Result<Value<Position>, SyntaxError> {
         let loc = lines.position(span.start);
         Ok(match v {
             DeValue::String(s) => Value::Str(s.to_string(), loc),
             DeValue::Integer(i) => match integer(i.as_str(), i.radix()) {
                 Some(x) => Value::Number(x, loc),
                 None => {
-                    return Err(format!(
-                        "TOML parse error at line {}, column {}: the integer `{}` is outside \
-                         the 64-bit range of TOML integers; write it as a float, e.g. `1e20`",
-                        loc.line,
-                        loc.column,
-                        i.as_str()
-                    ));
+                    return Err(SyntaxError {
+                        loc,
+                        message: format!(
+                            "the integer `{}` is outside the 64-bit range of TOML integers; \
+                             write it as a float, e.g. `1e20`",
+                            i.as_str()
+                        ),
+                    });
                 }
             },
             // The parser hands over the float's text without underscores: `1e3`, `-inf`,
@@ -166,12 +177,10 @@ pub fn from_toml_text(text: &str) -> Result<Table<Position>, String> {
             DeValue::Float(f) => match f.as_str().parse::<f64>() {
                 Ok(x) => Value::Number(x, loc),
                 Err(_) => {
-                    return Err(format!(
-                        "TOML parse error at line {}, column {}: cannot read the number `{}`",
-                        loc.line,
-                        loc.column,
-                        f.as_str()
-                    ));
+                    return Err(SyntaxError {
+                        loc,
+                        message: format!("cannot read the number `{}`", f.as_str()),
+                    });
                 }
             },
             DeValue::Boolean(b) => Value::Bool(*b, loc),
@@ -197,7 +206,17 @@ pub fn from_toml_text(text: &str) -> Result<Table<Position>, String> {
     }
 
     let lines = LineIndex::new(text);
-    let doc = DeTable::parse(text).map_err(|e| e.to_string())?;
+    let doc = DeTable::parse(text).map_err(|e| SyntaxError {
+        loc: lines.position(e.span().map_or(0, |s| s.start)),
+        // The parser's own message, without the quoted line it adds when displayed.
+        message: e
+            .message()
+            .lines()
+            .map(str::trim)
+            .filter(|l| !l.is_empty())
+            .collect::<Vec<_>>()
+            .join("; "),
+    })?;
     table(&lines, doc.get_ref(), doc.span())
 }
 
@@ -227,7 +246,7 @@ mod tests {
             "{e}"
         );
         let e = from_toml_text("big = 0xFFFFFFFFFFFFFFFF").unwrap_err();
-        assert!(e.contains("64-bit"), "{e}");
+        assert!(e.message.contains("64-bit"), "{e:?}");
     }
 
     #[test]

@@ -12,7 +12,7 @@ use core::fmt;
 /// A validation error at location `L` (`()` for files, a token span in the macro); displays as
 /// `link N, field NAME: what is wrong`.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
-#[error("{}{message}", Context { link: *link, field: field.as_deref() })]
+#[error("{}{}", Context { link: *link, field: field.as_deref() }, OneLine(message))]
 pub struct Error<L> {
     /// Where the offending value (or, for a missing field, its table) is.
     pub loc: L,
@@ -24,6 +24,23 @@ pub struct Error<L> {
     pub message: String,
 }
 
+/// Text shown on one line: control characters (a newline in a quoted key or string of the
+/// description) appear as escapes, `\n`.
+pub struct OneLine<'a>(pub &'a str);
+
+impl fmt::Display for OneLine<'_> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        for c in self.0.chars() {
+            if c.is_control() {
+                write!(f, "{}", c.escape_default())?;
+            } else {
+                write!(f, "{c}")?;
+            }
+        }
+        Ok(())
+    }
+}
+
 /// `link N, field NAME: ` (the parts that are known) in front of a validation message.
 struct Context<'a> {
     link: Option<usize>,
@@ -33,9 +50,9 @@ struct Context<'a> {
 impl fmt::Display for Context<'_> {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match (self.link, self.field) {
-            (Some(l), Some(field)) => write!(f, "link {l}, field `{field}`: "),
+            (Some(l), Some(field)) => write!(f, "link {l}, field `{}`: ", OneLine(field)),
             (Some(l), None) => write!(f, "link {l}: "),
-            (None, Some(field)) => write!(f, "field `{field}`: "),
+            (None, Some(field)) => write!(f, "field `{}`: ", OneLine(field)),
             (None, None) => Ok(()),
         }
     }

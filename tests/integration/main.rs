@@ -29,6 +29,7 @@ mod trajectory_support;
 mod generated_reference;
 mod generated_velocity;
 mod generated_vs_runtime;
+mod hostile_descriptions;
 mod ik_closed_form;
 mod ik_numeric;
 mod ik_random;

@@ -947,7 +947,8 @@ fn field_given_twice() {
     );
 }
 
-/// Syntax errors come from the TOML parser, which names the line and column itself.
+/// Syntax errors are located like rule violations (`file:line:column:`), on one line, with
+/// the TOML parser's message.
 #[test]
 fn toml_syntax_error_names_the_line() {
     let text = robot("", &[LINK, "joint = \"revolute\"\na = 0.5\na = 0.6\n"]);
@@ -955,11 +956,14 @@ fn toml_syntax_error_names_the_line() {
     assert!(matches!(error, LoadError::Syntax { .. }), "{error}");
     let shown = error.to_string();
     assert!(
-        shown.starts_with(&format!("{FILE}: invalid TOML")),
+        shown.starts_with(&format!(
+            "{FILE}:{}: invalid TOML: ",
+            position_of(&text, "a = 0.6", 1)
+        )),
         "{shown}"
     );
-    assert!(shown.contains("line 14, column 1"), "{shown}");
     assert!(shown.contains("duplicate key"), "{shown}");
+    assert!(!shown.contains('\n'), "{shown}");
 }
 
 #[test]
@@ -1045,5 +1049,23 @@ fn collision_table_fields() {
     assert_eq!(
         model.links[1].collision,
         Some(dhgen_model::Collision { radius: 0.05 })
+    );
+}
+
+/// Every message is one line: a control character from the description (a newline in a
+/// quoted key or string) is shown escaped.
+#[test]
+fn messages_are_one_line_whatever_the_text_holds() {
+    let text = "name = \"x\"\nconvention = \"st\\nandard\"\n";
+    let (_, shown) = rejection(text);
+    assert_eq!(
+        shown,
+        "robots/bad.toml:2:14: field `convention`: unknown convention `st\\nandard`; expected `standard` or `modified`"
+    );
+    let text = "name = \"x\"\nconvention = \"standard\"\n\"bad\\nkey\" = 1\n[[links]]\n";
+    let (_, shown) = rejection(text);
+    assert!(
+        shown.starts_with("robots/bad.toml:3:1: field `bad\\nkey`: unknown field `bad\\nkey`"),
+        "{shown}"
     );
 }
