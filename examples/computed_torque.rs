@@ -211,11 +211,36 @@ fn plot(path: &PathBuf, samples: &[Sample], worst: &[f64; 6]) -> Result<(), Box<
     let root = SVGBackend::new(path, (1200, 800)).into_drawing_area();
     root.fill(&WHITE)?;
     let root = root.titled(
-        "PUMA 560, computed torque at 1 kHz: desired (dashed) vs actual (solid), error (red, right axis)",
+        "PUMA 560 under computed-torque control at 1 kHz, plant with 10% more payload",
         ("sans-serif", 20),
     )?;
+    // The legend gets its own strip so that it never hides a curve.
+    let (legend, body) = root.split_vertically(34);
+    let blue = RGBColor(31, 119, 180);
+    let entries: [(&str, ShapeStyle, bool); 3] = [
+        ("desired q (left axis)", BLACK.stroke_width(2), true),
+        ("actual q (left axis)", blue.stroke_width(2), false),
+        (
+            "error desired − actual (right axis, magnified)",
+            RED.mix(0.8).stroke_width(1),
+            false,
+        ),
+    ];
+    let mut x = 60;
+    for (label, style, dashed) in entries {
+        if dashed {
+            for k in 0..3 {
+                let x0 = x + 12 * k;
+                legend.draw(&PathElement::new([(x0, 17), (x0 + 7, 17)], style))?;
+            }
+        } else {
+            legend.draw(&PathElement::new([(x, 17), (x + 31, 17)], style))?;
+        }
+        legend.draw(&Text::new(label, (x + 38, 9), ("sans-serif", 16)))?;
+        x += 60 + 9 * label.len() as i32;
+    }
     let tf = samples.last().map_or(1.0, |s| s.t);
-    for (j, panel) in root.split_evenly((2, 3)).iter().enumerate() {
+    for (j, panel) in body.split_evenly((2, 3)).iter().enumerate() {
         let values = samples.iter().flat_map(|s| [s.desired[j], s.actual[j]]);
         let (lo, hi) = values.fold((f64::MAX, f64::MIN), |(lo, hi), v| (lo.min(v), hi.max(v)));
         let pad = 0.1 * (hi - lo).max(1e-3);
@@ -238,7 +263,6 @@ fn plot(path: &PathBuf, samples: &[Sample], worst: &[f64; 6]) -> Result<(), Box<
             .light_line_style(WHITE.mix(0.0))
             .draw()?;
         chart.configure_secondary_axes().y_desc("e [deg]").draw()?;
-        let blue = RGBColor(31, 119, 180);
         chart.draw_series(LineSeries::new(
             samples.iter().map(|s| (s.t, s.actual[j].to_degrees())),
             blue.stroke_width(2),

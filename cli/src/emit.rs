@@ -2,7 +2,7 @@
 //! and what its functions cost.
 
 use crate::table::{Align, Table};
-use dhgen_codegen::{Generated, RobotModel, generate};
+use dhgen_codegen::{Generated, Options, RobotModel, generate_with};
 use std::path::Path;
 use std::time::{Duration, Instant};
 
@@ -25,17 +25,24 @@ pub fn module_ident(model: &RobotModel, name: Option<&str>) -> Result<syn::Ident
 pub fn generate_timed(
     model: &RobotModel,
     ident: &syn::Ident,
+    options: Options,
 ) -> Result<(Generated, Duration), String> {
     let start = Instant::now();
-    let generated = generate(model, quote::quote!(pub), ident).map_err(|e| e.to_string())?;
+    let generated =
+        generate_with(model, quote::quote!(pub), ident, options).map_err(|e| e.to_string())?;
     Ok((generated, start.elapsed()))
 }
 
 /// The generated module as a formatted Rust file, under a header naming its source.
-pub fn emit(model: &RobotModel, source: &Path, name: Option<&str>) -> Result<String, String> {
+pub fn emit(
+    model: &RobotModel,
+    source: &Path,
+    name: Option<&str>,
+    options: Options,
+) -> Result<String, String> {
     let ident = module_ident(model, name)?;
     let (generated, _) =
-        generate_timed(model, &ident).map_err(|e| format!("{}: {e}", source.display()))?;
+        generate_timed(model, &ident, options).map_err(|e| format!("{}: {e}", source.display()))?;
     // The generated module is lint-clean as a source file too (no unused variables, `mut`s
     // or items), so it is written exactly as the macro expands it.
     let file: syn::File = syn::parse2(generated.tokens)
@@ -55,9 +62,9 @@ pub fn emit(model: &RobotModel, source: &Path, name: Option<&str>) -> Result<Str
 }
 
 /// The operation-count table of every generated function, and the generation time.
-pub fn ops_report(model: &RobotModel) -> Result<String, String> {
+pub fn ops_report(model: &RobotModel, options: Options) -> Result<String, String> {
     let ident = module_ident(model, None).or_else(|_| module_ident(model, Some("robot")))?;
-    let (generated, elapsed) = generate_timed(model, &ident)?;
+    let (generated, elapsed) = generate_timed(model, &ident, options)?;
     let mut t = Table::new(&[
         ("function", Align::Left),
         ("add", Align::Right),

@@ -3,7 +3,8 @@
 //! - `dhgen info ROBOT.toml`: the DH table, joints, limits, masses, spherical wrist;
 //! - `dhgen eval ROBOT.toml --q ... [--qd ...] [--qdd ...] [--json]`: T, J, D, C, g, τ on
 //!   the runtime path;
-//! - `dhgen emit ROBOT.toml [-o FILE] [--name MOD]`: the module `robot!` generates, formatted;
+//! - `dhgen emit ROBOT.toml [-o FILE] [--name MOD] [--derivatives]`: the module `robot!`
+//!   generates, formatted;
 //! - `dhgen latex ROBOT.toml`: D(q), c_ijk and g(q) as LaTeX equations;
 //! - `dhgen ops ROBOT.toml`: operation counts of the generated functions;
 //! - `dhgen random --dof N [--style general|industrial] [--seed S]`: a random valid arm.
@@ -71,6 +72,10 @@ enum Command {
         /// Module name; the robot's name if omitted.
         #[arg(long)]
         name: Option<String>,
+        /// Also generate the derivatives of the dynamics (∂τ/∂q, ∂τ/∂q̇, Ḋ, Cᵀq̇), as
+        /// `robot!(..., derivatives)` does.
+        #[arg(long)]
+        derivatives: bool,
     },
     /// Print D(q), the Christoffel symbols c_ijk and g(q) as LaTeX equations, from the
     /// symbolic engine.
@@ -89,6 +94,9 @@ enum Command {
     Ops {
         /// The robot description (TOML).
         robot: PathBuf,
+        /// Include the derivatives of the dynamics (`robot!(..., derivatives)`).
+        #[arg(long)]
+        derivatives: bool,
     },
     /// Write a random valid arm (a seeded, reproducible description) for scale tests and
     /// benchmarks: `general` (no exact angles, full inertias) or `industrial` (twists and
@@ -149,9 +157,11 @@ fn run(command: Command) -> Result<String, String> {
             robot,
             output,
             name,
+            derivatives,
         } => {
             let r = load(&robot)?;
-            let code = emit::emit(r.model(), &robot, name.as_deref())?;
+            let options = dhgen_codegen::Options { derivatives };
+            let code = emit::emit(r.model(), &robot, name.as_deref(), options)?;
             match output {
                 Some(path) => {
                     std::fs::write(&path, code)
@@ -175,9 +185,11 @@ fn run(command: Command) -> Result<String, String> {
             dynamics_equations(r.model(), &style)
                 .map_err(|why| format!("{}: {why}", robot.display()))
         }
-        Command::Ops { robot } => {
-            emit::ops_report(load(&robot)?.model()).map_err(|e| format!("{}: {e}", robot.display()))
-        }
+        Command::Ops { robot, derivatives } => emit::ops_report(
+            load(&robot)?.model(),
+            dhgen_codegen::Options { derivatives },
+        )
+        .map_err(|e| format!("{}: {e}", robot.display())),
         Command::Random {
             dof,
             style,

@@ -426,6 +426,30 @@ fn latex_prints_the_equations() {
     );
 }
 
+/// The derivatives are generated on request only (`--derivatives`, as
+/// `robot!(..., derivatives)`), and then appear in both the table and the module.
+#[test]
+fn derivatives_are_generated_on_request() {
+    let rows = [
+        "inverse_dynamics_derivatives",
+        "mass_matrix_rate",
+        "coriolis_transpose_qd",
+    ];
+    let plain = stdout(&["ops", "robots/puma560.toml"]);
+    let with = stdout(&["ops", "--derivatives", "robots/puma560.toml"]);
+    for name in rows {
+        let row = format!("│ {name} ");
+        assert!(!plain.contains(&row), "{plain}");
+        assert!(with.contains(&row), "{with}");
+    }
+    let code = stdout(&["emit", "--derivatives", "robots/scara.toml"]);
+    assert!(code.contains("pub fn inverse_dynamics_derivatives<T: ::dhgen::Real>("));
+    syn::parse_file(&code).expect("the emitted module parses");
+    // A kinematics-only robot has no dynamics to differentiate: nothing is added.
+    let kinematic = stdout(&["ops", "--derivatives", "robots/cylindrical.toml"]);
+    assert!(!kinematic.contains("derivatives"), "{kinematic}");
+}
+
 #[test]
 fn ops_prints_the_cost_table() {
     let out = stdout(&["ops", "robots/puma560.toml"]);
@@ -652,7 +676,9 @@ fn hostile_files_never_crash_a_command() {
         std::fs::write(&path, dhgen::model::hostile::mutate(&text, seed)).unwrap();
         let file = path.to_str().unwrap();
         let zeros = vec!["0"; n].join(",");
-        let short = Robot::from_toml_file(&path).ok().is_none_or(|r| r.dof() <= 8);
+        let short = Robot::from_toml_file(&path)
+            .ok()
+            .is_none_or(|r| r.dof() <= 8);
         let generator = match (short, seed % 2) {
             (false, _) => "info",
             (true, 0) => "emit",

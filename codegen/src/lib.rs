@@ -26,4 +26,6 @@ pub mod poly;
 pub use dhgen_model::RobotModel;
 pub use graph::OpCount;
 pub use limits::Unsupported;
-pub use module::{Generated, generate, module_doc, op_counts};
+pub use module::{
+    Generated, Options, generate, generate_with, module_doc, op_counts, op_counts_with,
+};

@@ -7,7 +7,12 @@ use quote::{ToTokens, quote};
 use std::path::PathBuf;
 
 pub fn expand(input: RobotInput) -> syn::Result<proc_macro2::TokenStream> {
-    let RobotInput { vis, name, body } = input;
+    let RobotInput {
+        vis,
+        name,
+        body,
+        options,
+    } = input;
     let (at, source) = match &body {
         Body::File(lit) => (lit.span(), format!("{}: ", lit.value())),
         Body::Inline(_) => (name.span(), String::new()),
@@ -47,7 +52,7 @@ pub fn expand(input: RobotInput) -> syn::Result<proc_macro2::TokenStream> {
         }
     };
     // The generator's own limits (size, finite constants) are reported at the description.
-    let generated = dhgen_codegen::generate(&model, vis.to_token_stream(), &name)
+    let generated = dhgen_codegen::generate_with(&model, vis.to_token_stream(), &name, options)
         .map_err(|e| syn::Error::new(at, format!("{source}{e}")))?;
     let tokens = generated.tokens;
     Ok(quote! {

@@ -5,6 +5,9 @@
 //!   numbers, strings, bare words (`revolute`), `[...]`, `{...}`, and angles written as
 //!   `90 deg` or `PI / 2` (any other tokens up to the next comma are an expression, which
 //!   only an angle field accepts).
+//!
+//! Either form may end with option words: `vis mod name = "robot.toml", derivatives;`
+//! (`dhgen_codegen::Options`).
 
 use dhgen_model::raw::{Table, Value};
 use proc_macro2::{Delimiter, Punct, Spacing, Span, TokenStream, TokenTree};
@@ -17,6 +20,8 @@ pub struct RobotInput {
     pub vis: Visibility,
     pub name: Ident,
     pub body: Body,
+    /// The option words after the description (`, derivatives`).
+    pub options: dhgen_codegen::Options,
 }
 
 /// Where the description is.
@@ -83,9 +88,6 @@ impl Parse for RobotInput {
         let body = if input.peek(Token![=]) {
             input.parse::<Token![=]>()?;
             let path: LitStr = input.parse()?;
-            if input.peek(Token![;]) {
-                input.parse::<Token![;]>()?;
-            }
             Body::File(path)
         } else {
             let content;
@@ -93,10 +95,38 @@ impl Parse for RobotInput {
             let tokens: TokenStream = content.parse()?;
             Body::Inline(table(tokens, Loc::of(brace.span.join()))?)
         };
+        // `, derivatives`: option words, each naming what the module holds beyond the default.
+        let mut options = dhgen_codegen::Options::default();
+        while input.peek(Token![,]) {
+            input.parse::<Token![,]>()?;
+            if input.is_empty() || input.peek(Token![;]) {
+                break;
+            }
+            let word: Ident = input.parse()?;
+            if !options.set(&word.to_string()) {
+                let known = dhgen_codegen::Options::WORDS
+                    .iter()
+                    .map(|(w, what)| format!("`{w}` ({what})"))
+                    .collect::<Vec<_>>()
+                    .join(", ");
+                return Err(syn::Error::new(
+                    word.span(),
+                    format!("unknown option `{word}`; the options are {known}"),
+                ));
+            }
+        }
+        if input.peek(Token![;]) {
+            input.parse::<Token![;]>()?;
+        }
         if !input.is_empty() {
             return Err(input.error("unexpected tokens after the robot description"));
         }
-        Ok(RobotInput { vis, name, body })
+        Ok(RobotInput {
+            vis,
+            name,
+            body,
+            options,
+        })
     }
 }
 

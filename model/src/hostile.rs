@@ -103,7 +103,7 @@ fn below(s: &mut Stream, n: usize) -> usize {
 /// One to three seeded edits of `text` (see the [module docs](self)); the result may be any
 /// bytes.
 pub fn mutate(text: &str, seed: u64) -> Vec<u8> {
-    let mut s = Stream(seed ^ 0x5EED_0F_BAD_F11E);
+    let mut s = Stream(seed ^ 0x0005_EED0_FBAD_F11E);
     let mut out: Vec<u8> = text.as_bytes().to_vec();
     let edits = 1 + below(&mut s, 3);
     for _ in 0..edits {

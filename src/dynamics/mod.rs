@@ -19,6 +19,7 @@ mod coriolis;
 mod crba;
 mod forward;
 mod gravity;
+mod rates;
 mod rnea;
 mod spatial;
 

@@ -23,3 +23,9 @@ dhgen::robot!(pub mod shoulder_singular_elbow = "tests/fixtures/shoulder_singula
 dhgen::robot!(pub mod stiff_wrist = "tests/fixtures/stiff_wrist.toml");
 dhgen::robot!(pub mod weightless_wrist = "tests/fixtures/weightless_wrist.toml");
 dhgen::robot!(pub mod snake17 = "tests/fixtures/snake17.toml");
+
+// With the derivatives of the dynamics (`robot!(..., derivatives)`), for
+// tests/integration/derivatives.rs: a 6-joint arm, motors and friction, and everything at once.
+dhgen::robot!(pub mod puma560_derivatives = "robots/puma560.toml", derivatives);
+dhgen::robot!(pub mod scara_derivatives = "robots/scara.toml", derivatives);
+dhgen::robot!(pub mod odd_derivatives = "tests/fixtures/odd.toml", derivatives);

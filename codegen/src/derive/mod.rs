@@ -5,6 +5,7 @@
 //! operations after common-subexpression sharing is kept.
 
 pub mod christoffel;
+pub mod derivatives;
 pub mod energy;
 pub mod gravity;
 pub mod inertia;

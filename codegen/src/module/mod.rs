@@ -35,20 +35,48 @@ pub struct Generated {
     pub ops: Vec<(String, OpCount)>,
 }
 
+/// What a module holds beyond the default set of functions, chosen where it is generated
+/// (`robot!(pub mod arm = "arm.toml", derivatives)`, `dhgen emit --derivatives`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Options {
+    /// The derivatives of the dynamics (`inverse_dynamics_derivatives`, `mass_matrix_rate`,
+    /// `coriolis_transpose_qd`): about 2.5× the generated code of a 7-joint arm, so only on
+    /// request.
+    pub derivatives: bool,
+}
+
+impl Options {
+    /// The option words `robot!` accepts after the description, with what each adds.
+    pub const WORDS: &'static [(&'static str, &'static str)] =
+        &[("derivatives", "∂τ/∂q, ∂τ/∂q̇, Ḋ(q, q̇) and Cᵀ(q, q̇) q̇")];
+
+    /// Turns on the option named `word`; `false` when there is none of that name.
+    pub fn set(&mut self, word: &str) -> bool {
+        match word {
+            "derivatives" => self.derivatives = true,
+            _ => return false,
+        }
+        true
+    }
+}
+
 /// What every quantity's derivation may read: the structure and the derivations shared
 /// between quantities (the normal forms, the Christoffel symbols), each built once.
 pub struct Context<'c> {
     /// The robot's structure.
     pub chain: ChainRef<'c>,
+    /// What the module holds beyond the default.
+    pub options: Options,
     /// Its symbolic derivations.
     pub derivation: Derivation<'c>,
     christoffel: OnceCell<(SharedGraph, Vec<E>)>,
 }
 
 impl<'c> Context<'c> {
-    fn new(chain: ChainRef<'c>) -> Self {
+    fn new(chain: ChainRef<'c>, options: Options) -> Self {
         Context {
             chain,
+            options,
             derivation: Derivation::new(chain),
             christoffel: OnceCell::new(),
         }
@@ -69,6 +97,7 @@ impl<'c> Context<'c> {
         match a {
             Availability::Always => true,
             Availability::Dynamics => self.chain.has_dynamics(),
+            Availability::Derivatives => self.options.derivatives && self.chain.has_dynamics(),
             Availability::DecoupledWrist => {
                 crate::derive::singularity::decoupled_determinants(self.chain).is_some()
             }
@@ -93,8 +122,19 @@ pub fn module_doc(model: &RobotModel) -> String {
 /// # Errors
 /// [`Unsupported`] when the generator does not take the description (see [`generate`]).
 pub fn op_counts(model: &RobotModel) -> Result<Vec<(String, OpCount)>, Unsupported> {
+    op_counts_with(model, Options::default())
+}
+
+/// [`op_counts`] with [`Options`].
+///
+/// # Errors
+/// As [`generate`].
+pub fn op_counts_with(
+    model: &RobotModel,
+    options: Options,
+) -> Result<Vec<(String, OpCount)>, Unsupported> {
     let name = Ident::new("robot", Span::call_site());
-    Ok(generate(model, TokenStream::new(), &name)?.ops)
+    Ok(generate_with(model, TokenStream::new(), &name, options)?.ops)
 }
 
 /// The items the table makes, collected in module order.
@@ -293,9 +333,22 @@ pub fn generate(
     vis: TokenStream,
     name: &Ident,
 ) -> Result<Generated, Unsupported> {
+    generate_with(model, vis, name, Options::default())
+}
+
+/// [`generate`] with [`Options`].
+///
+/// # Errors
+/// As [`generate`].
+pub fn generate_with(
+    model: &RobotModel,
+    vis: TokenStream,
+    name: &Ident,
+    options: Options,
+) -> Result<Generated, Unsupported> {
     let structure = model.chain();
     crate::limits::check(structure.view())?;
-    let cx = Context::new(structure.view());
+    let cx = Context::new(structure.view(), options);
     let chain = cx.chain;
     let n = chain.dof();
     let mut items = Items::default();

@@ -9,7 +9,9 @@
 
 use super::shape::Shape;
 use super::{Context, cholesky};
-use crate::derive::{christoffel, energy, gravity, inertia, kinematics, newton_euler, singularity};
+use crate::derive::{
+    christoffel, derivatives, energy, gravity, inertia, kinematics, newton_euler, singularity,
+};
 use crate::graph::{E, SharedGraph};
 use crate::poly::Poly;
 use proc_macro2::TokenStream;
@@ -46,6 +48,8 @@ pub enum Availability {
     Dynamics,
     /// For six-joint arms with a spherical wrist.
     DecoupledWrist,
+    /// For robots with mass properties, when [`Options::derivatives`](super::Options) asks.
+    Derivatives,
 }
 
 /// How a quantity is made.
@@ -125,6 +129,14 @@ fn wrist_determinant(cx: &Context<'_>, pick: fn(&(Poly, Poly)) -> &Poly) -> Made
     let graph = SharedGraph::default();
     let e = crate::derive::polys_to_exprs(std::slice::from_ref(pick(&polys)), &graph, cx.chain);
     derived(graph, e)
+}
+
+/// The derivations of C(q, q̇) that quantities built on C start from: the recursion, and C
+/// from the Christoffel symbols when those are small enough to have been built.
+fn coriolis_derivations(cx: &Context<'_>) -> Vec<(SharedGraph, Vec<E>)> {
+    let (graph, c) = cx.christoffel();
+    let direct = christoffel::coriolis_from(cx.chain.dof(), graph, c);
+    derivatives::coriolis_candidates(cx.chain, Some((graph.clone(), direct)))
 }
 
 /// The generated quantities, each after those it reads.
@@ -474,6 +486,54 @@ pub const QUANTITIES: &[Quantity] = &[
             derived(graph, t)
         },
         arm: Some(ArmMethod::Dynamics),
+    },
+    Quantity {
+        name: "inverse_dynamics_derivatives",
+        doc: "The derivatives of inverse dynamics, `(∂τ/∂q, ∂τ/∂q̇)` at (q, q̇, q̈), entry \
+              `(k, m)` = ∂τ_k/∂x_m (∂τ/∂q̈ is D(q)); what MPC and trajectory optimisation \
+              linearise. Coulomb friction, constant away from q̇ = 0, contributes 0 (its \
+              subgradient at 0 too).",
+        aliases: &["computeRNEADerivatives", "rnea_derivatives"],
+        inputs: &[Input::Qd, Input::Qdd],
+        shape: Shape::SquarePair,
+        available: Availability::Derivatives,
+        public: true,
+        make: |cx| {
+            let (graph, e) = derivatives::inverse_dynamics_derivatives(cx.chain);
+            derived(graph, e)
+        },
+        arm: None,
+    },
+    Quantity {
+        name: "mass_matrix_rate",
+        doc: "The time derivative of the inertia matrix, Ḋ(q, q̇) = Σ_i ∂D/∂q_i q̇_i \
+              (= C + Cᵀ): with [`coriolis_transpose_qd`](Self::coriolis_transpose_qd), what \
+              a generalized-momentum collision observer needs every cycle.",
+        aliases: &["dD", "computeMassMatrixTimeVariation"],
+        inputs: &[Input::Qd],
+        shape: Shape::Square,
+        available: Availability::Derivatives,
+        public: true,
+        make: |cx| {
+            let (graph, e) = derivatives::mass_matrix_rate(cx.chain, coriolis_derivations(cx));
+            derived(graph, e)
+        },
+        arm: None,
+    },
+    Quantity {
+        name: "coriolis_transpose_qd",
+        doc: "Cᵀ(q, q̇) q̇, the term of a generalized-momentum observer's model \
+              (ṗ = τ + Cᵀq̇ − g for p = D q̇; De Luca's residual).",
+        aliases: &["momentum_observer"],
+        inputs: &[Input::Qd],
+        shape: Shape::Vector,
+        available: Availability::Derivatives,
+        public: true,
+        make: |cx| {
+            let (graph, e) = derivatives::coriolis_transpose_qd(cx.chain, coriolis_derivations(cx));
+            derived(graph, e)
+        },
+        arm: None,
     },
     Quantity {
         name: "terms",

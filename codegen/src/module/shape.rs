@@ -26,6 +26,8 @@ pub enum Shape {
     OptionVector,
     /// An n×n matrix, row by row.
     Square,
+    /// Two n×n matrices, each row by row, the first then the second.
+    SquarePair,
     /// An n×n×n array `[i][j][k]`.
     Cube,
     /// The `Terms` struct.
@@ -46,6 +48,7 @@ impl Shape {
             Shape::Vector => quote!(na::SVector<#t, DOF>),
             Shape::OptionVector => quote!(Option<na::SVector<#t, DOF>>),
             Shape::Square => quote!(na::SMatrix<#t, DOF, DOF>),
+            Shape::SquarePair => quote!((na::SMatrix<#t, DOF, DOF>, na::SMatrix<#t, DOF, DOF>)),
             Shape::Cube => quote!([[[#t; DOF]; DOF]; DOF]),
             Shape::Terms => quote!(Terms<#t>),
         }
@@ -60,6 +63,7 @@ impl Shape {
             Shape::HomogeneousPerJoint => Some(quote!([na::Matrix4::identity(); DOF])),
             Shape::Vector6 => Some(quote!(na::SVector::zeros())),
             Shape::Jacobian | Shape::Square => Some(quote!(na::SMatrix::zeros())),
+            Shape::SquarePair => Some(quote!((na::SMatrix::zeros(), na::SMatrix::zeros()))),
             Shape::Vector => Some(quote!(na::SVector::zeros())),
             Shape::Cube => Some(quote!([[[T::zero(); DOF]; DOF]; DOF])),
             Shape::Pose | Shape::PosePerJoint | Shape::OptionVector | Shape::Terms => {
@@ -94,6 +98,13 @@ impl Shape {
                 .map(|idx| {
                     let (r, c) = (idx / n, idx % n);
                     quote!(out[(#r, #c)])
+                })
+                .collect(),
+            Shape::SquarePair => (0..2 * n * n)
+                .map(|idx| {
+                    let (m, r, c) = (idx / (n * n), (idx / n) % n, idx % n);
+                    let m = proc_macro2::Literal::usize_unsuffixed(m);
+                    quote!(out.#m[(#r, #c)])
                 })
                 .collect(),
             Shape::Cube => (0..n * n * n)

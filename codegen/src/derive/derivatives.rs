@@ -1,0 +1,119 @@
+//! Derivatives of the dynamics: ∂τ/∂q and ∂τ/∂q̇ (what MPC and trajectory optimisation
+//! linearise), Ḋ(q, q̇) and Cᵀ(q, q̇) q̇ (what a momentum observer needs every cycle).
+//!
+//! All by forward-mode dual numbers over the recursions, never by expanding a polynomial:
+//! - ∂τ/∂q, ∂τ/∂q̇: the Newton-Euler recursion on duals with 2n lanes (n seeded by the joint
+//!   angles, n by the joint velocities), O(n²) operations;
+//! - Ḋ: one lane along q̇ over the composite-rigid-body recursion, or C + Cᵀ from the O(n²)
+//!   Coriolis recursion, whichever is cheaper;
+//! - Cᵀq̇ from that same C.
+//!
+//! Coulomb friction `coulomb·sign(q̇)` is not differentiable at q̇ = 0 and constant elsewhere:
+//! its derivative is taken as 0 everywhere (the subgradient at 0 that is also the derivative
+//! at every other velocity), so these functions differentiate the smooth part of τ.
+
+use super::christoffel::coriolis_recursive;
+use crate::chain::RingChain;
+use crate::dual::{Dual, DualSymbols, RateSymbols};
+use crate::graph::{E, SharedGraph, Sym};
+use dhgen_model::ChainRef;
+use std::rc::Rc;
+
+/// `[∂τ/∂q row-major, ∂τ/∂q̇ row-major]`: `2n²` scalars, entry `(k, m)` = ∂τ_k/∂x_m.
+pub fn inverse_dynamics_derivatives(chain: ChainRef<'_>) -> (SharedGraph, Vec<E>) {
+    let n = chain.dof();
+    let graph = SharedGraph::default();
+    // Lanes 0..n: the joint variables (seeded by the symbols); n..2n: the joint velocities.
+    let symbols = DualSymbols {
+        graph: &graph,
+        n: 2 * n,
+    };
+    let qd: Vec<Dual> = (0..n)
+        .map(|i| Dual {
+            v: E::sym(&graph, Sym::Qd(i)),
+            d: (0..2 * n)
+                .map(|m| E::K(if m == n + i { 1.0 } else { 0.0 }))
+                .collect(),
+        })
+        .collect();
+    let qdd: Vec<Dual> = (0..n)
+        .map(|i| Dual {
+            v: E::sym(&graph, Sym::Qdd(i)),
+            d: Rc::from(Vec::new()),
+        })
+        .collect();
+    let tau = RingChain::new(chain, &symbols).rnea(&qd, &qdd, true);
+    let mut out = Vec::with_capacity(2 * n * n);
+    for t in &tau {
+        out.extend((0..n).map(|m| t.partial(m)));
+    }
+    for (k, t) in tau.iter().enumerate() {
+        // Viscous friction adds its coefficient on the diagonal; armature has none.
+        let viscous = chain.bodies[k].friction.viscous;
+        out.extend((0..n).map(|m| t.partial(n + m) + E::K(if k == m { viscous } else { 0.0 })));
+    }
+    (graph, out)
+}
+
+/// The derivations of C(q, q̇) (row-major) the Ḋ and Cᵀq̇ candidates start from: the O(n²)
+/// recursion, and `direct` (C from the Christoffel symbols, in their shared graph) when given.
+pub fn coriolis_candidates(
+    chain: ChainRef<'_>,
+    direct: Option<(SharedGraph, Vec<E>)>,
+) -> Vec<(SharedGraph, Vec<E>)> {
+    let mut v = vec![coriolis_recursive(chain)];
+    v.extend(direct);
+    v
+}
+
+/// Ḋ(q, q̇) row-major, the cheapest of the rate lane over the composite-rigid-body recursion
+/// and C + Cᵀ for each derivation of C in `coriolis`.
+pub fn mass_matrix_rate(
+    chain: ChainRef<'_>,
+    coriolis: Vec<(SharedGraph, Vec<E>)>,
+) -> (SharedGraph, Vec<E>) {
+    let n = chain.dof();
+    let rate = {
+        let graph = SharedGraph::default();
+        let d = RingChain::new(chain, &RateSymbols { graph: &graph }).mass_matrix();
+        let e = (0..n * n)
+            .map(|idx| d[idx / n][idx % n].partial(0))
+            .collect();
+        (graph, e)
+    };
+    let mut candidates = vec![rate];
+    candidates.extend(coriolis.into_iter().map(|(graph, c)| {
+        let e = (0..n * n)
+            .map(|idx| {
+                let (k, j) = (idx / n, idx % n);
+                c[k * n + j].clone() + c[j * n + k].clone()
+            })
+            .collect();
+        (graph, e)
+    }));
+    super::cheapest(candidates)
+}
+
+/// Cᵀ(q, q̇) q̇ (entry j is Σ_k C_kj q̇_k), the cheapest over the derivations of C in
+/// `coriolis`.
+pub fn coriolis_transpose_qd(
+    chain: ChainRef<'_>,
+    coriolis: Vec<(SharedGraph, Vec<E>)>,
+) -> (SharedGraph, Vec<E>) {
+    let n = chain.dof();
+    let candidates = coriolis
+        .into_iter()
+        .map(|(graph, c)| {
+            let qd: Vec<E> = (0..n).map(|i| E::sym(&graph, Sym::Qd(i))).collect();
+            let e = (0..n)
+                .map(|j| {
+                    (0..n).fold(E::K(0.0), |acc, k| {
+                        acc + c[k * n + j].clone() * qd[k].clone()
+                    })
+                })
+                .collect();
+            (graph, e)
+        })
+        .collect();
+    super::cheapest(candidates)
+}
