@@ -134,3 +134,67 @@ fn coulomb_friction_contributes_no_derivative_even_at_rest() {
     let e = relative(dqd.iter().copied(), smooth.iter().copied());
     assert!(e < 1e-12, "{e:.1e}");
 }
+
+/// Forward dynamics' derivatives: ∂q̈/∂τ is D⁻¹, and ∂q̈/∂q, ∂q̈/∂q̇ are the central
+/// differences of the generated forward dynamics; D⁻¹ D = I.
+#[test]
+fn forward_dynamics_derivatives_are_central_differences() {
+    fn check<const N: usize>(
+        fd: impl Fn(&[f64; N], &[f64; N], &[f64; N]) -> Option<SVector<f64, N>>,
+        derivatives: impl Fn(
+            &[f64; N],
+            &[f64; N],
+            &[f64; N],
+        )
+            -> Option<(SMatrix<f64, N, N>, SMatrix<f64, N, N>, SMatrix<f64, N, N>)>,
+        mass_matrix: impl Fn(&[f64; N]) -> SMatrix<f64, N, N>,
+    ) {
+        let mut rng = StdRng::seed_from_u64(16);
+        // q̈ carries D⁻¹, whose conditioning (about 1e5 for the PUMA 560's light wrist) scales
+        // the rounding error of a difference quotient: a larger step than for τ, whose
+        // truncation error (h² times third derivatives) stays below 1e-9.
+        let h = 1e-5;
+        for _ in 0..5 {
+            let (q, qd, tau) = sample::<N>(&mut rng);
+            let (dq, dqd, minv) = derivatives(&q, &qd, &tau).expect("D(q) is positive definite");
+            let e = relative(
+                (minv * mass_matrix(&q)).iter().copied(),
+                SMatrix::<f64, N, N>::identity().iter().copied(),
+            );
+            assert!(e < 1e-10, "D⁻¹ D = I: {e:.1e}");
+            for (which, analytic) in [(0, dq), (1, dqd), (2, minv)] {
+                let mut numeric = SMatrix::<f64, N, N>::zeros();
+                for j in 0..N {
+                    let mut x = [q, qd, tau];
+                    x[which][j] += h;
+                    let a = fd(&x[0], &x[1], &x[2]).unwrap();
+                    x[which][j] -= 2.0 * h;
+                    let b = fd(&x[0], &x[1], &x[2]).unwrap();
+                    numeric.set_column(j, &((a - b) / (2.0 * h)));
+                }
+                let e = relative(analytic.iter().copied(), numeric.iter().copied());
+                assert!(
+                    e < 1e-6,
+                    "∂q̈ wrt input {which} against finite differences: {e:.1e}"
+                );
+            }
+        }
+    }
+    check::<6>(
+        |q, qd, tau| puma::forward_dynamics(q, qd, tau),
+        |q, qd, tau| puma::forward_dynamics_derivatives(q, qd, tau),
+        |q| puma::mass_matrix(q),
+    );
+    check::<4>(
+        |q, qd, tau| scara::forward_dynamics(q, qd, tau),
+        |q, qd, tau| scara::forward_dynamics_derivatives(q, qd, tau),
+        |q| scara::mass_matrix(q),
+    );
+    check::<{ odd::DOF }>(
+        |q, qd, tau| odd::forward_dynamics(q, qd, tau),
+        |q, qd, tau| odd::forward_dynamics_derivatives(q, qd, tau),
+        |q| odd::mass_matrix(q),
+    );
+    // Singular or non-finite: None, as forward dynamics.
+    assert!(puma::forward_dynamics_derivatives(&[0.0; 6], &[0.0; 6], &[f64::NAN; 6]).is_none());
+}

@@ -536,6 +536,63 @@ pub const QUANTITIES: &[Quantity] = &[
         arm: None,
     },
     Quantity {
+        name: "mass_matrix_inverse",
+        doc: "D(q)⁻¹ by Cholesky factorisation; `None` where D(q) is singular to working \
+              precision (the pivot rule of `forward_dynamics`).",
+        aliases: &["computeMinverse", "inertia_inverse"],
+        inputs: &[],
+        shape: Shape::OptionSquare,
+        available: Availability::Derivatives,
+        public: true,
+        make: |_| {
+            composed(
+                quote! {
+                    let dm = self.mass_matrix();
+                    let floor: T = ::dhgen::cholesky_pivot_floor(DOF, dm.diagonal().max());
+                    let factor = dm.cholesky()?;
+                    if factor.l_dirty().diagonal().iter().any(|l| !(*l * *l > floor)) {
+                        return None;
+                    }
+                    let inverse = factor.inverse();
+                    inverse.iter().all(|x| x.is_finite()).then_some(inverse)
+                },
+                &["mass_matrix"],
+            )
+        },
+        arm: None,
+    },
+    Quantity {
+        name: "forward_dynamics_derivatives",
+        doc: "The derivatives of forward dynamics, `(∂q̈/∂q, ∂q̈/∂q̇, ∂q̈/∂τ = D⁻¹)` at (q, q̇, τ), \
+              from ∂q̈/∂x = −D⁻¹ ∂τ/∂x at q̈ = D⁻¹(τ − C q̇ − g − friction); `None` where D(q) \
+              is singular to working precision or q̈ is not finite, as for `forward_dynamics`.",
+        aliases: &["computeABADerivatives", "aba_derivatives"],
+        inputs: &[Input::Qd, Input::Tau],
+        shape: Shape::OptionSquareTriple,
+        available: Availability::Derivatives,
+        public: true,
+        make: |_| {
+            composed(
+                quote! {
+                    // D and its inverse once: q̈ = D⁻¹(τ − h), then the derivatives at it.
+                    let inverse = self.mass_matrix_inverse()?;
+                    let qdd = inverse * (na::SVector::<T, DOF>::from(*tau) - self.bias(qd));
+                    if qdd.iter().any(|x| !x.is_finite()) {
+                        return None;
+                    }
+                    let (dq, dqd) = self.inverse_dynamics_derivatives(qd, &qdd);
+                    Some((-(inverse * dq), -(inverse * dqd), inverse))
+                },
+                &[
+                    "mass_matrix_inverse",
+                    "bias",
+                    "inverse_dynamics_derivatives",
+                ],
+            )
+        },
+        arm: None,
+    },
+    Quantity {
         name: "terms",
         doc: "D, C, g and J at once, as a controller needs them, sharing one state's sines \
               and cosines.",

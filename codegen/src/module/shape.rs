@@ -28,6 +28,10 @@ pub enum Shape {
     Square,
     /// Two n×n matrices, each row by row, the first then the second.
     SquarePair,
+    /// An optional n×n matrix.
+    OptionSquare,
+    /// Three optional n×n matrices.
+    OptionSquareTriple,
     /// An n×n×n array `[i][j][k]`.
     Cube,
     /// The `Terms` struct.
@@ -49,6 +53,14 @@ impl Shape {
             Shape::OptionVector => quote!(Option<na::SVector<#t, DOF>>),
             Shape::Square => quote!(na::SMatrix<#t, DOF, DOF>),
             Shape::SquarePair => quote!((na::SMatrix<#t, DOF, DOF>, na::SMatrix<#t, DOF, DOF>)),
+            Shape::OptionSquare => quote!(Option<na::SMatrix<#t, DOF, DOF>>),
+            Shape::OptionSquareTriple => quote!(
+                Option<(
+                    na::SMatrix<#t, DOF, DOF>,
+                    na::SMatrix<#t, DOF, DOF>,
+                    na::SMatrix<#t, DOF, DOF>,
+                )>
+            ),
             Shape::Cube => quote!([[[#t; DOF]; DOF]; DOF]),
             Shape::Terms => quote!(Terms<#t>),
         }
@@ -66,7 +78,12 @@ impl Shape {
             Shape::SquarePair => Some(quote!((na::SMatrix::zeros(), na::SMatrix::zeros()))),
             Shape::Vector => Some(quote!(na::SVector::zeros())),
             Shape::Cube => Some(quote!([[[T::zero(); DOF]; DOF]; DOF])),
-            Shape::Pose | Shape::PosePerJoint | Shape::OptionVector | Shape::Terms => {
+            Shape::Pose
+            | Shape::PosePerJoint
+            | Shape::OptionVector
+            | Shape::OptionSquare
+            | Shape::OptionSquareTriple
+            | Shape::Terms => {
                 unreachable!("{self:?} values are composed, never derived entry by entry")
             }
         }
@@ -113,7 +130,12 @@ impl Shape {
                     quote!(out[#i][#j][#k])
                 })
                 .collect(),
-            Shape::Pose | Shape::PosePerJoint | Shape::OptionVector | Shape::Terms => {
+            Shape::Pose
+            | Shape::PosePerJoint
+            | Shape::OptionVector
+            | Shape::OptionSquare
+            | Shape::OptionSquareTriple
+            | Shape::Terms => {
                 unreachable!("{self:?} values are composed, never derived entry by entry")
             }
         }
