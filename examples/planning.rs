@@ -126,7 +126,7 @@ fn planar(dir: &Path, scene: &PlanarScene) -> Result<(), Box<dyn Error>> {
             eta: 0.05,
             rho0: 0.5,
         },
-        grid.obstacles(&mut checker, resolution),
+        grid.obstacles(&mut checker, resolution).unwrap(),
         start.as_slice(),
         goal.as_slice(),
         &DescentParams {

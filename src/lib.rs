@@ -28,6 +28,11 @@
 //! let id = puma560::inverse_dynamics(&q, &qd, &[0.5; 6]);
 //! assert!((tau - id).amax() < 1e-9);
 //! assert!(pose.translation.vector.norm() > 0.0 && jacobian.rank(1e-9) == 6);
+//!
+//! // Forward dynamics, for simulation: q̈ under τ (`None` where D(q) is singular or q̈ is not
+//! // finite). What one generated function returns goes straight into the next.
+//! let qdd = puma560::forward_dynamics(&q, &qd, &id).expect("D(q) is positive definite");
+//! assert!((qdd - v).amax() < 1e-9);
 //! ```
 //!
 //! The same robot at run time (needs the default `std` feature):
@@ -49,8 +54,8 @@
 //! - The `dhgen` command line (`cargo install --path cli`): `dhgen info`, `eval`, `emit`,
 //!   `latex`, `ops` on a description file.
 //! - `docs/conventions.md`: standard and modified DH, joint offsets, the Christoffel index
-//!   order (`c[i][j][k] = c_ijk`, k the equation index), units, gravity, `f32`, `no_std`,
-//!   faster macro expansion.
+//!   order (`c[i][j][k] = c_ijk`, k the equation index), units, gravity, non-finite input
+//!   and wrong-length joint vectors, `f32`, `no_std`, faster macro expansion.
 #![cfg_attr(not(feature = "std"), no_std)]
 pub use nalgebra;
 

@@ -34,6 +34,36 @@ impl Real for f32 {
     }
 }
 
+/// A dual number with one derivative lane (feature `num-dual`): any generated function
+/// evaluated at `q + ε v` returns its value and its directional derivative along `v`.
+///
+/// ```
+/// # #[cfg(feature = "num-dual")] {
+/// use num_dual::Dual64;
+/// dhgen::robot!(mod puma = "robots/puma560.toml");
+/// let q = [0.1, -0.6, 0.4, 0.3, 0.8, -0.2];
+/// // ∂g/∂q₂: seed joint 2.
+/// let x: [Dual64; 6] = std::array::from_fn(|i| {
+///     let d = Dual64::from(q[i]);
+///     if i == 1 { d.derivative() } else { d }
+/// });
+/// let g = puma::gravity(&x);
+/// let h = 1e-6;
+/// let (mut a, mut b) = (q, q);
+/// a[1] += h;
+/// b[1] -= h;
+/// let fd = (puma::gravity(&a) - puma::gravity(&b)) / (2.0 * h);
+/// assert!((0..6).all(|k| (g[k].eps - fd[k]).abs() < 1e-6));
+/// # }
+/// ```
+#[cfg(feature = "num-dual")]
+impl Real for num_dual::Dual64 {}
+
+/// A dual number with `N` derivative lanes (feature `num-dual`): a whole Jacobian of a
+/// generated function in one evaluation.
+#[cfg(feature = "num-dual")]
+impl<const N: usize> Real for num_dual::DualSVec64<N> {}
+
 /// The rule for "the inertia matrix is singular", the same on the generated and the runtime
 /// path: forward dynamics factors `D(q)` by Cholesky and returns `None` when a pivot (the
 /// square of a diagonal entry of the factor) is at or below

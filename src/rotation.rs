@@ -46,10 +46,13 @@ fn c<T: RealField>(x: f64) -> T {
     nalgebra::convert(x)
 }
 
-/// Wraps an angle into (−π, π].
+/// Wraps an angle into (−π, π]; NaN for a NaN or infinite angle.
+///
+/// The remainder is exact (`x % 2π`, as `fmod`), so a huge angle such as 1e17 rad still lands
+/// in (−π, π]; a subtraction of a rounded multiple of 2π would leave up to `ulp(x)` over.
 pub fn wrap_angle<T: RealField + Copy>(x: T) -> T {
     let two_pi = T::two_pi();
-    let mut y = x - two_pi * (x / two_pi).round();
+    let mut y = x % two_pi;
     if y <= -T::pi() {
         y += two_pi;
     } else if y > T::pi() {

@@ -272,6 +272,20 @@ where
     JacobianSvd::new(j).condition_number()
 }
 
+/// Panics unless `len`, the length of the joint vector `arg` given to `function`, is the
+/// arm's number of joints: the runtime path's rule (a generated arm's vectors have the right
+/// length by type, so this never fires there).
+#[inline]
+#[track_caller]
+fn check_len(function: &str, arg: &str, len: usize, dof: usize) {
+    if len != dof {
+        panic!(
+            "dhgen::velocity::{function}: `{arg}` has length {len}, expected {dof} (one entry \
+             per joint)"
+        );
+    }
+}
+
 /// How the pseudo-inverse is damped near singularities (Nakamura & Hanafusa): no damping
 /// while the smallest singular value σ is at least `threshold`, so that `J q̇ = ξ` holds
 /// exactly there; below it `λ² = max_damping² (1 − (σ/threshold)²)`, which keeps
@@ -315,6 +329,9 @@ impl Damping {
 /// the tool (world axes), with J⁺ damped per `damping` near singularities. `null` is `b`, a
 /// joint motion projected onto the null space (redundant arms); `None` for `b = 0`, the
 /// least-norm joint rates.
+///
+/// # Panics
+/// If `q` or `null` does not have one entry per joint (only possible on the runtime path).
 pub fn inverse_velocity<A: Arm>(
     arm: &A,
     q: &OVector<f64, A::Dof>,
@@ -325,6 +342,9 @@ pub fn inverse_velocity<A: Arm>(
 where
     DefaultAllocator: ArmAllocator<A::Dof>,
 {
+    if let Some(b) = null {
+        check_len("inverse_velocity", "null", b.len(), arm.dof());
+    }
     let svd = JacobianSvd::new(&arm.jacobian(q));
     let lambda = damping.lambda(svd.min_singular_value());
     let mut qd = svd.solve(xi, lambda);
@@ -337,6 +357,10 @@ where
 /// Inverse acceleration (section 5.7): `q̈ = J⁺ (ẍ − J̇ q̇) + (I − J⁺ J) b` for the tool
 /// acceleration `ẍ = [a; α]` (linear acceleration of the tool origin and angular
 /// acceleration, world axes), with [`Arm::jdot_qdot`] for `J̇ q̇` and J⁺ damped per `damping`.
+///
+/// # Panics
+/// If `q`, `qd` or `null` does not have one entry per joint (only possible on the runtime
+/// path).
 pub fn inverse_acceleration<A: Arm>(
     arm: &A,
     q: &OVector<f64, A::Dof>,
@@ -348,6 +372,10 @@ pub fn inverse_acceleration<A: Arm>(
 where
     DefaultAllocator: ArmAllocator<A::Dof>,
 {
+    check_len("inverse_acceleration", "qd", qd.len(), arm.dof());
+    if let Some(b) = null {
+        check_len("inverse_acceleration", "null", b.len(), arm.dof());
+    }
     let j = arm.jacobian(q);
     let bias = jdot_qdot_from_jacobian(arm, &j, qd);
     let svd = JacobianSvd::new(&j);
@@ -404,6 +432,9 @@ fn column_dot(
 /// let fd = (puma::Robot.jacobian(&(q + qd * h)) - puma::Robot.jacobian(&(q - qd * h))) / (2.0 * h);
 /// assert!((jacobian_dot(&puma::Robot, &q, &qd) - fd).abs().max() < 1e-8);
 /// ```
+///
+/// # Panics
+/// If `q` or `qd` does not have one entry per joint (only possible on the runtime path).
 pub fn jacobian_dot<A: Arm>(
     arm: &A,
     q: &OVector<f64, A::Dof>,
@@ -412,6 +443,7 @@ pub fn jacobian_dot<A: Arm>(
 where
     DefaultAllocator: ArmAllocator<A::Dof>,
 {
+    check_len("jacobian_dot", "qd", qd.len(), arm.dof());
     let j = arm.jacobian(q);
     let mut out = OMatrix::<f64, U6, A::Dof>::zeros_generic(U6, arm.dim());
     let mut tail: Vector3<f64> = j.fixed_rows::<3>(0) * qd;
@@ -436,6 +468,9 @@ where
 /// acceleration, as in `ẍ = J q̈ + J̇ q̇`. Same derivation as [`jacobian_dot`], summed on the
 /// fly (no n×6 temporary). What [`Arm::jdot_qdot`] computes for arms without a generated
 /// `jdot_qdot`.
+///
+/// # Panics
+/// If `qd` does not have one entry per joint (only possible on the runtime path).
 pub fn jdot_qdot_from_jacobian<A: Arm + ?Sized>(
     arm: &A,
     j: &OMatrix<f64, U6, A::Dof>,
@@ -444,6 +479,7 @@ pub fn jdot_qdot_from_jacobian<A: Arm + ?Sized>(
 where
     DefaultAllocator: ArmAllocator<A::Dof>,
 {
+    check_len("jdot_qdot_from_jacobian", "qd", qd.len(), arm.dof());
     let mut tail: Vector3<f64> = j.fixed_rows::<3>(0) * qd;
     let mut omega = Vector3::zeros();
     let mut acc = Vector6::zeros();

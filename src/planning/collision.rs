@@ -354,9 +354,13 @@ impl Scene {
     }
 
     /// The distance from the segment `a`–`b` (a point when `a == b`) to the nearest obstacle,
-    /// `0` when they touch or overlap; `+∞` for an empty scene.
+    /// `0` when they touch or overlap; `+∞` for an empty scene; NaN when `a` or `b` is not
+    /// finite.
     pub fn distance_to_segment(&self, a: &Point3<f64>, b: &Point3<f64>) -> f64 {
         let (a, b) = (array(a), array(b));
+        if !finite(&a) || !finite(&b) {
+            return f64::NAN;
+        }
         let mut probe = None;
         let mut nearest = f64::INFINITY;
         for shape in &self.shapes {
@@ -369,7 +373,9 @@ impl Scene {
     }
 
     /// The nearest obstacle to the segment `a`–`b` (a point when `a == b`) among those
-    /// closer than `max_distance`, with the closest points; `None` when there is none.
+    /// closer than `max_distance`, with the closest points; `None` when there is none, and
+    /// when `a` or `b` is not finite (then [`distance_to_segment`](Self::distance_to_segment)
+    /// is NaN).
     pub fn nearest_to_segment(
         &self,
         a: &Point3<f64>,
@@ -377,6 +383,9 @@ impl Scene {
         max_distance: f64,
     ) -> Option<Proximity> {
         let (aa, bb) = (array(a), array(b));
+        if !finite(&aa) || !finite(&bb) {
+            return None;
+        }
         let (probe, pose) = Probe::new(&aa, &bb);
         let mut best: Option<Proximity> = None;
         for (index, shape) in self.shapes.iter().enumerate() {
@@ -702,6 +711,9 @@ where
             ));
         }
         for (j, x) in q.iter().enumerate() {
+            if !x.is_finite() {
+                return Err(format!("joint {} = {x} is not finite", j + 1));
+            }
             let [lo, hi] = self.joint_range(j);
             if !(lo <= *x && *x <= hi) {
                 return Err(format!(
@@ -754,15 +766,23 @@ where
     }
 
     /// The smallest distance between a link capsule and an obstacle at `q`, `0` when
-    /// anything touches or overlaps, `+∞` without obstacles.
+    /// anything touches or overlaps, `+∞` without obstacles; NaN when `q` (or a capsule's
+    /// end, for an overflowing prismatic joint) is not finite.
     pub fn clearance(&mut self, q: &JointVector<A>) -> f64 {
         self.checks += 1;
+        if !finite(q.as_slice()) {
+            return f64::NAN;
+        }
         self.frames(q);
         let mut clearance = f64::INFINITY;
         for link in 0..self.dof() {
             if let Some(radius) = self.model.radius(link) {
                 let (a, b) = self.segment(link);
-                clearance = clearance.min(self.scene.distance_to_segment(&a, &b) - radius);
+                let distance = self.scene.distance_to_segment(&a, &b);
+                if distance.is_nan() {
+                    return f64::NAN;
+                }
+                clearance = clearance.min(distance - radius);
             }
         }
         clearance.max(0.0)
@@ -770,8 +790,15 @@ where
 
     /// True when every link capsule is more than `margin` away from every obstacle at `q`.
     /// Stops at the first capsule that is not.
+    ///
+    /// False when `q` or `margin` is NaN, or `q` is infinite (or a capsule's end is, for an
+    /// overflowing prismatic joint): a configuration that cannot be placed is not free, with
+    /// or without obstacles.
     pub fn is_free(&mut self, q: &JointVector<A>, margin: f64) -> bool {
         self.checks += 1;
+        if margin.is_nan() || !finite(q.as_slice()) {
+            return false;
+        }
         self.frames(q);
         for link in 0..self.dof() {
             let Some(radius) = self.model.radius(link) else {
@@ -785,6 +812,9 @@ where
                 translation(&self.frames[link]),
                 translation(&self.frames[link + 1]),
             );
+            if !finite(&a) || !finite(&b) {
+                return false;
+            }
             let limit = margin + radius;
             // The parry shape is only built when some obstacle is too near for the cheap
             // bound to clear it.
@@ -802,7 +832,8 @@ where
         true
     }
 
-    /// True when a link capsule touches or overlaps an obstacle at `q`.
+    /// True when a link capsule touches or overlaps an obstacle at `q`, and when `q` is not
+    /// finite (see [`is_free`](Self::is_free)).
     pub fn in_collision(&mut self, q: &JointVector<A>) -> bool {
         !self.is_free(q, 0.0)
     }
@@ -821,14 +852,27 @@ where
     ///
     /// Both ends are checked; the samples in between in bisection order (midpoint first),
     /// which finds a blocked segment sooner than a sweep from one end.
+    ///
+    /// False, without checking anything, when `a` or `b` is not finite, when `resolution` is
+    /// not a finite number > 0, and when the motion would need more than
+    /// [`MAX_MOTION_SAMPLES`] samples (a motion of 10¹⁰ rad, say): a motion that cannot be
+    /// checked is not free.
     pub fn motion_is_free(
         &mut self,
         a: &JointVector<A>,
         b: &JointVector<A>,
         resolution: f64,
     ) -> bool {
+        let checkable =
+            valid_resolution(resolution) && finite(a.as_slice()) && finite(b.as_slice());
+        if !checkable {
+            return false;
+        }
         let margin = self.model.margin(resolution);
         let steps = self.model.steps(a.as_slice(), b.as_slice(), resolution);
+        if steps > MAX_MOTION_SAMPLES {
+            return false;
+        }
         if !self.is_free(a, margin) || !self.is_free(b, margin) {
             return false;
         }
@@ -849,7 +893,8 @@ where
     }
 
     /// True when every configuration on the polyline through `path` passes
-    /// [`motion_is_free`](Self::motion_is_free) at `resolution`.
+    /// [`motion_is_free`](Self::motion_is_free) at `resolution` (so false when a waypoint is
+    /// not finite).
     pub fn path_is_free(&mut self, path: &[JointVector<A>], resolution: f64) -> bool {
         path.windows(2)
             .all(|w| self.motion_is_free(&w[0], &w[1], resolution))
@@ -858,15 +903,42 @@ where
     /// True when no configuration sampled along the polyline through `path`, at most
     /// `resolution` apart, is in collision (margin 0): a plain re-check, for testing what a
     /// planner returned.
+    ///
+    /// False, as [`motion_is_free`](Self::motion_is_free), when a waypoint is not finite,
+    /// `resolution` is not a finite number > 0, or a segment needs more than
+    /// [`MAX_MOTION_SAMPLES`] samples.
     pub fn path_touches_nothing(&mut self, path: &[JointVector<A>], resolution: f64) -> bool {
+        let checkable = valid_resolution(resolution) && path.iter().all(|q| finite(q.as_slice()));
+        if !checkable {
+            return false;
+        }
         path.windows(2).all(|w| {
             let steps = sample_count((&w[1] - &w[0]).norm(), resolution);
+            if steps > MAX_MOTION_SAMPLES {
+                return false;
+            }
             (0..=steps).all(|k| {
                 let q = w[0].lerp(&w[1], k as f64 / steps as f64);
                 !self.in_collision(&q)
             })
         })
     }
+}
+
+/// The most configurations [`CollisionChecker::motion_is_free`] and
+/// [`CollisionChecker::path_touches_nothing`] check along one straight motion, 2²⁰: at a
+/// resolution of 0.02 rad a joint-space motion of about 2·10⁴ rad, far beyond any joint range.
+/// A longer motion is reported as not free instead of being checked for hours.
+pub const MAX_MOTION_SAMPLES: usize = 1 << 20;
+
+/// True for a resolution the local planner can step by: a finite number > 0.
+fn valid_resolution(resolution: f64) -> bool {
+    resolution > 0.0 && resolution.is_finite()
+}
+
+/// True when every value is finite.
+fn finite(values: &[f64]) -> bool {
+    values.iter().all(|x| x.is_finite())
 }
 
 /// The number of equal steps, each at most `resolution` long, that cover `length`.

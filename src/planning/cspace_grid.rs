@@ -47,15 +47,21 @@ impl CSpaceGrid {
                 reason: format!("{cells:?}: need at least one cell per axis"),
             });
         }
+        let Some(count) = cells[0].checked_mul(cells[1]) else {
+            return Err(PlanError::InvalidParameter {
+                name: "cells",
+                reason: format!("{cells:?}: more cells than a usize can count"),
+            });
+        };
         let arm = checker.arm();
         let bounds = [checker.joint_range(0), checker.joint_range(1)];
         let mut grid = CSpaceGrid {
             bounds,
             cells,
-            labels: vec![0; cells[0] * cells[1]],
+            labels: vec![0; count],
             boundaries: Vec::new(),
         };
-        let mut occupied = vec![false; cells[0] * cells[1]];
+        let mut occupied = vec![false; count];
         for i in 0..cells[0] {
             for j in 0..cells[1] {
                 let c = grid.cell_center(i, j);
@@ -149,20 +155,27 @@ impl CSpaceGrid {
     }
 
     /// The grid as the obstacles of a C-space potential field for the arm of `checker`,
-    /// whose motions are checked on the arm at `resolution`.
+    /// whose motions are checked on the arm at `resolution` (a finite number > 0, else
+    /// [`PlanError::InvalidParameter`]).
     pub fn obstacles<'g, 'c, 'a, A: Arm>(
         &'g self,
         checker: &'c mut CollisionChecker<'a, A>,
         resolution: f64,
-    ) -> GridObstacles<'g, 'c, 'a, A>
+    ) -> Result<GridObstacles<'g, 'c, 'a, A>, PlanError>
     where
         DefaultAllocator: ArmAllocator<A::Dof>,
     {
-        GridObstacles {
+        if !(resolution > 0.0 && resolution.is_finite()) {
+            return Err(PlanError::InvalidParameter {
+                name: "resolution",
+                reason: format!("{resolution} is not a finite number > 0"),
+            });
+        }
+        Ok(GridObstacles {
             grid: self,
             checker,
             resolution,
-        }
+        })
     }
 }
 

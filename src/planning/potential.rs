@@ -301,13 +301,18 @@ impl ConvexCSpaceObstacles {
         &self.regions
     }
 
-    /// The distance from `q` to the nearest obstacle (`≤ 0` inside one), `+∞` without any.
+    /// The distance from `q` to the nearest obstacle (`≤ 0` inside one), `+∞` without any;
+    /// NaN when `q` has a NaN coordinate.
     pub fn distance(&mut self, q: &[f64]) -> f64 {
         let b = &mut self.scratch;
+        // Not `f64::min`, which would drop a NaN distance.
         self.regions
             .iter()
             .map(|r| r.nearest(q, b))
-            .fold(f64::INFINITY, f64::min)
+            .fold(
+                f64::INFINITY,
+                |m, d| if d < m || d.is_nan() { d } else { m },
+            )
     }
 }
 
@@ -331,8 +336,12 @@ impl CSpaceObstacles for ConvexCSpaceObstacles {
 
     /// Exact: advances along the segment by the distance to the nearest obstacle, which
     /// no obstacle point can be closer than (conservative advancement). A segment that
-    /// passes closer than 10⁻⁹ to an obstacle counts as blocked.
+    /// passes closer than 10⁻⁹ to an obstacle counts as blocked, and so does one with an
+    /// end that is not finite.
     fn motion_is_free(&mut self, a: &[f64], b: &[f64]) -> bool {
+        if !a.iter().chain(b).all(|x| x.is_finite()) {
+            return false;
+        }
         let length = a
             .iter()
             .zip(b)
@@ -383,7 +392,8 @@ pub struct DescentParams {
     pub random_walks: usize,
     /// Steps of one random walk (≥ 1).
     pub walk_steps: usize,
-    /// Largest move of one joint in one random-walk step (> 0).
+    /// Largest move of one joint in one random-walk step (> 0, and at most `f64::MAX / 2` so
+    /// that the range `±walk_step` has a finite width).
     pub walk_step: f64,
     /// Seed of the random walks.
     pub seed: u64,
@@ -412,6 +422,16 @@ impl DescentParams {
         positive("step", self.step)?;
         positive("tolerance", self.tolerance)?;
         positive("walk_step", self.walk_step)?;
+        // The walk draws from [−walk_step, walk_step], whose width must be a number.
+        if !(2.0 * self.walk_step).is_finite() {
+            return Err(PlanError::InvalidParameter {
+                name: "walk_step",
+                reason: format!(
+                    "{} is too large: the range ±walk_step must have a finite width",
+                    self.walk_step
+                ),
+            });
+        }
         if self.stall_iterations == 0 || self.walk_steps == 0 {
             return Err(PlanError::InvalidParameter {
                 name: if self.stall_iterations == 0 {
@@ -615,9 +635,10 @@ impl<O: CSpaceObstacles> Descent for CSpaceProblem<'_, O> {
 /// Plans from `start` to `goal` by gradient descent on the C-space potential `field` over
 /// `obstacles` (6.2.3).
 ///
-/// Errors: a bad parameter, a start or goal of the wrong dimension, outside the bounds or
-/// inside an obstacle; [`PlanError::LocalMinimum`] when the descent is stuck and the random
-/// walks do not free it; [`PlanError::IterationLimit`] when the step budget runs out.
+/// Errors: a bad parameter, a start or goal of the wrong dimension, not finite, outside the
+/// bounds or inside an obstacle; [`PlanError::LocalMinimum`] when the descent is stuck and
+/// the random walks do not free it; [`PlanError::IterationLimit`] when the step budget runs
+/// out.
 pub fn plan<O: CSpaceObstacles>(
     field: &CSpaceField,
     mut obstacles: O,
@@ -633,6 +654,10 @@ pub fn plan<O: CSpaceObstacles>(
             return Err(bad(format!("{} coordinates, expected {n}", q.len())));
         }
         for (j, x) in q.iter().enumerate() {
+            // An unbounded space admits ±∞ between its bounds.
+            if !x.is_finite() {
+                return Err(bad(format!("coordinate {j} = {x} is not finite")));
+            }
             let [lo, hi] = obstacles.bounds(j);
             if !(lo <= *x && *x <= hi) {
                 return Err(bad(format!("coordinate {j} = {x} is outside [{lo}, {hi}]")));

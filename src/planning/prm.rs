@@ -73,13 +73,14 @@ pub struct PrmConfig {
     /// A node with fewer edges than this gets new samples around it.
     pub few_neighbours: usize,
     /// Half-width, per joint, of the box around a node that its new samples come from
-    /// (> 0).
+    /// (> 0, at most `f64::MAX / 2`).
     pub resample_radius: f64,
     /// Closest node pairs tried per component when connecting components.
     pub connect_attempts: usize,
     /// Smoothing stops after this many shortcut tries in a row shortened nothing.
     pub shortcut_attempts: usize,
-    /// Wall-clock budget of a query (roadmap construction included); `None` for none.
+    /// Wall-clock budget of a query (roadmap construction included); `None` for none, and so
+    /// is a budget beyond what the clock can represent (`Duration::MAX`).
     /// Hitting it makes the result depend on the machine's speed.
     pub time_budget: Option<Duration>,
 }
@@ -116,6 +117,17 @@ impl PrmConfig {
             if !(x > 0.0 && x.is_finite()) {
                 return bad(name, format!("{x} is not a finite number > 0"));
             }
+        }
+        // Samples are drawn from [−resample_radius, resample_radius]: its width must be a
+        // number.
+        if !(2.0 * self.resample_radius).is_finite() {
+            return bad(
+                "resample_radius",
+                format!(
+                    "{} is too large: the box ±resample_radius must have a finite width",
+                    self.resample_radius
+                ),
+            );
         }
         for (name, x) in [
             ("neighbours", self.neighbours),
@@ -339,6 +351,12 @@ where
         stats
     }
 
+    /// When the time budget counted from `started` runs out; `None` without a budget or for
+    /// one too long for `Instant` (`started + budget` would overflow and panic).
+    fn deadline_from(&self, started: Instant) -> Option<Instant> {
+        self.config.time_budget.and_then(|b| started.checked_add(b))
+    }
+
     fn out_of_budget(&self) -> Option<String> {
         if self.nodes.len() >= self.config.max_nodes {
             Some(format!("node budget of {} reached", self.config.max_nodes))
@@ -430,7 +448,7 @@ where
     pub fn build(&mut self) {
         let started = Instant::now();
         let checks = self.checker.checks();
-        self.deadline = self.config.time_budget.map(|b| started + b);
+        self.deadline = self.deadline_from(started);
         if self.nodes.is_empty() {
             while self.nodes.len() < self.config.initial_nodes && self.out_of_budget().is_none() {
                 let q = self.uniform_sample();
@@ -558,7 +576,7 @@ where
         self.build();
         let started = Instant::now();
         let checks = self.checker.checks();
-        self.deadline = self.config.time_budget.map(|b| started + b);
+        self.deadline = self.deadline_from(started);
         let s = self.insert(start);
         let g = self.insert(goal);
         self.stats.collision_checks += self.checker.checks() - checks;

@@ -237,6 +237,10 @@ impl Profile for Lspb {
         if t > self.tf {
             return Setpoint::rest(self.qf);
         }
+        if t.is_nan() {
+            // Else it would fall through to the last blend, whose acceleration is finite.
+            return Setpoint::NAN;
+        }
         // Time since the start and time to go, each measured from its own end so that both
         // boundary setpoints are exact even when tf = t0 + T was rounded.
         let tau = t - self.t0;

@@ -81,6 +81,9 @@ impl Setpoint {
         Self { q, qd, qdd }
     }
 
+    /// All NaN: the state at a NaN time.
+    pub(crate) const NAN: Setpoint = Setpoint::new(f64::NAN, f64::NAN, f64::NAN);
+
     /// At rest at `q`: zero velocity and acceleration.
     pub const fn rest(q: f64) -> Self {
         Self {

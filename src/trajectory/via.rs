@@ -271,6 +271,20 @@ impl CubicSpline {
             .flat_map(|p| p.as_ref().iter().copied())
             .collect();
         let steps: Vec<f64> = times.windows(2).map(|w| w[1] - w[0]).collect();
+        // Finite points and times can still be too far apart, or too close in time, for the
+        // segment's average velocity to be representable.
+        for k in 1..n {
+            for j in 0..dof {
+                let v = (values[k * dof + j] - values[(k - 1) * dof + j]) / steps[k - 1];
+                if !v.is_finite() {
+                    return Err(TrajectoryError::OutOfFloatRange {
+                        name: "segment velocity",
+                        value: v,
+                        at: Location::point(k, j),
+                    });
+                }
+            }
+        }
 
         // Tridiagonal matrix (sub, diag, sup), shared by all joints; the right-hand side is per joint.
         let mut sub = vec![0.0; n];
@@ -582,6 +596,10 @@ impl BlendedSegments {
         }
         if t > self.times[m] {
             return Setpoint::rest(point(m));
+        }
+        if t.is_nan() {
+            // Else it would land in the first blend with a finite velocity.
+            return Setpoint::NAN;
         }
         let half = 0.5 * self.blend_time;
         // The first blend that has not ended at t (the last one at t = tf).

@@ -34,6 +34,7 @@ mod hostile_descriptions;
 mod ik_closed_form;
 mod ik_numeric;
 mod ik_random;
+mod non_finite;
 mod planar_elbow;
 mod planning_collision;
 mod planning_potential;

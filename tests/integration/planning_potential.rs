@@ -247,7 +247,7 @@ fn planar_arm_descends_over_its_obstacle_grid() {
     let resolution = 0.02;
     let path = potential::plan(
         &field,
-        grid.obstacles(&mut checker, resolution),
+        grid.obstacles(&mut checker, resolution).unwrap(),
         &scene.start,
         &scene.goal,
         &DescentParams {
