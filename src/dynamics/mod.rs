@@ -4,7 +4,9 @@
 //! - [`gravity`]: the gravity torques from composite mass moments;
 //! - [`christoffel`]: the Christoffel symbols from analytic derivatives of `D(q)`;
 //! - [`coriolis`]: the Christoffel-consistent Coriolis matrix in O(n²);
-//! - [`forward`]: forward dynamics by CRBA, RNEA and a Cholesky solve.
+//! - [`forward`]: forward dynamics by CRBA, RNEA and a Cholesky solve;
+//! - [`derivatives`]: ∂τ/∂q by tangents of the recursion, ∂τ/∂q̇, D⁻¹, ∂q̈/∂(q, q̇, τ);
+//! - [`rates`]: Ḋ(q, q̇) and Cᵀ(q, q̇) q̇.
 //!
 //! All of them share one per-call pass ([`Robot::body_states`]) that puts each joint axis and
 //! each body inertia into world coordinates; the constants come from
@@ -17,6 +19,7 @@
 mod christoffel;
 mod coriolis;
 mod crba;
+mod derivatives;
 mod forward;
 mod gravity;
 mod rates;

@@ -76,6 +76,27 @@ macro_rules! derivative_laws {
                 let identity = robot.coriolis(&q, &qd) * 2.0 + viscous;
                 let e = relative(dqd.iter().copied(), identity.iter().copied());
                 assert!(e < 1e-12, "∂τ/∂q̇ against 2C + viscous: {e:.1e}");
+                // The runtime path's analytic recursion: the same matrices.
+                let (rq, rqd) = robot.inverse_dynamics_derivatives(&q, &qd, &qdd);
+                let e = relative(rq.iter().copied(), dq.iter().copied());
+                assert!(e < 1e-12, "runtime ∂τ/∂q against generated: {e:.1e}");
+                let e = relative(rqd.iter().copied(), dqd.iter().copied());
+                assert!(e < 1e-12, "runtime ∂τ/∂q̇ against generated: {e:.1e}");
+                // Forward dynamics' derivatives, both paths, at τ from these (q, q̇, q̈).
+                let tau_here = $module::inverse_dynamics(&q, &qd, &qdd);
+                let (gq, gqd, gminv) =
+                    $module::forward_dynamics_derivatives(&q, &qd, &tau_here).unwrap();
+                let (fq, fqd, fminv) = robot
+                    .forward_dynamics_derivatives(&q, &qd, tau_here.as_slice())
+                    .unwrap();
+                for (name, g, r) in [
+                    ("∂q̈/∂q", gq, fq),
+                    ("∂q̈/∂q̇", gqd, fqd),
+                    ("D⁻¹", gminv, fminv),
+                ] {
+                    let e = relative(r.iter().copied(), g.iter().copied());
+                    assert!(e < 1e-9, "runtime {name} against generated: {e:.1e}");
+                }
 
                 // Ḋ: the generated one, the runtime one, and D's central difference along q̇.
                 let d_dot = $module::mass_matrix_rate(&q, &qd);
