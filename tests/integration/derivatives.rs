@@ -248,3 +248,63 @@ fn dual_numbers_through_generated_code_give_the_same_derivatives() {
         }
     }
 }
+
+/// Pinocchio's `computeRNEADerivatives` and `computeABADerivatives` on the PUMA 560 and the
+/// Panda (tests/data/derivatives_*.json, made by scripts/pinocchio_derivatives.py): the
+/// generated PUMA 560 and the runtime path on both agree to 1e-9.
+#[test]
+fn derivatives_match_pinocchio() {
+    fn matrix(v: &serde_json::Value) -> DMatrix<f64> {
+        let rows: Vec<Vec<f64>> = serde_json::from_value(v.clone()).unwrap();
+        DMatrix::from_fn(rows.len(), rows[0].len(), |r, c| rows[r][c])
+    }
+    fn vector(v: &serde_json::Value) -> Vec<f64> {
+        serde_json::from_value(v.clone()).unwrap()
+    }
+    for name in ["puma560", "panda"] {
+        let path = format!(
+            "{}/tests/data/derivatives_{name}.json",
+            env!("CARGO_MANIFEST_DIR")
+        );
+        let data: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
+        let robot = runtime(name);
+        let samples = data["samples"].as_array().unwrap();
+        assert_eq!(samples.len(), 10);
+        for s in samples {
+            let (q, qd, qdd, tau) = (
+                vector(&s["q"]),
+                vector(&s["qd"]),
+                vector(&s["qdd"]),
+                vector(&s["tau"]),
+            );
+            let expected = [
+                ("∂τ/∂q", matrix(&s["dtau_dq"])),
+                ("∂τ/∂q̇", matrix(&s["dtau_dqd"])),
+                ("∂q̈/∂q", matrix(&s["ddq_dq"])),
+                ("∂q̈/∂q̇", matrix(&s["ddq_dqd"])),
+                ("D⁻¹", matrix(&s["minv"])),
+            ];
+            let (rq, rqd) = robot.inverse_dynamics_derivatives(&q, &qd, &qdd);
+            let (fq, fqd, minv) = robot.forward_dynamics_derivatives(&q, &qd, &tau).unwrap();
+            let mut ours = vec![rq, rqd, fq, fqd, minv];
+            if name == "puma560" {
+                let a = |v: &[f64]| -> [f64; 6] { v.try_into().unwrap() };
+                let (gq, gqd) = puma::inverse_dynamics_derivatives(&a(&q), &a(&qd), &a(&qdd));
+                let (hq, hqd, hminv) =
+                    puma::forward_dynamics_derivatives(&a(&q), &a(&qd), &a(&tau)).unwrap();
+                let dynamic = |m: SMatrix<f64, 6, 6>| DMatrix::from_fn(6, 6, |r, c| m[(r, c)]);
+                ours.extend([gq, gqd, hq, hqd, hminv].map(dynamic));
+            }
+            for (i, m) in ours.iter().enumerate() {
+                let (what, reference) = &expected[i % 5];
+                let e = relative(m.iter().copied(), reference.iter().copied());
+                let path = if i < 5 { "runtime" } else { "generated" };
+                assert!(
+                    e < 1e-9,
+                    "{name} {what} ({path}) against Pinocchio: {e:.1e}"
+                );
+            }
+        }
+    }
+}
