@@ -261,6 +261,7 @@ fn derivatives_match_pinocchio() {
     fn vector(v: &serde_json::Value) -> Vec<f64> {
         serde_json::from_value(v.clone()).unwrap()
     }
+    let mut worst = 0.0_f64;
     for name in ["puma560", "panda"] {
         let path = format!(
             "{}/tests/data/derivatives_{name}.json",
@@ -304,7 +305,9 @@ fn derivatives_match_pinocchio() {
                     e < 1e-9,
                     "{name} {what} ({path}) against Pinocchio: {e:.1e}"
                 );
+                worst = worst.max(e);
             }
         }
     }
+    eprintln!("largest relative difference from Pinocchio: {worst:.1e}");
 }
