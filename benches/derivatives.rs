@@ -1,0 +1,101 @@
+//! The derivatives of the dynamics, generated (`robot!(..., derivatives)`) against the runtime
+//! path's analytic O(n²) recursion, next to inverse dynamics itself for scale:
+//! `{robot}/{quantity}/{generated|runtime}`. Every call takes the next of 64 fixed random
+//! states.
+//!
+//! `cargo bench --bench derivatives`
+
+use criterion::{Criterion, criterion_group, criterion_main};
+use dhgen::Robot;
+use rand::rngs::StdRng;
+use rand::{Rng, SeedableRng};
+use std::hint::black_box;
+use std::time::Duration;
+
+dhgen::robot!(mod puma560 = "robots/puma560.toml", derivatives);
+dhgen::robot!(mod panda = "robots/panda.toml", derivatives);
+
+const STATES: usize = 64;
+
+fn states<const N: usize>(robot: &Robot) -> Vec<([f64; N], [f64; N], [f64; N], [f64; N])> {
+    let mut rng = StdRng::seed_from_u64(21);
+    (0..STATES)
+        .map(|_| {
+            let q: [f64; N] = core::array::from_fn(|_| rng.random_range(-1.5..1.5));
+            let qd: [f64; N] = core::array::from_fn(|_| rng.random_range(-2.0..2.0));
+            let qdd: [f64; N] = core::array::from_fn(|_| rng.random_range(-5.0..5.0));
+            let t = robot.inverse_dynamics(&q, &qd, &qdd);
+            (q, qd, qdd, core::array::from_fn(|j| t[j]))
+        })
+        .collect()
+}
+
+macro_rules! bench_robot {
+    ($c:expr, $name:literal, $module:ident, $n:literal) => {{
+        let robot = Robot::from_toml_file(concat!("robots/", $name, ".toml")).unwrap();
+        let s = states::<$n>(&robot);
+        let mut g = $c.benchmark_group($name);
+        let mut i = 0;
+        let mut next = || {
+            i = (i + 1) % STATES;
+            &s[i]
+        };
+        g.bench_function("inverse_dynamics/generated", |b| {
+            b.iter(|| {
+                let (q, qd, qdd, _) = next();
+                $module::inverse_dynamics(black_box(q), black_box(qd), black_box(qdd))
+            })
+        });
+        g.bench_function("inverse_dynamics_derivatives/generated", |b| {
+            b.iter(|| {
+                let (q, qd, qdd, _) = next();
+                $module::inverse_dynamics_derivatives(black_box(q), black_box(qd), black_box(qdd))
+            })
+        });
+        g.bench_function("inverse_dynamics_derivatives/runtime", |b| {
+            b.iter(|| {
+                let (q, qd, qdd, _) = next();
+                robot.inverse_dynamics_derivatives(black_box(q), black_box(qd), black_box(qdd))
+            })
+        });
+        g.bench_function("forward_dynamics_derivatives/generated", |b| {
+            b.iter(|| {
+                let (q, qd, _, tau) = next();
+                $module::forward_dynamics_derivatives(black_box(q), black_box(qd), black_box(tau))
+            })
+        });
+        g.bench_function("forward_dynamics_derivatives/runtime", |b| {
+            b.iter(|| {
+                let (q, qd, _, tau) = next();
+                robot.forward_dynamics_derivatives(black_box(q), black_box(qd), black_box(tau))
+            })
+        });
+        g.bench_function("mass_matrix_rate/generated", |b| {
+            b.iter(|| {
+                let (q, qd, _, _) = next();
+                $module::mass_matrix_rate(black_box(q), black_box(qd))
+            })
+        });
+        g.bench_function("mass_matrix_rate/runtime", |b| {
+            b.iter(|| {
+                let (q, qd, _, _) = next();
+                robot.mass_matrix_rate(black_box(q), black_box(qd))
+            })
+        });
+        g.finish();
+    }};
+}
+
+fn derivatives(c: &mut Criterion) {
+    bench_robot!(c, "puma560", puma560, 6);
+    bench_robot!(c, "panda", panda, 7);
+}
+
+criterion_group! {
+    name = benches;
+    config = Criterion::default()
+        .warm_up_time(Duration::from_millis(500))
+        .measurement_time(Duration::from_secs(2));
+    targets = derivatives
+}
+criterion_main!(benches);
