@@ -311,3 +311,91 @@ fn derivatives_match_pinocchio() {
     }
     eprintln!("largest relative difference from Pinocchio: {worst:.1e}");
 }
+
+/// The runtime path's derivatives against central differences of its own inverse and forward
+/// dynamics, on every catalogue robot with dynamics and the fixtures with motors, friction,
+/// prismatic joints, modified DH and base/tool poses.
+#[test]
+fn runtime_derivatives_are_central_differences_on_every_robot() {
+    let robots: Vec<Robot> = [
+        "planar_elbow",
+        "puma560",
+        "stanford",
+        "panda",
+        "scara",
+        "ur5",
+    ]
+    .into_iter()
+    .map(runtime)
+    .chain(
+        ["odd", "driven", "gantry", "tilted_modified"]
+            .into_iter()
+            .map(fixture),
+    )
+    .filter(Robot::has_dynamics)
+    .collect();
+    assert!(robots.len() >= 8);
+    let mut rng = StdRng::seed_from_u64(19);
+    let mut singular = Vec::new();
+    for robot in &robots {
+        let n = robot.dof();
+        for _ in 0..3 {
+            let q: Vec<f64> = (0..n).map(|_| rng.random_range(-1.5..1.5)).collect();
+            let qd: Vec<f64> = (0..n)
+                .map(|_| {
+                    rng.random_range(0.05..1.0) * if rng.random_bool(0.5) { 1.0 } else { -1.0 }
+                })
+                .collect();
+            let qdd: Vec<f64> = (0..n).map(|_| rng.random_range(-1.0..1.0)).collect();
+            let tau = robot.inverse_dynamics(&q, &qd, &qdd);
+            let (dq, dqd) = robot.inverse_dynamics_derivatives(&q, &qd, &qdd);
+            // A singular D(q) (a description whose links carry no inertia about their
+            // axes) has no forward dynamics: both functions say so alike.
+            let Some((fq, fqd, minv)) = robot.forward_dynamics_derivatives(&q, &qd, tau.as_slice())
+            else {
+                assert!(robot.forward_dynamics(&q, &qd, &tau).is_none());
+                assert!(robot.mass_matrix_inverse(&q).is_none());
+                singular.push(robot.model().name.clone());
+                continue;
+            };
+            // Column j of each derivative by a central difference in input `which`.
+            let numeric = |which: usize, h: f64, forward: bool| -> DMatrix<f64> {
+                let mut m = DMatrix::zeros(n, n);
+                for j in 0..n {
+                    let mut x = [q.clone(), qd.clone(), qdd.clone(), tau.as_slice().to_vec()];
+                    let eval = |x: &[Vec<f64>; 4]| {
+                        if forward {
+                            robot.forward_dynamics(&x[0], &x[1], &x[3]).unwrap()
+                        } else {
+                            robot.inverse_dynamics(&x[0], &x[1], &x[2])
+                        }
+                    };
+                    x[which][j] += h;
+                    let a = eval(&x);
+                    x[which][j] -= 2.0 * h;
+                    let b = eval(&x);
+                    m.set_column(j, &((a - b) / (2.0 * h)));
+                }
+                m
+            };
+            let name = &robot.model().name;
+            for (what, analytic, fd) in [
+                ("∂τ/∂q", &dq, numeric(0, 1e-6, false)),
+                ("∂τ/∂q̇", &dqd, numeric(1, 1e-6, false)),
+                ("∂q̈/∂q", &fq, numeric(0, 1e-5, true)),
+                ("∂q̈/∂q̇", &fqd, numeric(1, 1e-5, true)),
+                ("∂q̈/∂τ", &minv, numeric(3, 1e-5, true)),
+            ] {
+                let e = relative(analytic.iter().copied(), fd.iter().copied());
+                assert!(
+                    e < 1e-6,
+                    "{name} {what} against finite differences: {e:.1e}"
+                );
+            }
+        }
+    }
+    singular.dedup();
+    eprintln!("singular D(q), no forward dynamics: {singular:?}");
+    // Only the UR5 as published (links without inertia about their axes) may be singular.
+    assert!(singular.iter().all(|s| s == "ur5"), "{singular:?}");
+}
