@@ -39,7 +39,8 @@ pub struct Generated {
 /// (`robot!(pub mod arm = "arm.toml", derivatives)`, `dhgen emit --derivatives`).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Options {
-    /// The derivatives of the dynamics (`inverse_dynamics_derivatives`, `mass_matrix_rate`,
+    /// The derivatives of the dynamics (`inverse_dynamics_derivatives`,
+    /// `forward_dynamics_derivatives`, `mass_matrix_inverse`, `mass_matrix_rate`,
     /// `coriolis_transpose_qd`): about 2.5× the generated code of a 7-joint arm, so only on
     /// request.
     pub derivatives: bool,
@@ -47,8 +48,10 @@ pub struct Options {
 
 impl Options {
     /// The option words `robot!` accepts after the description, with what each adds.
-    pub const WORDS: &'static [(&'static str, &'static str)] =
-        &[("derivatives", "∂τ/∂q, ∂τ/∂q̇, Ḋ(q, q̇) and Cᵀ(q, q̇) q̇")];
+    pub const WORDS: &'static [(&'static str, &'static str)] = &[(
+        "derivatives",
+        "∂τ/∂q, ∂τ/∂q̇, ∂q̈/∂q, ∂q̈/∂q̇, D⁻¹, Ḋ(q, q̇) and Cᵀ(q, q̇) q̇",
+    )];
 
     /// Turns on the option named `word`; `false` when there is none of that name.
     pub fn set(&mut self, word: &str) -> bool {
