@@ -3,7 +3,8 @@
 //!
 //! All by forward-mode dual numbers over the recursions, never by expanding a polynomial:
 //! - ∂τ/∂q, ∂τ/∂q̇: the Newton-Euler recursion on duals with 2n lanes (n seeded by the joint
-//!   angles, n by the joint velocities), O(n²) operations;
+//!   angles, n by the joint velocities), or n lanes for ∂τ/∂q and 2C + diag(viscous) for
+//!   ∂τ/∂q̇, whichever is cheaper, O(n²) operations;
 //! - Ḋ: one lane along q̇ over the composite-rigid-body recursion, or C + Cᵀ from the O(n²)
 //!   Coriolis recursion, whichever is cheaper;
 //! - Cᵀq̇ from that same C.
@@ -19,40 +20,75 @@ use crate::graph::{E, SharedGraph, Sym};
 use dhgen_model::ChainRef;
 use std::rc::Rc;
 
-/// `[∂τ/∂q row-major, ∂τ/∂q̇ row-major]`: `2n²` scalars, entry `(k, m)` = ∂τ_k/∂x_m.
-pub fn inverse_dynamics_derivatives(chain: ChainRef<'_>) -> (SharedGraph, Vec<E>) {
+/// The Newton–Euler recursion on duals in `graph`: `lanes` = n seeds the joint variables only,
+/// 2n also the joint velocities (lanes n..2n). Returns τ as duals.
+fn dual_rnea(chain: ChainRef<'_>, graph: &SharedGraph, lanes: usize) -> Vec<Dual> {
     let n = chain.dof();
-    let graph = SharedGraph::default();
-    // Lanes 0..n: the joint variables (seeded by the symbols); n..2n: the joint velocities.
-    let symbols = DualSymbols {
-        graph: &graph,
-        n: 2 * n,
-    };
+    let symbols = DualSymbols { graph, n: lanes };
     let qd: Vec<Dual> = (0..n)
         .map(|i| Dual {
-            v: E::sym(&graph, Sym::Qd(i)),
-            d: (0..2 * n)
-                .map(|m| E::K(if m == n + i { 1.0 } else { 0.0 }))
-                .collect(),
+            v: E::sym(graph, Sym::Qd(i)),
+            d: if lanes > n {
+                (0..lanes)
+                    .map(|m| E::K(if m == n + i { 1.0 } else { 0.0 }))
+                    .collect()
+            } else {
+                Rc::from(Vec::new())
+            },
         })
         .collect();
     let qdd: Vec<Dual> = (0..n)
         .map(|i| Dual {
-            v: E::sym(&graph, Sym::Qdd(i)),
+            v: E::sym(graph, Sym::Qdd(i)),
             d: Rc::from(Vec::new()),
         })
         .collect();
-    let tau = RingChain::new(chain, &symbols).rnea(&qd, &qdd, true);
-    let mut out = Vec::with_capacity(2 * n * n);
-    for t in &tau {
-        out.extend((0..n).map(|m| t.partial(m)));
-    }
-    for (k, t) in tau.iter().enumerate() {
-        // Viscous friction adds its coefficient on the diagonal; armature has none.
-        let viscous = chain.bodies[k].friction.viscous;
-        out.extend((0..n).map(|m| t.partial(n + m) + E::K(if k == m { viscous } else { 0.0 })));
-    }
-    (graph, out)
+    RingChain::new(chain, &symbols).rnea(&qd, &qdd, true)
+}
+
+/// `[∂τ/∂q row-major, ∂τ/∂q̇ row-major]`: `2n²` scalars, entry `(k, m)` = ∂τ_k/∂x_m; the
+/// cheapest of two kinds of candidate:
+/// - the Newton–Euler recursion on duals with 2n lanes (q and q̇ seeded), in its own graph;
+/// - for each derivation of C in `coriolis`: n lanes (q only) in C's graph, and
+///   ∂τ/∂q̇ = 2C + diag(viscous) (for the Christoffel-consistent C, ∂(C q̇)/∂q̇ = 2C), which
+///   shares what C already computes.
+pub fn inverse_dynamics_derivatives(
+    chain: ChainRef<'_>,
+    coriolis: Vec<(SharedGraph, Vec<E>)>,
+) -> (SharedGraph, Vec<E>) {
+    let n = chain.dof();
+    let viscous = |k: usize, m: usize| {
+        E::K(if k == m {
+            chain.bodies[k].friction.viscous
+        } else {
+            0.0
+        })
+    };
+    let both_lanes = {
+        let graph = SharedGraph::default();
+        let tau = dual_rnea(chain, &graph, 2 * n);
+        let mut out = Vec::with_capacity(2 * n * n);
+        for t in &tau {
+            out.extend((0..n).map(|m| t.partial(m)));
+        }
+        for (k, t) in tau.iter().enumerate() {
+            out.extend((0..n).map(|m| t.partial(n + m) + viscous(k, m)));
+        }
+        (graph, out)
+    };
+    let mut candidates = vec![both_lanes];
+    candidates.extend(coriolis.into_iter().map(|(graph, c)| {
+        let tau = dual_rnea(chain, &graph, n);
+        let mut out = Vec::with_capacity(2 * n * n);
+        for t in &tau {
+            out.extend((0..n).map(|m| t.partial(m)));
+        }
+        for k in 0..n {
+            out.extend((0..n).map(|m| E::K(2.0) * c[k * n + m].clone() + viscous(k, m)));
+        }
+        (graph, out)
+    }));
+    super::cheapest(candidates)
 }
 
 /// The derivations of C(q, q̇) (row-major) the Ḋ and Cᵀq̇ candidates start from: the O(n²)

@@ -499,7 +499,8 @@ pub const QUANTITIES: &[Quantity] = &[
         available: Availability::Derivatives,
         public: true,
         make: |cx| {
-            let (graph, e) = derivatives::inverse_dynamics_derivatives(cx.chain);
+            let (graph, e) =
+                derivatives::inverse_dynamics_derivatives(cx.chain, coriolis_derivations(cx));
             derived(graph, e)
         },
         arm: None,
