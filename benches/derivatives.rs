@@ -17,7 +17,10 @@ dhgen::robot!(mod panda = "robots/panda.toml", derivatives);
 
 const STATES: usize = 64;
 
-fn states<const N: usize>(robot: &Robot) -> Vec<([f64; N], [f64; N], [f64; N], [f64; N])> {
+/// `(q, q̇, q̈, τ)` with τ the inverse dynamics at the others.
+type State<const N: usize> = ([f64; N], [f64; N], [f64; N], [f64; N]);
+
+fn states<const N: usize>(robot: &Robot) -> Vec<State<N>> {
     let mut rng = StdRng::seed_from_u64(21);
     (0..STATES)
         .map(|_| {
