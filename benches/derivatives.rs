@@ -4,6 +4,12 @@
 //! states.
 //!
 //! `cargo bench --bench derivatives`
+//!
+//! Pinocchio 4.1.0 on the same models and machine (`scripts/pinocchio_bench.sh`: its templates
+//! compiled with `-O3 -march=native`, medians): PUMA 560 `rnea` 1.11 µs,
+//! `computeRNEADerivatives` 4.49 µs, `computeABADerivatives` 5.34 µs; Panda 1.30, 5.26 and
+//! 6.89 µs. Generated here, the same session: PUMA 560 τ 0.15 µs, ∂τ 0.93 µs, ∂q̈ 2.20 µs;
+//! Panda 0.30, 2.89 and 5.01 µs.
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use dhgen::Robot;

@@ -1,0 +1,50 @@
+// Times Pinocchio's analytic derivatives (computeRNEADerivatives, computeABADerivatives) and
+// rnea on the models scripts/pinocchio_derivatives.py builds, saved with Model.saveToBinary.
+#include <pinocchio/multibody.hpp>
+
+#include <pinocchio/algorithm/rnea.hpp>
+#include <pinocchio/algorithm/rnea-derivatives.hpp>
+#include <pinocchio/algorithm/aba-derivatives.hpp>
+#include <pinocchio/serialization.hpp>
+#include <chrono>
+#include <vector>
+#include <algorithm>
+#include <cstdio>
+#include <random>
+
+using namespace pinocchio;
+
+template <class F> double median_ns(F f, int batch, int rounds) {
+  std::vector<double> t;
+  for (int r = 0; r < rounds; ++r) {
+    auto a = std::chrono::steady_clock::now();
+    for (int i = 0; i < batch; ++i) f(i);
+    auto b = std::chrono::steady_clock::now();
+    t.push_back(std::chrono::duration<double, std::nano>(b - a).count() / batch);
+  }
+  std::sort(t.begin(), t.end());
+  return t[t.size() / 2];
+}
+
+int main(int argc, char** argv) {
+  for (int k = 1; k < argc; ++k) {
+    Model model;
+    model.loadFromBinary(argv[k]);
+    Data data(model);
+    std::mt19937 gen(21);
+    std::uniform_real_distribution<double> d(-1.5, 1.5);
+    const int S = 64;
+    std::vector<Eigen::VectorXd> q(S), v(S), a(S), tau(S);
+    for (int s = 0; s < S; ++s) {
+      q[s] = Eigen::VectorXd(model.nq); v[s] = q[s]; a[s] = q[s];
+      for (int j = 0; j < model.nq; ++j) { q[s][j] = d(gen); v[s][j] = d(gen); a[s][j] = d(gen); }
+      tau[s] = rnea(model, data, q[s], v[s], a[s]);
+    }
+    Eigen::MatrixXd dq(model.nv, model.nv), dv(model.nv, model.nv), da(model.nv, model.nv);
+    double t_rnea = median_ns([&](int i) { rnea(model, data, q[i % S], v[i % S], a[i % S]); }, 20000, 31);
+    double t_drnea = median_ns([&](int i) { computeRNEADerivatives(model, data, q[i % S], v[i % S], a[i % S], dq, dv, da); }, 20000, 31);
+    double t_daba = median_ns([&](int i) { computeABADerivatives(model, data, q[i % S], v[i % S], tau[i % S]); }, 20000, 31);
+    std::printf("%s: rnea %.1f ns, computeRNEADerivatives %.1f ns, computeABADerivatives %.1f ns\n", argv[k], t_rnea, t_drnea, t_daba);
+  }
+  return 0;
+}
