@@ -1,6 +1,6 @@
 //! The derivatives of the dynamics, generated (`robot!(..., derivatives)`) against the runtime
 //! path's analytic O(n²) recursion, next to inverse dynamics itself for scale:
-//! `{robot}/{quantity}/{generated|runtime}`. Every call takes the next of 64 fixed random
+//! `{robot}/{quantity}/{generated|generated_f32|runtime}`. Every call takes the next of 64 fixed random
 //! states.
 //!
 //! `cargo bench --bench derivatives`
@@ -25,6 +25,8 @@ const STATES: usize = 64;
 
 /// `(q, q̇, q̈, τ)` with τ the inverse dynamics at the others.
 type State<const N: usize> = ([f64; N], [f64; N], [f64; N], [f64; N]);
+/// The same in `f32`.
+type State32<const N: usize> = ([f32; N], [f32; N], [f32; N], [f32; N]);
 
 fn states<const N: usize>(robot: &Robot) -> Vec<State<N>> {
     let mut rng = StdRng::seed_from_u64(21);
@@ -59,6 +61,30 @@ macro_rules! bench_robot {
             b.iter(|| {
                 let (q, qd, qdd, _) = next();
                 $module::inverse_dynamics_derivatives(black_box(q), black_box(qd), black_box(qdd))
+            })
+        });
+        let s32: Vec<State32<$n>> = s
+            .iter()
+            .map(|(q, qd, qdd, tau)| {
+                let f = |a: &[f64; $n]| a.map(|x| x as f32);
+                (f(q), f(qd), f(qdd), f(tau))
+            })
+            .collect();
+        let mut j = 0;
+        let mut next32 = || {
+            j = (j + 1) % STATES;
+            &s32[j]
+        };
+        g.bench_function("inverse_dynamics_derivatives/generated_f32", |b| {
+            b.iter(|| {
+                let (q, qd, qdd, _) = next32();
+                $module::inverse_dynamics_derivatives(black_box(q), black_box(qd), black_box(qdd))
+            })
+        });
+        g.bench_function("forward_dynamics_derivatives/generated_f32", |b| {
+            b.iter(|| {
+                let (q, qd, _, tau) = next32();
+                $module::forward_dynamics_derivatives(black_box(q), black_box(qd), black_box(tau))
             })
         });
         g.bench_function("inverse_dynamics_derivatives/runtime", |b| {
