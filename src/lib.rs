@@ -84,7 +84,7 @@ mod joints;
 mod real;
 pub use arm::{Arm, ArmAllocator, ArmDynamics, JointVector};
 pub use joints::{JointArray, Joints};
-pub use real::{Real, cholesky_pivot_floor};
+pub use real::{Real, cholesky_pivot_floor, inertia_cholesky};
 
 // Rotations (section 3.5): ZYZ Euler angles, roll-pitch-yaw, axis-angle; what nalgebra lacks.
 pub mod rotation;

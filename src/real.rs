@@ -83,3 +83,33 @@ impl<const N: usize> Real for num_dual::DualSVec64<N> {}
 pub fn cholesky_pivot_floor<T: Real>(n: usize, max_diagonal: T) -> T {
     nalgebra::convert::<f64, T>(8.0 * n as f64) * T::default_epsilon() * max_diagonal
 }
+
+/// The Cholesky factor of an inertia matrix under the rule of [`cholesky_pivot_floor`]:
+/// `None` when the factorisation fails or a pivot is at or below the floor (singular to
+/// working precision). The one check behind `forward_dynamics`' and `mass_matrix_inverse`'s
+/// `None` on the runtime path and in generated modules (whose unrolled forward-dynamics
+/// solve applies the same floor pivot by pivot).
+///
+/// ```
+/// use dhgen::nalgebra::Matrix2;
+/// assert!(dhgen::inertia_cholesky(Matrix2::new(2.0, 0.0, 0.0, 1.0)).is_some());
+/// assert!(dhgen::inertia_cholesky(Matrix2::new(2.0, 0.0, 0.0, 1e-18)).is_none());
+/// ```
+pub fn inertia_cholesky<T: Real, D: nalgebra::Dim>(
+    d: nalgebra::OMatrix<T, D, D>,
+) -> Option<nalgebra::Cholesky<T, D>>
+where
+    nalgebra::DefaultAllocator: nalgebra::allocator::Allocator<D, D>,
+{
+    let n = d.nrows();
+    if n == 0 {
+        return d.cholesky();
+    }
+    let max_diagonal = (1..n).fold(d[(0, 0)], |m, i| m.max(d[(i, i)]));
+    let floor = cholesky_pivot_floor(n, max_diagonal);
+    let factor = d.cholesky()?;
+    let l = factor.l_dirty();
+    (0..n)
+        .all(|i| l[(i, i)] * l[(i, i)] > floor)
+        .then_some(factor)
+}

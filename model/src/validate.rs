@@ -279,6 +279,16 @@ pub struct Range {
 }
 
 impl Range {
+    /// Magnitudes from 0 to `max`.
+    const fn up_to(what: &'static str, unit: &'static str, max: f64) -> Range {
+        Range {
+            what,
+            unit,
+            max,
+            min: 0.0,
+        }
+    }
+
     fn check<L: Clone>(self, at: At<'_>, loc: &L, x: f64) -> Result<f64, Error<L>> {
         let m = x.abs();
         if m > self.max || (m < self.min && m != 0.0) {
@@ -307,47 +317,17 @@ impl Range {
 }
 
 /// Lengths: `a`, `d`, `com`, `xyz`, prismatic limits, collision radii.
-pub const LENGTH: Range = Range {
-    what: "length",
-    unit: "m",
-    max: 1e3,
-    min: 0.0,
-};
+pub const LENGTH: Range = Range::up_to("length", "m", 1e3);
 /// Angles: `alpha`, `theta`, `rpy`, revolute limits (1000 rad is 159 turns).
-pub const ANGLE: Range = Range {
-    what: "angle",
-    unit: "rad",
-    max: 1e3,
-    min: 0.0,
-};
+pub const ANGLE: Range = Range::up_to("angle", "rad", 1e3);
 /// Link masses.
-pub const MASS: Range = Range {
-    what: "mass",
-    unit: "kg",
-    max: 1e6,
-    min: 0.0,
-};
+pub const MASS: Range = Range::up_to("mass", "kg", 1e6);
 /// Entries of an inertia tensor.
-pub const INERTIA: Range = Range {
-    what: "inertia",
-    unit: "kg·m²",
-    max: 1e9,
-    min: 0.0,
-};
+pub const INERTIA: Range = Range::up_to("inertia", "kg·m²", 1e9);
 /// Components of `gravity`.
-pub const GRAVITY: Range = Range {
-    what: "gravity component",
-    unit: "m/s²",
-    max: 1e3,
-    min: 0.0,
-};
+pub const GRAVITY: Range = Range::up_to("gravity component", "m/s²", 1e3);
 /// Rotor inertias of motors.
-pub const ROTOR_INERTIA: Range = Range {
-    what: "rotor inertia",
-    unit: "kg·m²",
-    max: 1e3,
-    min: 0.0,
-};
+pub const ROTOR_INERTIA: Range = Range::up_to("rotor inertia", "kg·m²", 1e3);
 /// Gear ratios (non-zero; a ratio below 1e-6 or above 1e6 is a typing error).
 pub const GEAR_RATIO: Range = Range {
     what: "gear ratio",
@@ -356,12 +336,7 @@ pub const GEAR_RATIO: Range = Range {
     min: 1e-6,
 };
 /// Friction coefficients (N·m·s/rad and N·m, or N·s/m and N).
-pub const FRICTION: Range = Range {
-    what: "friction coefficient",
-    unit: "",
-    max: 1e6,
-    min: 0.0,
-};
+pub const FRICTION: Range = Range::up_to("friction coefficient", "", 1e6);
 
 /// A finite number within `range`.
 fn quantity<L: Clone>(at: At<'_>, v: &Value<L>, range: Range) -> Result<f64, Error<L>> {

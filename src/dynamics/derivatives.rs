@@ -52,31 +52,17 @@ impl Robot {
         let n = self.dof();
         let states = self.body_states(q);
         // The nominal recursion, keeping what the tangents need.
-        let mut v = Vec::with_capacity(n);
-        let mut a = Vec::with_capacity(n);
-        let mut velocity = Motion::ZERO;
-        let mut acceleration = Motion {
-            ang: nalgebra::Vector3::zeros(),
-            lin: -self.gravity,
-        };
-        let mut forces = Vec::with_capacity(n);
-        for (i, state) in states.iter().enumerate() {
-            let s = &state.axis;
-            velocity = velocity + *s * qd[i];
-            acceleration = acceleration + velocity.cross(s) * qd[i] + *s * qdd[i];
-            let momentum = state.inertia.apply(&velocity);
-            forces.push(state.inertia.apply(&acceleration) + velocity.cross_force(&momentum));
-            v.push(velocity);
-            a.push(acceleration);
-        }
+        let bodies = self.rnea_forward(&states, qd, Some(qdd));
         // Transmitted forces F_k = Σ_{j ≥ k} f_j.
         let mut transmitted = vec![Force::ZERO; n];
         let mut sum = Force::ZERO;
         for k in (0..n).rev() {
-            sum += forces[k];
+            sum += bodies[k].force;
             transmitted[k] = sum;
         }
         let mut dq = DMatrix::zeros(n, n);
+        // δf_k for the current joint m: zero before m (nothing there moves).
+        let mut df = vec![Force::ZERO; n];
         for m in 0..n {
             let sm = states[m].axis;
             // δI_k y = S_m ×* (I_k y) − I_k (S_m × y), for bodies k ≥ m.
@@ -86,18 +72,19 @@ impl Robot {
             };
             let mut dv = Motion::ZERO;
             let mut da = Motion::ZERO;
-            let mut df = vec![Force::ZERO; n];
+            df[..m].fill(Force::ZERO);
             for k in m..n {
                 let state = &states[k];
                 let ds = sm.cross(&state.axis);
                 dv = dv + ds * qd[k];
-                da = da + (dv.cross(&state.axis) + v[k].cross(&ds)) * qd[k] + ds * qdd[k];
-                let momentum = state.inertia.apply(&v[k]);
-                let d_momentum = d_inertia(k, &v[k]) + state.inertia.apply(&dv);
-                df[k] = d_inertia(k, &a[k])
+                da = da
+                    + (dv.cross(&state.axis) + bodies[k].velocity.cross(&ds)) * qd[k]
+                    + ds * qdd[k];
+                let d_momentum = d_inertia(k, &bodies[k].velocity) + state.inertia.apply(&dv);
+                df[k] = d_inertia(k, &bodies[k].acceleration)
                     + state.inertia.apply(&da)
-                    + dv.cross_force(&momentum)
-                    + v[k].cross_force(&d_momentum);
+                    + dv.cross_force(&bodies[k].momentum)
+                    + bodies[k].velocity.cross_force(&d_momentum);
             }
             // δτ_k = δS_k · F_k + S_k · δF_k, with δF_k = Σ_{j ≥ k} δf_j (zero before m but
             // for what the bodies after m transmit).
@@ -127,18 +114,7 @@ impl Robot {
     #[doc(alias = "computeMinverse")]
     pub fn mass_matrix_inverse(&self, q: &(impl Joints<f64> + ?Sized)) -> Option<DMatrix<f64>> {
         let q = self.check_len("mass_matrix_inverse", "q", q);
-        let d = self.mass_matrix(q);
-        let floor = crate::cholesky_pivot_floor(self.dof(), d.diagonal().max());
-        let factor = d.cholesky()?;
-        if factor
-            .l_dirty()
-            .diagonal()
-            .iter()
-            .any(|l| (l * l).partial_cmp(&floor) != Some(core::cmp::Ordering::Greater))
-        {
-            return None;
-        }
-        let inverse = factor.inverse();
+        let inverse = crate::inertia_cholesky(self.mass_matrix(q))?.inverse();
         inverse.iter().all(|x| x.is_finite()).then_some(inverse)
     }
 

@@ -39,17 +39,7 @@ impl Robot {
         let mut rhs = DVector::from_fn(self.dof(), |i, _| {
             tau[i] - bias[i] - self.friction(i, qd[i])
         });
-        let max_diagonal = d.diagonal().max();
-        let cholesky = d.cholesky()?;
-        let floor = crate::cholesky_pivot_floor(self.dof(), max_diagonal);
-        if cholesky
-            .l_dirty()
-            .diagonal()
-            .iter()
-            .any(|l| (l * l).partial_cmp(&floor) != Some(core::cmp::Ordering::Greater))
-        {
-            return None;
-        }
+        let cholesky = crate::inertia_cholesky(d)?;
         cholesky.solve_mut(&mut rhs);
         // Only a finite acceleration is an answer (the generated code's rule too).
         rhs.iter().all(|x| x.is_finite()).then_some(rhs)

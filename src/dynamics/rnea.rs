@@ -64,7 +64,24 @@ impl Robot {
         qd: &[f64],
         qdd: Option<&[f64]>,
     ) -> DVector<f64> {
-        let n = states.len();
+        let bodies = self.rnea_forward(states, qd, qdd);
+        let mut tau = DVector::zeros(states.len());
+        let mut transmitted = Force::ZERO;
+        for i in (0..states.len()).rev() {
+            transmitted += bodies[i].force;
+            tau[i] = states[i].axis.dot(&transmitted);
+        }
+        tau
+    }
+
+    /// The forward pass of the Newton–Euler recursion: each body's velocity, acceleration
+    /// (gravity included as an upward acceleration of the base) and net force, world frame.
+    pub(crate) fn rnea_forward(
+        &self,
+        states: &[BodyState],
+        qd: &[f64],
+        qdd: Option<&[f64]>,
+    ) -> Vec<BodyMotion> {
         // Gravity enters as an upward acceleration of the base, so that every body's force
         // includes its weight.
         let mut velocity = Motion::ZERO;
@@ -72,24 +89,38 @@ impl Robot {
             ang: nalgebra::Vector3::zeros(),
             lin: -self.gravity,
         };
-        let mut forces = Vec::with_capacity(n);
-        for (i, state) in states.iter().enumerate() {
-            let s = &state.axis;
-            velocity = velocity + *s * qd[i];
-            // The axis moves with the body before it: dS/dt = v × S.
-            acceleration = acceleration + velocity.cross(s) * qd[i];
-            if let Some(qdd) = qdd {
-                acceleration = acceleration + *s * qdd[i];
-            }
-            let momentum = state.inertia.apply(&velocity);
-            forces.push(state.inertia.apply(&acceleration) + velocity.cross_force(&momentum));
-        }
-        let mut tau = DVector::zeros(n);
-        let mut transmitted = Force::ZERO;
-        for i in (0..n).rev() {
-            transmitted += forces[i];
-            tau[i] = states[i].axis.dot(&transmitted);
-        }
-        tau
+        states
+            .iter()
+            .enumerate()
+            .map(|(i, state)| {
+                let s = &state.axis;
+                velocity = velocity + *s * qd[i];
+                // The axis moves with the body before it: dS/dt = v × S.
+                acceleration = acceleration + velocity.cross(s) * qd[i];
+                if let Some(qdd) = qdd {
+                    acceleration = acceleration + *s * qdd[i];
+                }
+                let momentum = state.inertia.apply(&velocity);
+                BodyMotion {
+                    velocity,
+                    acceleration,
+                    momentum,
+                    force: state.inertia.apply(&acceleration) + velocity.cross_force(&momentum),
+                }
+            })
+            .collect()
     }
+}
+
+/// One body in the Newton–Euler forward pass, world frame.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct BodyMotion {
+    /// Spatial velocity.
+    pub velocity: Motion,
+    /// Spatial acceleration, gravity included (the base accelerates upwards).
+    pub acceleration: Motion,
+    /// Momentum `I v`.
+    pub momentum: Force,
+    /// Net force `I a + v ×* I v`.
+    pub force: Force,
 }

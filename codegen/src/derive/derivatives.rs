@@ -13,7 +13,6 @@
 //! its derivative is taken as 0 everywhere (the subgradient at 0 that is also the derivative
 //! at every other velocity), so these functions differentiate the smooth part of τ.
 
-use super::christoffel::coriolis_recursive;
 use crate::chain::RingChain;
 use crate::dual::{Dual, DualSymbols, RateSymbols};
 use crate::graph::{E, SharedGraph, Sym};
@@ -54,7 +53,7 @@ fn dual_rnea(chain: ChainRef<'_>, graph: &SharedGraph, lanes: usize) -> Vec<Dual
 ///   shares what C already computes.
 pub fn inverse_dynamics_derivatives(
     chain: ChainRef<'_>,
-    coriolis: Vec<(SharedGraph, Vec<E>)>,
+    coriolis: &[(SharedGraph, Vec<E>)],
 ) -> (SharedGraph, Vec<E>) {
     let n = chain.dof();
     let viscous = |k: usize, m: usize| {
@@ -77,8 +76,8 @@ pub fn inverse_dynamics_derivatives(
         (graph, out)
     };
     let mut candidates = vec![both_lanes];
-    candidates.extend(coriolis.into_iter().map(|(graph, c)| {
-        let tau = dual_rnea(chain, &graph, n);
+    candidates.extend(coriolis.iter().map(|(graph, c)| {
+        let tau = dual_rnea(chain, graph, n);
         let mut out = Vec::with_capacity(2 * n * n);
         for t in &tau {
             out.extend((0..n).map(|m| t.partial(m)));
@@ -86,27 +85,16 @@ pub fn inverse_dynamics_derivatives(
         for k in 0..n {
             out.extend((0..n).map(|m| E::K(2.0) * c[k * n + m].clone() + viscous(k, m)));
         }
-        (graph, out)
+        (graph.clone(), out)
     }));
     super::cheapest(candidates)
-}
-
-/// The derivations of C(q, q̇) (row-major) the Ḋ and Cᵀq̇ candidates start from: the O(n²)
-/// recursion, and `direct` (C from the Christoffel symbols, in their shared graph) when given.
-pub fn coriolis_candidates(
-    chain: ChainRef<'_>,
-    direct: Option<(SharedGraph, Vec<E>)>,
-) -> Vec<(SharedGraph, Vec<E>)> {
-    let mut v = vec![coriolis_recursive(chain)];
-    v.extend(direct);
-    v
 }
 
 /// Ḋ(q, q̇) row-major, the cheapest of the rate lane over the composite-rigid-body recursion
 /// and C + Cᵀ for each derivation of C in `coriolis`.
 pub fn mass_matrix_rate(
     chain: ChainRef<'_>,
-    coriolis: Vec<(SharedGraph, Vec<E>)>,
+    coriolis: &[(SharedGraph, Vec<E>)],
 ) -> (SharedGraph, Vec<E>) {
     let n = chain.dof();
     let rate = {
@@ -118,14 +106,14 @@ pub fn mass_matrix_rate(
         (graph, e)
     };
     let mut candidates = vec![rate];
-    candidates.extend(coriolis.into_iter().map(|(graph, c)| {
+    candidates.extend(coriolis.iter().map(|(graph, c)| {
         let e = (0..n * n)
             .map(|idx| {
                 let (k, j) = (idx / n, idx % n);
                 c[k * n + j].clone() + c[j * n + k].clone()
             })
             .collect();
-        (graph, e)
+        (graph.clone(), e)
     }));
     super::cheapest(candidates)
 }
@@ -134,13 +122,13 @@ pub fn mass_matrix_rate(
 /// `coriolis`.
 pub fn coriolis_transpose_qd(
     chain: ChainRef<'_>,
-    coriolis: Vec<(SharedGraph, Vec<E>)>,
+    coriolis: &[(SharedGraph, Vec<E>)],
 ) -> (SharedGraph, Vec<E>) {
     let n = chain.dof();
     let candidates = coriolis
-        .into_iter()
+        .iter()
         .map(|(graph, c)| {
-            let qd: Vec<E> = (0..n).map(|i| E::sym(&graph, Sym::Qd(i))).collect();
+            let qd: Vec<E> = (0..n).map(|i| E::sym(graph, Sym::Qd(i))).collect();
             let e = (0..n)
                 .map(|j| {
                     (0..n).fold(E::K(0.0), |acc, k| {
@@ -148,7 +136,7 @@ pub fn coriolis_transpose_qd(
                     })
                 })
                 .collect();
-            (graph, e)
+            (graph.clone(), e)
         })
         .collect();
     super::cheapest(candidates)

@@ -73,6 +73,7 @@ pub struct Context<'c> {
     /// Its symbolic derivations.
     pub derivation: Derivation<'c>,
     christoffel: OnceCell<(SharedGraph, Vec<E>)>,
+    coriolis: OnceCell<Vec<(SharedGraph, Vec<E>)>>,
 }
 
 impl<'c> Context<'c> {
@@ -82,6 +83,7 @@ impl<'c> Context<'c> {
             options,
             derivation: Derivation::new(chain),
             christoffel: OnceCell::new(),
+            coriolis: OnceCell::new(),
         }
     }
 
@@ -89,6 +91,20 @@ impl<'c> Context<'c> {
     pub fn christoffel(&self) -> &(SharedGraph, Vec<E>) {
         self.christoffel
             .get_or_init(|| christoffel::christoffel(&self.derivation))
+    }
+
+    /// The derivations of C(q, q̇) (row-major), each built once and shared by the quantities
+    /// that start from C: `[0]` the O(n²) recursion, `[1]` C from the Christoffel symbols, in
+    /// their shared graph.
+    pub fn coriolis_derivations(&self) -> &[(SharedGraph, Vec<E>)] {
+        self.coriolis.get_or_init(|| {
+            let (graph, c) = self.christoffel();
+            let direct = christoffel::coriolis_from(self.chain.dof(), graph, c);
+            vec![
+                christoffel::coriolis_recursive(self.chain),
+                (graph.clone(), direct),
+            ]
+        })
     }
 
     /// Coulomb friction added to `tau` (empty without Coulomb friction).

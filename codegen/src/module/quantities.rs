@@ -9,9 +9,7 @@
 
 use super::shape::Shape;
 use super::{Context, cholesky};
-use crate::derive::{
-    christoffel, derivatives, energy, gravity, inertia, kinematics, newton_euler, singularity,
-};
+use crate::derive::{derivatives, energy, gravity, inertia, kinematics, newton_euler, singularity};
 use crate::graph::{E, SharedGraph};
 use crate::poly::Poly;
 use proc_macro2::TokenStream;
@@ -129,14 +127,6 @@ fn wrist_determinant(cx: &Context<'_>, pick: fn(&(Poly, Poly)) -> &Poly) -> Made
     let graph = SharedGraph::default();
     let e = crate::derive::polys_to_exprs(std::slice::from_ref(pick(&polys)), &graph, cx.chain);
     derived(graph, e)
-}
-
-/// The derivations of C(q, q̇) that quantities built on C start from: the recursion, and C
-/// from the Christoffel symbols when those are small enough to have been built.
-fn coriolis_derivations(cx: &Context<'_>) -> Vec<(SharedGraph, Vec<E>)> {
-    let (graph, c) = cx.christoffel();
-    let direct = christoffel::coriolis_from(cx.chain.dof(), graph, c);
-    derivatives::coriolis_candidates(cx.chain, Some((graph.clone(), direct)))
 }
 
 /// The generated quantities, each after those it reads.
@@ -315,21 +305,22 @@ pub const QUANTITIES: &[Quantity] = &[
             // recursion, or contracting the n³ symbols at run time; the fewest operations win.
             let n = cx.chain.dof();
             let (graph, c) = cx.christoffel();
-            let direct = christoffel::coriolis_from(n, graph, c);
+            let [(recursive_graph, recursive), (_, direct)] = cx.coriolis_derivations() else {
+                unreachable!("two derivations of C")
+            };
             let cost = |graph: &SharedGraph, exprs: &[E]| {
                 let roots: Vec<_> = exprs.iter().map(|e| e.id_in(graph)).collect();
                 crate::graph::count(&graph.borrow(), roots).total()
             };
-            let (recursive_graph, recursive) = christoffel::coriolis_recursive(cx.chain);
             let costs = [
-                cost(graph, &direct),
-                cost(&recursive_graph, &recursive),
+                cost(graph, direct),
+                cost(recursive_graph, recursive),
                 cost(graph, c) + 2 * n * n * n,
             ];
             let best = (0..3).min_by_key(|&i| costs[i]).unwrap_or(0);
             match best {
-                0 => derived(graph.clone(), direct),
-                1 => derived(recursive_graph, recursive),
+                0 => derived(graph.clone(), direct.clone()),
+                1 => derived(recursive_graph.clone(), recursive.clone()),
                 _ => composed(
                     quote! {
                         let c = self.christoffel();
@@ -500,7 +491,7 @@ pub const QUANTITIES: &[Quantity] = &[
         public: true,
         make: |cx| {
             let (graph, e) =
-                derivatives::inverse_dynamics_derivatives(cx.chain, coriolis_derivations(cx));
+                derivatives::inverse_dynamics_derivatives(cx.chain, cx.coriolis_derivations());
             derived(graph, e)
         },
         arm: None,
@@ -516,7 +507,7 @@ pub const QUANTITIES: &[Quantity] = &[
         available: Availability::Derivatives,
         public: true,
         make: |cx| {
-            let (graph, e) = derivatives::mass_matrix_rate(cx.chain, coriolis_derivations(cx));
+            let (graph, e) = derivatives::mass_matrix_rate(cx.chain, cx.coriolis_derivations());
             derived(graph, e)
         },
         arm: None,
@@ -531,7 +522,8 @@ pub const QUANTITIES: &[Quantity] = &[
         available: Availability::Derivatives,
         public: true,
         make: |cx| {
-            let (graph, e) = derivatives::coriolis_transpose_qd(cx.chain, coriolis_derivations(cx));
+            let (graph, e) =
+                derivatives::coriolis_transpose_qd(cx.chain, cx.coriolis_derivations());
             derived(graph, e)
         },
         arm: None,
@@ -548,13 +540,7 @@ pub const QUANTITIES: &[Quantity] = &[
         make: |_| {
             composed(
                 quote! {
-                    let dm = self.mass_matrix();
-                    let floor: T = ::dhgen::cholesky_pivot_floor(DOF, dm.diagonal().max());
-                    let factor = dm.cholesky()?;
-                    if factor.l_dirty().diagonal().iter().any(|l| !(*l * *l > floor)) {
-                        return None;
-                    }
-                    let inverse = factor.inverse();
+                    let inverse = ::dhgen::inertia_cholesky(self.mass_matrix())?.inverse();
                     inverse.iter().all(|x| x.is_finite()).then_some(inverse)
                 },
                 &["mass_matrix"],
