@@ -23,7 +23,11 @@ pub fn report(robot: &Robot) -> String {
         None => model.name.clone(),
     };
     let _ = writeln!(out, "{title}");
-    out += &dh_table(model).render();
+    out += &match model.convention {
+        Convention::Urdf => joint_table(model),
+        _ => dh_table(model),
+    }
+    .render();
     if model.has_dynamics() {
         out += &dynamics_table(model).render();
     }
@@ -35,6 +39,7 @@ pub fn report(robot: &Robot) -> String {
         Convention::Modified => {
             "modified (proximal, Craig): A_j = Rx(α_{j-1}) Tx(a_{j-1}) Rz(θ_j) Tz(d_j)"
         }
+        Convention::Urdf => "urdf (joint frames): A_j = origin_j · Rot(axis_j, q_j)",
     };
     let field = |out: &mut String, name: &str, value: &str| {
         let _ = writeln!(out, "{:<16} {value}", format!("{name}:"));
@@ -90,7 +95,7 @@ pub fn report(robot: &Robot) -> String {
 fn dh_table(model: &RobotModel) -> Table {
     let (a_head, alpha_head) = match model.convention {
         Convention::Standard => ("aⱼ", "αⱼ"),
-        Convention::Modified => ("aⱼ₋₁", "αⱼ₋₁"),
+        Convention::Modified | Convention::Urdf => ("aⱼ₋₁", "αⱼ₋₁"),
     };
     let mut t = Table::new(&[
         ("j", Align::Right),
@@ -128,6 +133,41 @@ fn dh_table(model: &RobotModel) -> Table {
             d,
             trimmed(l.a, 6),
             degrees(l.alpha.radians()),
+            lo,
+            hi,
+        ]);
+    }
+    t
+}
+
+/// A `urdf` description's joints: where each sits (origin in the previous link frame) and
+/// its axis.
+fn joint_table(model: &RobotModel) -> Table {
+    let mut t = Table::new(&[
+        ("j", Align::Right),
+        ("joint", Align::Left),
+        ("origin xyz [m]", Align::Left),
+        ("origin rpy", Align::Left),
+        ("axis", Align::Left),
+        ("q⁻", Align::Right),
+        ("q⁺", Align::Right),
+    ]);
+    for (i, l) in model.links.iter().enumerate() {
+        let Some(p) = &l.placement else { continue };
+        let rpy: Vec<String> = p.origin.rpy.iter().map(|a| degrees(a.radians())).collect();
+        let (lo, hi) = match l.limits {
+            Some([lo, hi]) => (limit(l, lo), limit(l, hi)),
+            None => ("-".to_string(), "-".to_string()),
+        };
+        t.row(vec![
+            (i + 1).to_string(),
+            match l.joint {
+                JointKind::Revolute => "revolute".to_string(),
+                JointKind::Prismatic => "prismatic".to_string(),
+            },
+            vector(&p.origin.xyz),
+            format!("[{}]", rpy.join(", ")),
+            vector(&p.axis),
             lo,
             hi,
         ]);

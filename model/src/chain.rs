@@ -404,28 +404,47 @@ mod owned {
             let tool = model
                 .tool_pose()
                 .map_or_else(Frame::identity, |p| p.frame::<f64>());
-            // F_k: the row's formula at θ = d = 0; L_k: the link frame in the joint frame.
-            let fixed: Vec<Frame<f64>> = model
-                .links
-                .iter()
-                .map(|l| l.dh_transform(conv, 1.0, 0.0, 0.0))
-                .collect();
-            let (before, link): (Vec<Frame<f64>>, Vec<Frame<f64>>) = match conv {
-                Convention::Standard => (vec![Frame::identity(); n], fixed),
-                Convention::Modified => (fixed, vec![Frame::identity(); n]),
-            };
-            // C_k: the half of Rz(θ) Tz(d) the joint does not move; the offset: the other.
-            let (constant, offset): (Vec<Frame<f64>>, Vec<f64>) = model
-                .links
-                .iter()
-                .map(|l| match l.joint {
-                    JointKind::Revolute => (JointValue::Prismatic(l.d).motion(), l.theta.radians()),
-                    JointKind::Prismatic => {
-                        let (cos, sin) = l.theta.cos_sin();
-                        (JointValue::Revolute { cos, sin }.motion(), l.d)
+            // Per row: what stands before the joint (B_k), the link frame in the joint frame
+            // (L_k), the constant half of the joint factor (C_k), and the joint's offset.
+            let mut before = Vec::with_capacity(n);
+            let mut link = Vec::with_capacity(n);
+            let mut constant = Vec::with_capacity(n);
+            let mut offset = Vec::with_capacity(n);
+            for l in &model.links {
+                let (b, k, c, o) = match (conv, &l.placement) {
+                    (Convention::Urdf, Some(p)) => {
+                        // A_k = origin · Rot(axis, q) = (origin · A) · Rz(q) · Aᵀ.
+                        let a = Frame {
+                            r: p.alignment(),
+                            p: [0.0; 3],
+                        };
+                        let origin = p.origin.frame::<f64>();
+                        (origin.compose(&a), a.inverse(), Frame::identity(), 0.0)
                     }
-                })
-                .unzip();
+                    _ => {
+                        // F_k: the row's formula at θ = d = 0; C_k: the half of Rz(θ) Tz(d)
+                        // the joint does not move; the offset: the other.
+                        let fixed = l.dh_transform(conv, 1.0, 0.0, 0.0);
+                        let (c, o) = match l.joint {
+                            JointKind::Revolute => {
+                                (JointValue::Prismatic(l.d).motion(), l.theta.radians())
+                            }
+                            JointKind::Prismatic => {
+                                let (cos, sin) = l.theta.cos_sin();
+                                (JointValue::Revolute { cos, sin }.motion(), l.d)
+                            }
+                        };
+                        match conv {
+                            Convention::Standard => (Frame::identity(), fixed, c, o),
+                            _ => (fixed, Frame::identity(), c, o),
+                        }
+                    }
+                };
+                before.push(b);
+                link.push(k);
+                constant.push(c);
+                offset.push(o);
+            }
             let mut placements = Vec::with_capacity(n + 1);
             placements.push(base.compose(&before[0]).compose(&constant[0]));
             for k in 1..n {

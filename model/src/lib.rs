@@ -40,6 +40,8 @@ pub mod random;
 pub mod raw;
 mod rigid;
 #[cfg(feature = "std")]
+pub mod urdf;
+#[cfg(feature = "std")]
 pub mod validate;
 #[cfg(feature = "std")]
 mod write;
@@ -55,8 +57,8 @@ pub use chain::{Axis, Body, ChainRef, NotSpherical, SphericalWrist, Twist};
 #[cfg(feature = "std")]
 pub use model::RobotModel;
 pub use model::{
-    Collision, Convention, Frame, Friction, Inertial, JointKind, JointValue, Link, Motor, Pose,
-    Ring,
+    Collision, Convention, Frame, Friction, Inertial, JointKind, JointValue, Link, Motor,
+    Placement, Pose, Ring,
 };
 pub use rigid::Rigid;
 
@@ -90,6 +92,17 @@ mod load {
             /// Where, and the TOML parser's message.
             error: raw::SyntaxError,
         },
+        /// A URDF file that is not XML, or whose robot dhgen cannot read: where, and what is
+        /// wrong, naming the link or joint and the attribute.
+        #[error("{}:{loc}: {}", validate::OneLine(origin), validate::OneLine(message))]
+        Urdf {
+            /// The file, or `<string>`.
+            origin: String,
+            /// Line and column in the file.
+            loc: raw::Position,
+            /// What is wrong.
+            message: String,
+        },
         /// The description breaks a rule of the format, at a line and column of the text.
         #[error("{}:{}: {error}", validate::OneLine(origin), error.loc)]
         Invalid {
@@ -107,6 +120,7 @@ mod load {
             match self {
                 LoadError::Io { origin, .. }
                 | LoadError::Syntax { origin, .. }
+                | LoadError::Urdf { origin, .. }
                 | LoadError::Invalid { origin, .. } => origin,
             }
         }

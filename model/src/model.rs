@@ -15,6 +15,12 @@ pub enum Convention {
     /// Modified (proximal) DH, Craig: `A_i = Rx(α_{i-1}) Tx(a_{i-1}) Rz(θ_i) Tz(d_i)`;
     /// joint i moves about/along `z_i`. Row i holds `a_{i-1}`, `α_{i-1}`.
     Modified,
+    /// No DH table: each row places its joint as a URDF joint does, by a fixed
+    /// [`Placement`] (an origin in the previous link frame and an axis), and link frame i is
+    /// the URDF child link frame, `A_i = origin_i · Rot(axis_i, q_i)` (revolute) or
+    /// `origin_i · Trans(axis_i · q_i)` (prismatic). What [`RobotModel::from_urdf_str`]
+    /// builds, and the form any serial chain takes without approximation.
+    Urdf,
 }
 
 /// The kind of a joint.
@@ -62,6 +68,53 @@ impl Pose {
     /// True for the identity pose (no translation, no rotation).
     pub fn is_identity(&self) -> bool {
         self.xyz == [0.0; 3] && self.rpy.iter().all(|a| a.quarter_turn() == Some((1, 0)))
+    }
+}
+
+/// Where a joint of a [`Convention::Urdf`] row sits: URDF's joint `<origin>` and `<axis>`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Placement {
+    /// The joint frame at rest in the previous link frame (the base frame for the first
+    /// joint).
+    pub origin: Pose,
+    /// The joint axis in the joint frame: a unit vector, exactly a signed coordinate axis
+    /// when the description means one.
+    pub axis: [f64; 3],
+}
+
+impl Placement {
+    /// A rotation `A` with `A·z = axis`: the joint turns about (slides along) the z axis of
+    /// the frame `origin · A`, and the link frame is that frame times `Aᵀ`. Exact (entries in
+    /// {−1, 0, 1}) when the axis is a signed coordinate axis; otherwise the smallest rotation
+    /// taking z to the axis.
+    pub fn alignment(&self) -> [[f64; 3]; 3] {
+        match self.axis {
+            [0.0, 0.0, z] if z > 0.0 => [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]],
+            [0.0, 0.0, _] => [[1.0, 0.0, 0.0], [0.0, -1.0, 0.0], [0.0, 0.0, -1.0]],
+            [x, 0.0, 0.0] if x > 0.0 => [[0.0, 0.0, 1.0], [0.0, 1.0, 0.0], [-1.0, 0.0, 0.0]],
+            [_, 0.0, 0.0] => [[0.0, 0.0, -1.0], [0.0, 1.0, 0.0], [1.0, 0.0, 0.0]],
+            [0.0, y, 0.0] if y > 0.0 => [[1.0, 0.0, 0.0], [0.0, 0.0, 1.0], [0.0, -1.0, 0.0]],
+            [0.0, _, 0.0] => [[1.0, 0.0, 0.0], [0.0, 0.0, -1.0], [0.0, 1.0, 0.0]],
+            [x, y, z] if z > -0.5 => {
+                // Rodrigues about v = z × u (|v| = sin, u·z = cos): R = I + [v]× + [v]×²/(1 + cos).
+                let k = 1.0 / (1.0 + z);
+                [
+                    [1.0 - x * x * k, -x * y * k, x],
+                    [-x * y * k, 1.0 - y * y * k, y],
+                    [-x, -y, z],
+                ]
+            }
+            [x, y, z] => {
+                // Near −z: Rx(π) · R', R' the Rodrigues rotation taking z to Rx(π)·u,
+                // which is near +z.
+                let k = 1.0 / (1.0 - z);
+                [
+                    [1.0 - x * x * k, x * y * k, x],
+                    [-x * y * k, y * y * k - 1.0, y],
+                    [x, -y, z],
+                ]
+            }
+        }
     }
 }
 
@@ -145,6 +198,9 @@ pub struct Link {
     pub friction: Option<Friction>,
     /// Collision capsule around the row's DH segment; `None`: not checked for collisions.
     pub collision: Option<Collision>,
+    /// The joint's placement in a [`Convention::Urdf`] row (whose `a`, `alpha`, `d` and
+    /// `theta` are then zero); `None` in a DH row.
+    pub placement: Option<Placement>,
 }
 
 /// A validated serial robot: the one model type of dhgen.
@@ -362,9 +418,23 @@ impl Link {
     /// conventions in dhgen, used by the runtime path and by the symbolic engine alike.
     ///
     /// The joint offsets are applied here: `θ_i = q + theta` (revolute) or `d_i = q + d`
-    /// (prismatic). Exact quarter-turn constants stay exact.
+    /// (prismatic). Exact quarter-turn constants stay exact. A [`Convention::Urdf`] row is
+    /// `origin · A · Z(q) · Aᵀ` with `A` its [alignment](Placement::alignment).
     pub fn transform<R: Ring>(&self, convention: Convention, q: JointValue<R>) -> Frame<R> {
         let k = R::from_f64;
+        if let (Convention::Urdf, Some(p)) = (convention, &self.placement) {
+            let a = Frame {
+                r: p.alignment(),
+                p: [0.0; 3],
+            };
+            return p
+                .origin
+                .frame::<f64>()
+                .compose(&a)
+                .to_ring::<R>()
+                .compose(&q.motion())
+                .compose(&a.inverse().to_ring());
+        }
         let (ct0, st0) = self.theta.cos_sin();
         let (ct, st, d) = match q {
             JointValue::Revolute { cos, sin } => {
@@ -385,7 +455,9 @@ impl Link {
     }
 
     /// The DH formula itself, given the full joint angle's cosine and sine and the full
-    /// offset `d` (offsets already applied): `A_i` for the given convention.
+    /// offset `d` (offsets already applied): `A_i` for the given convention. A
+    /// [`Convention::Urdf`] row's DH fields are zero, and its formula is read as the modified
+    /// one: the joint motion `Rz(θ) Tz(d)` alone.
     pub fn dh_transform<R: Ring>(&self, convention: Convention, ct: R, st: R, d: R) -> Frame<R> {
         let k = R::from_f64;
         let (ca, sa) = self.alpha.cos_sin();
@@ -399,7 +471,7 @@ impl Link {
                 ],
                 p: [ct * k(self.a), st * k(self.a), d],
             },
-            Convention::Modified => Frame {
+            Convention::Modified | Convention::Urdf => Frame {
                 r: [
                     [ct.clone(), -st.clone(), z],
                     [st.clone() * k(ca), ct.clone() * k(ca), k(-sa)],
@@ -414,11 +486,12 @@ impl Link {
 impl Convention {
     /// The index of the frame whose z axis and origin carry joint i (0-based `i`, frames
     /// numbered 0 = base .. n): `i` for standard DH (`z_{i-1}` in 1-based terms), `i + 1`
-    /// for modified DH.
+    /// for modified DH and for URDF rows (whose link frame carries the joint's origin; its z
+    /// axis is the joint axis only when the axis is z).
     pub fn joint_frame(self, i: usize) -> usize {
         match self {
             Convention::Standard => i,
-            Convention::Modified => i + 1,
+            Convention::Modified | Convention::Urdf => i + 1,
         }
     }
 }

@@ -168,6 +168,7 @@ pub fn random_arm(dof: usize, style: ArmStyle, seed: u64) -> RobotModel {
                 motor: None,
                 friction: None,
                 collision: None,
+                placement: None,
             }
         })
         .collect();

@@ -5,7 +5,8 @@
 
 use crate::raw::{Table, Value};
 use crate::{
-    Angle, Collision, Convention, Friction, Inertial, JointKind, Link, Motor, Pose, RobotModel,
+    Angle, Collision, Convention, Friction, Inertial, JointKind, Link, Motor, Placement, Pose,
+    RobotModel,
 };
 use core::fmt;
 
@@ -74,6 +75,19 @@ const LINK_FIELDS: &[&str] = &[
     "alpha",
     "d",
     "theta",
+    "limits",
+    "mass",
+    "com",
+    "inertia",
+    "motor",
+    "friction",
+    "collision",
+];
+/// The fields of a `urdf` row: the DH fields' place is taken by `origin` and `axis`.
+const URDF_LINK_FIELDS: &[&str] = &[
+    "joint",
+    "origin",
+    "axis",
     "limits",
     "mass",
     "com",
@@ -487,8 +501,8 @@ pub fn validate<L: Clone>(
     };
     let description = f.with("description", string)?;
     let convention = f.with_required("convention", |at, v| {
-        let conventions = [Convention::Standard, Convention::Modified];
-        keyword(at, v, "convention", &["standard", "modified"]).map(|i| conventions[i])
+        let conventions = [Convention::Standard, Convention::Modified, Convention::Urdf];
+        keyword(at, v, "convention", &["standard", "modified", "urdf"]).map(|i| conventions[i])
     })?;
     let gravity = f
         .with("gravity", |at, v| vec3(at, v, GRAVITY))?
@@ -506,7 +520,7 @@ pub fn validate<L: Clone>(
             items
                 .iter()
                 .enumerate()
-                .map(|(i, item)| link(i + 1, item, allow_nonphysical))
+                .map(|(i, item)| link(i + 1, item, convention, allow_nonphysical))
                 .collect::<Result<Vec<_>, _>>()
         }
         other => Err(at.err(
@@ -543,21 +557,52 @@ pub fn validate<L: Clone>(
     })
 }
 
-fn link<L: Clone>(index: usize, v: &Value<L>, allow_nonphysical: bool) -> Result<Link, Error<L>> {
+fn link<L: Clone>(
+    index: usize,
+    v: &Value<L>,
+    convention: Convention,
+    allow_nonphysical: bool,
+) -> Result<Link, Error<L>> {
     let at = At {
         link: Some(index),
         field: "",
     };
     let t = table(at, v)?;
-    let f = Fields::new(t, Some(index), "", LINK_FIELDS)?;
+    let urdf = convention == Convention::Urdf;
+    let f = Fields::new(
+        t,
+        Some(index),
+        "",
+        if urdf { URDF_LINK_FIELDS } else { LINK_FIELDS },
+    )?;
     let joint = f.with_required("joint", |at, v| {
         let kinds = [JointKind::Revolute, JointKind::Prismatic];
         keyword(at, v, "joint type", &["revolute", "prismatic"]).map(|i| kinds[i])
     })?;
-    let a = f.with_required("a", length)?;
-    let alpha = f.with_required("alpha", angle)?;
-    let d = f.with_required("d", length)?;
-    let theta = f.with_required("theta", angle)?;
+    let (a, alpha, d, theta, placement) = if urdf {
+        let origin = f.with("origin", pose)?.unwrap_or(Pose {
+            xyz: [0.0; 3],
+            rpy: [Angle::ZERO; 3],
+        });
+        let axis = f
+            .with("axis", |at, v| unit_axis(at, v))?
+            .unwrap_or([0.0, 0.0, 1.0]);
+        (
+            0.0,
+            Angle::ZERO,
+            0.0,
+            Angle::ZERO,
+            Some(Placement { origin, axis }),
+        )
+    } else {
+        (
+            f.with_required("a", length)?,
+            f.with_required("alpha", angle)?,
+            f.with_required("d", length)?,
+            f.with_required("theta", angle)?,
+            None,
+        )
+    };
     let limits = f.with("limits", |at, v| {
         let items = array(at, v, 2)?;
         let bound = |item: &Value<L>| match joint {
@@ -644,7 +689,27 @@ fn link<L: Clone>(index: usize, v: &Value<L>, allow_nonphysical: bool) -> Result
         motor,
         friction,
         collision,
+        placement,
     })
+}
+
+/// A joint axis: three numbers, not all zero, scaled to unit length (a signed coordinate
+/// axis stays exact).
+fn unit_axis<L: Clone>(at: At<'_>, v: &Value<L>) -> Result<[f64; 3], Error<L>> {
+    let u = vec3(at, v, LENGTH)?;
+    let norm = (u[0] * u[0] + u[1] * u[1] + u[2] * u[2]).sqrt();
+    if !(norm > 1e-9) {
+        return Err(at.err(
+            v.loc(),
+            format!(
+                "the axis [{}, {}, {}] has no direction; give a non-zero vector such as [0, 0, 1]",
+                short(u[0]),
+                short(u[1]),
+                short(u[2])
+            ),
+        ));
+    }
+    Ok(u.map(|x| x / norm))
 }
 
 fn inertial<L: Clone>(
@@ -653,9 +718,7 @@ fn inertial<L: Clone>(
 ) -> Result<Option<Inertial>, Error<L>> {
     let mass = f.with("mass", |at, v| {
         let m = quantity(at, v, MASS)?;
-        if m < 0.0 {
-            return Err(at.err(v.loc(), format!("mass {m} is negative")));
-        }
+        check_mass(m).map_err(|message| at.err(v.loc(), message))?;
         Ok(m)
     })?;
     let com = f.with("com", |at, v| vec3(at, v, LENGTH))?;
@@ -724,6 +787,20 @@ pub(crate) fn obeys_triangle_inequality(tensor: &[[f64; 3]; 3]) -> bool {
     e[0] + e[1] >= e[2] - tol
 }
 
+/// The rule for a mass: in [`MASS`]'s range and not negative (zero is a massless link).
+pub fn check_mass(m: f64) -> Result<(), String> {
+    if m < 0.0 {
+        return Err(format!("mass {m} is negative"));
+    }
+    if !(m.is_finite() && m <= MASS.max) {
+        return Err(format!(
+            "mass {m} is not a finite number up to {} kg",
+            MASS.max
+        ));
+    }
+    Ok(())
+}
+
 /// Principal moments must be non-negative (positive semi-definite) and obey the triangle
 /// inequality, unless the description explicitly allows published non-physical values.
 fn check_inertia<L: Clone>(
@@ -732,28 +809,38 @@ fn check_inertia<L: Clone>(
     tensor: &[[f64; 3]; 3],
     allow_nonphysical: bool,
 ) -> Result<(), Error<L>> {
+    check_inertia_tensor(tensor, allow_nonphysical).map_err(|message| at.err(&loc, message))
+}
+
+/// The rule for an inertia tensor about the centre of mass, as a message: finite entries,
+/// positive semi-definite, and (unless `allow_nonphysical`) the triangle inequality.
+pub fn check_inertia_tensor(tensor: &[[f64; 3]; 3], allow_nonphysical: bool) -> Result<(), String> {
+    if tensor
+        .iter()
+        .flatten()
+        .any(|x| !(x.is_finite() && x.abs() <= INERTIA.max))
+    {
+        return Err(format!(
+            "inertia entries must be finite numbers up to {} kg·m²",
+            INERTIA.max
+        ));
+    }
     let (e, tol) = principal_moments(tensor);
     if e[0] < -tol {
-        return Err(at.err(
-            &loc,
-            format!(
-                "inertia tensor is not positive semi-definite (principal moments {}, {}, {})",
-                short(e[0]),
-                short(e[1]),
-                short(e[2])
-            ),
+        return Err(format!(
+            "inertia tensor is not positive semi-definite (principal moments {}, {}, {})",
+            short(e[0]),
+            short(e[1]),
+            short(e[2])
         ));
     }
     if !allow_nonphysical && !obeys_triangle_inequality(tensor) {
-        return Err(at.err(
-            &loc,
-            format!(
-                "principal moments {a}, {b}, {c} violate the triangle inequality ({a} + {b} < {c}); \
+        return Err(format!(
+            "principal moments {a}, {b}, {c} violate the triangle inequality ({a} + {b} < {c}); \
                  set `allow_nonphysical_inertia = true` at the top level to accept published values like these",
-                a = short(e[0]),
-                b = short(e[1]),
-                c = short(e[2])
-            ),
+            a = short(e[0]),
+            b = short(e[1]),
+            c = short(e[2])
         ));
     }
     Ok(())

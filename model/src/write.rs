@@ -78,6 +78,7 @@ impl RobotModel {
         let convention = match self.convention {
             Convention::Standard => "standard",
             Convention::Modified => "modified",
+            Convention::Urdf => "urdf",
         };
         let _ = writeln!(out, "convention = \"{convention}\"");
         let _ = writeln!(out, "gravity = {}", vector(&self.gravity));
@@ -102,10 +103,15 @@ impl RobotModel {
                 JointKind::Prismatic => "prismatic",
             };
             let _ = writeln!(out, "joint = \"{joint}\"");
-            let _ = writeln!(out, "a = {}", number(l.a));
-            let _ = writeln!(out, "alpha = {}", angle(l.alpha));
-            let _ = writeln!(out, "d = {}", number(l.d));
-            let _ = writeln!(out, "theta = {}", angle(l.theta));
+            if let Some(p) = &l.placement {
+                let _ = writeln!(out, "origin = {}", pose(&p.origin));
+                let _ = writeln!(out, "axis = {}", vector(&p.axis));
+            } else {
+                let _ = writeln!(out, "a = {}", number(l.a));
+                let _ = writeln!(out, "alpha = {}", angle(l.alpha));
+                let _ = writeln!(out, "d = {}", number(l.d));
+                let _ = writeln!(out, "theta = {}", angle(l.theta));
+            }
             if let Some(limits) = l.limits {
                 let _ = writeln!(out, "limits = {}", vector(&limits));
             }

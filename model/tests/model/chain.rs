@@ -181,6 +181,7 @@ fn twists_are_the_tables_common_normals() {
             let row = match robot.convention {
                 Convention::Standard => &robot.links[k],
                 Convention::Modified => &robot.links[k + 1],
+                Convention::Urdf => unreachable!("the catalogue is DH tables"),
             };
             let t = chain.twist(k);
             let alpha = row.alpha.radians().rem_euclid(std::f64::consts::TAU);

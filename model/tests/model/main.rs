@@ -12,4 +12,5 @@ mod support;
 
 mod catalogue;
 mod chain;
+mod urdf;
 mod validation;

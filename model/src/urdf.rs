@@ -1,0 +1,1082 @@
+//! Reading URDF: the serial chain of a URDF file as a [`RobotModel`] of the
+//! [`urdf` convention](crate::Convention::Urdf).
+//!
+//! What is read, in the terms of the [URDF specification](http://wiki.ros.org/urdf/XML):
+//! - the chain runs from the root link (or the link named `base`) to the `tip` link. Without a
+//!   `tip`, the chain ends at the one link that is moved by a movable joint and has no movable
+//!   joint below it; when there are several, the error lists them;
+//! - `revolute`, `continuous` and `prismatic` joints on the chain are the robot's joints, in
+//!   order, with their `<origin>` (xyz, rpy), `<axis>` (default x, as URDF says), position
+//!   `<limit lower upper>` (velocity and effort are kept in [`UrdfJoint`]) and
+//!   `<dynamics damping friction>` as viscous and Coulomb friction;
+//! - `fixed` joints are merged: into the next joint's origin, into the tool transform after
+//!   the last joint, and their links' mass properties into the body they are fixed to (as
+//!   Pinocchio does). Movable joints off the chain (a gripper's fingers, the other arm of a
+//!   two-arm robot) are held at `q = 0` and merged the same way; so are the links above
+//!   `base`, whose mass the fixed base carries;
+//! - `<inertial>` with its own `<origin>` (the tensor is rotated into the link frame);
+//!   a file with no `<inertial>` at all is a kinematics-only robot; otherwise every body the
+//!   joints move must have one (after merging);
+//! - `<visual>`, `<collision>`, `<transmission>`, `<gazebo>` and unknown elements are ignored:
+//!   collision capsules of dhgen are segments between link frames, which a URDF's boxes and
+//!   cylinders at their own origins do not describe.
+//!
+//! Errors (floating, planar and mimic joints on the chain, closed chains, unknown links, a
+//! missing `<inertial>` on a moving body, negative mass, an inertia tensor that is not
+//! positive semi-definite, a zero axis) name the file, line and column, the link or joint and
+//! the attribute. Inertia tensors need not obey the triangle inequality: published URDFs often
+//! do not, and Pinocchio accepts them.
+//!
+//! # Exact quarter turns
+//! URDF angles are decimals (`1.5707963267948966`, `1.5708`). An angle within
+//! [`UrdfOptions::snap`] (default 1e-9 rad) of a multiple of π/2 is read as exactly that
+//! multiple, and so is an axis within that angle of a coordinate axis, so that the symbolic
+//! engine sees the exact zeros the file means. Every snap is listed in [`UrdfRobot::snaps`]
+//! (and by `dhgen info`); a wider tolerance (`1e-4` reads `1.5708` as π/2) is an explicit
+//! choice of the user.
+
+use crate::raw::{Position, Table, Value};
+use crate::{LoadError, RobotModel, validate};
+use core::f64::consts::FRAC_PI_2;
+use nalgebra::{Matrix3, Vector3};
+use std::collections::HashMap;
+
+/// How to read a URDF file.
+#[derive(Clone, Debug, PartialEq)]
+pub struct UrdfOptions {
+    /// The link where the chain starts (fixed in the world); `None`: the root link.
+    pub base: Option<String>,
+    /// The link where the chain ends; `None`: the one end of the file's movable joints.
+    pub tip: Option<String>,
+    /// Angles within this many radians of a multiple of π/2 (and axes within this angle of a
+    /// coordinate axis) are read as exact; default [`UrdfOptions::DEFAULT_SNAP`].
+    pub snap: f64,
+}
+
+impl UrdfOptions {
+    /// The default snapping tolerance, 1e-9 rad: decimals written to 10 or more significant
+    /// digits snap, `1.5708` does not.
+    pub const DEFAULT_SNAP: f64 = 1e-9;
+}
+
+impl Default for UrdfOptions {
+    fn default() -> Self {
+        UrdfOptions {
+            base: None,
+            tip: None,
+            snap: Self::DEFAULT_SNAP,
+        }
+    }
+}
+
+/// One value the reader read as exact: where, what the file says, and what was used.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Snap {
+    /// Line and column of the attribute.
+    pub loc: Position,
+    /// The element and attribute, e.g. ``joint `shoulder_lift_joint` <origin rpy> roll``.
+    pub what: String,
+    /// The value in the file (for an axis: its angle to the coordinate axis is `from − to`).
+    pub from: f64,
+    /// The exact value used.
+    pub to: f64,
+}
+
+/// A movable joint of the chain as the file names it, with what the model does not hold.
+#[derive(Clone, Debug, PartialEq)]
+pub struct UrdfJoint {
+    /// The joint's name.
+    pub name: String,
+    /// The link it moves.
+    pub child: String,
+    /// `<limit velocity>`, rad/s or m/s, when given.
+    pub velocity: Option<f64>,
+    /// `<limit effort>`, N·m or N, when given.
+    pub effort: Option<f64>,
+}
+
+/// A URDF file read as a serial robot.
+#[derive(Clone, Debug, PartialEq)]
+pub struct UrdfRobot {
+    /// The validated model.
+    pub model: RobotModel,
+    /// The chain's first link (fixed in the world).
+    pub base: String,
+    /// The chain's last link: the tool frame.
+    pub tip: String,
+    /// The robot's joints, base to tip.
+    pub joints: Vec<UrdfJoint>,
+    /// Movable joints off the chain, held at zero.
+    pub locked: Vec<String>,
+    /// Values read as exact quarter turns or coordinate axes.
+    pub snaps: Vec<Snap>,
+}
+
+/// Reads URDF text; `origin` names the file in error messages.
+pub fn read(text: &str, origin: &str, options: &UrdfOptions) -> Result<UrdfRobot, LoadError> {
+    let doc = roxmltree::Document::parse(text).map_err(|e| {
+        let p = e.pos();
+        LoadError::Urdf {
+            origin: origin.to_string(),
+            loc: Position {
+                line: p.row as usize,
+                column: p.col as usize,
+            },
+            message: format!("invalid XML: {e}"),
+        }
+    })?;
+    Reader {
+        origin,
+        options,
+        doc: &doc,
+        snaps: Vec::new(),
+    }
+    .robot()
+}
+
+impl RobotModel {
+    /// Reads a URDF robot with the default options (see [`crate::urdf`]).
+    pub fn from_urdf_str(text: &str) -> Result<RobotModel, LoadError> {
+        read(text, "<string>", &UrdfOptions::default()).map(|r| r.model)
+    }
+
+    /// Reads a URDF file with the default options (see [`crate::urdf`]).
+    pub fn from_urdf_file(path: impl AsRef<std::path::Path>) -> Result<RobotModel, LoadError> {
+        read_file(path, &UrdfOptions::default()).map(|r| r.model)
+    }
+}
+
+/// Reads a URDF file.
+pub fn read_file(
+    path: impl AsRef<std::path::Path>,
+    options: &UrdfOptions,
+) -> Result<UrdfRobot, LoadError> {
+    let path = path.as_ref();
+    let origin = path.display().to_string();
+    let bytes = std::fs::read(path).map_err(|source| LoadError::Io {
+        origin: origin.clone(),
+        source,
+    })?;
+    let text = String::from_utf8(bytes).map_err(|e| LoadError::Urdf {
+        origin: origin.clone(),
+        loc: Position { line: 1, column: 1 },
+        message: format!("the file is not UTF-8 text: {e}"),
+    })?;
+    read(&text, &origin, options)
+}
+
+/// True for a file name that ends in `.urdf` (any case): what the command line and `robot!`
+/// read as URDF rather than TOML.
+pub fn is_urdf_path(path: &std::path::Path) -> bool {
+    path.extension()
+        .and_then(|e| e.to_str())
+        .is_some_and(|e| e.eq_ignore_ascii_case("urdf"))
+}
+
+/// A mass, centre of mass and inertia about it, in some frame.
+#[derive(Clone, Copy, Debug)]
+struct Mass {
+    mass: f64,
+    com: Vector3<f64>,
+    inertia: Matrix3<f64>,
+}
+
+impl Mass {
+    const ZERO: Mass = Mass {
+        mass: 0.0,
+        com: Vector3::new(0.0, 0.0, 0.0),
+        inertia: Matrix3::new(0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0),
+    };
+
+    /// The same body seen from an outer frame in which its frame sits at `(r, p)`.
+    fn moved(&self, r: &Matrix3<f64>, p: &Vector3<f64>) -> Mass {
+        Mass {
+            mass: self.mass,
+            com: r * self.com + p,
+            inertia: r * self.inertia * r.transpose(),
+        }
+    }
+
+    /// Two bodies rigidly joined: masses add, the centre of mass is their weighted mean, the
+    /// inertias move to it by the parallel-axis theorem.
+    fn add(&self, other: &Mass) -> Mass {
+        let mass = self.mass + other.mass;
+        if mass == 0.0 {
+            return Mass {
+                mass,
+                com: Vector3::zeros(),
+                inertia: self.inertia + other.inertia,
+            };
+        }
+        let com = (self.com * self.mass + other.com * other.mass) / mass;
+        let shift = |m: &Mass| {
+            let d = m.com - com;
+            (Matrix3::identity() * d.norm_squared() - d * d.transpose()) * m.mass
+        };
+        Mass {
+            mass,
+            com,
+            inertia: self.inertia + shift(self) + other.inertia + shift(other),
+        }
+    }
+}
+
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Kind {
+    Revolute,
+    Continuous,
+    Prismatic,
+    Fixed,
+    Floating,
+    Planar,
+}
+
+impl Kind {
+    fn movable(self) -> bool {
+        matches!(self, Kind::Revolute | Kind::Continuous | Kind::Prismatic)
+    }
+}
+
+/// A rigid transform as rotation and translation.
+#[derive(Clone, Copy, Debug)]
+struct Tf {
+    r: Matrix3<f64>,
+    p: Vector3<f64>,
+}
+
+impl Tf {
+    const IDENTITY: Tf = Tf {
+        r: Matrix3::new(1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0),
+        p: Vector3::new(0.0, 0.0, 0.0),
+    };
+
+    fn compose(&self, o: &Tf) -> Tf {
+        Tf {
+            r: self.r * o.r,
+            p: self.r * o.p + self.p,
+        }
+    }
+}
+
+struct Link {
+    name: String,
+    loc: Position,
+    inertial: Option<(Mass, Position)>,
+}
+
+struct Joint {
+    name: String,
+    loc: Position,
+    kind: Kind,
+    parent: usize,
+    child: usize,
+    origin: Tf,
+    /// The origin's rpy after snapping, with the xyz (for the description).
+    axis: (Vector3<f64>, Position),
+    limits: Option<([f64; 2], Position)>,
+    velocity: Option<f64>,
+    effort: Option<f64>,
+    dynamics: Option<([f64; 2], Position)>,
+    mimic: bool,
+}
+
+struct Reader<'a> {
+    origin: &'a str,
+    options: &'a UrdfOptions,
+    doc: &'a roxmltree::Document<'a>,
+    snaps: Vec<Snap>,
+}
+
+impl<'a> Reader<'a> {
+    fn pos(&self, offset: usize) -> Position {
+        let p = self.doc.text_pos_at(offset);
+        Position {
+            line: p.row as usize,
+            column: p.col as usize,
+        }
+    }
+
+    fn node_pos(&self, n: roxmltree::Node<'_, '_>) -> Position {
+        self.pos(n.range().start)
+    }
+
+    fn err(&self, loc: Position, message: impl Into<String>) -> LoadError {
+        LoadError::Urdf {
+            origin: self.origin.to_string(),
+            loc,
+            message: message.into(),
+        }
+    }
+
+    /// The attribute's value and position, if present.
+    fn attr(&self, n: roxmltree::Node<'_, '_>, name: &str) -> Option<(String, Position)> {
+        let a = n.attributes().find(|a| a.name() == name)?;
+        Some((a.value().to_string(), self.pos(a.range().start)))
+    }
+
+    fn numbers<const N: usize>(
+        &self,
+        what: &str,
+        value: &str,
+        loc: Position,
+    ) -> Result<[f64; N], LoadError> {
+        let parts: Vec<&str> = value.split_whitespace().collect();
+        let bad = || {
+            self.err(
+                loc,
+                format!(
+                    "{what}: expected {N} number{}, found {value:?}",
+                    if N == 1 { "" } else { "s" }
+                ),
+            )
+        };
+        if parts.len() != N {
+            return Err(bad());
+        }
+        let mut out = [0.0; N];
+        for (slot, part) in out.iter_mut().zip(&parts) {
+            let x: f64 = part.parse().map_err(|_| bad())?;
+            if !x.is_finite() {
+                return Err(self.err(loc, format!("{what}: {part} is not a finite number")));
+            }
+            *slot = x;
+        }
+        Ok(out)
+    }
+
+    fn number_attr(
+        &self,
+        n: roxmltree::Node<'_, '_>,
+        what: &str,
+        name: &str,
+    ) -> Result<Option<(f64, Position)>, LoadError> {
+        match self.attr(n, name) {
+            None => Ok(None),
+            Some((v, loc)) => {
+                let [x] = self.numbers::<1>(&format!("{what} attribute `{name}`"), &v, loc)?;
+                Ok(Some((x, loc)))
+            }
+        }
+    }
+
+    /// An angle, snapped to a multiple of π/2 within the tolerance.
+    fn snap_angle(&mut self, x: f64, loc: Position, what: String) -> f64 {
+        let k = (x / FRAC_PI_2).round();
+        let exact = k * FRAC_PI_2;
+        if x != exact && (x - exact).abs() <= self.options.snap && k.abs() < 1e6 {
+            self.snaps.push(Snap {
+                loc,
+                what,
+                from: x,
+                to: exact,
+            });
+            exact
+        } else {
+            x
+        }
+    }
+
+    /// `<origin xyz rpy>` of an element (identity when absent), rpy snapped.
+    fn origin(&mut self, parent: roxmltree::Node<'_, '_>, what: &str) -> Result<Tf, LoadError> {
+        let Some(o) = parent.children().find(|c| c.has_tag_name("origin")) else {
+            return Ok(Tf::IDENTITY);
+        };
+        let xyz = match self.attr(o, "xyz") {
+            Some((v, loc)) => self.numbers::<3>(&format!("{what} <origin xyz>"), &v, loc)?,
+            None => [0.0; 3],
+        };
+        let rpy = match self.attr(o, "rpy") {
+            Some((v, loc)) => {
+                let raw = self.numbers::<3>(&format!("{what} <origin rpy>"), &v, loc)?;
+                let names = ["roll", "pitch", "yaw"];
+                let mut out = [0.0; 3];
+                for i in 0..3 {
+                    out[i] =
+                        self.snap_angle(raw[i], loc, format!("{what} <origin rpy> {}", names[i]));
+                }
+                out
+            }
+            None => [0.0; 3],
+        };
+        Ok(Tf {
+            r: rpy_matrix(rpy),
+            p: Vector3::from(xyz),
+        })
+    }
+
+    fn robot(mut self) -> Result<UrdfRobot, LoadError> {
+        let root = self.doc.root_element();
+        if !root.has_tag_name("robot") {
+            return Err(self.err(
+                self.node_pos(root),
+                format!(
+                    "the root element is <{}>; a URDF file is a <robot> element",
+                    root.tag_name().name()
+                ),
+            ));
+        }
+        let name = self
+            .attr(root, "name")
+            .map_or_else(|| "robot".to_string(), |(n, _)| n.to_string());
+        let (links, index) = self.links(root)?;
+        let joints = self.joints(root, &links, &index)?;
+        let (model, base, tip, movable, locked) = self.chain(&name, &links, &joints, &index)?;
+        Ok(UrdfRobot {
+            model,
+            base,
+            tip,
+            joints: movable,
+            locked,
+            snaps: self.snaps,
+        })
+    }
+
+    fn links(
+        &mut self,
+        root: roxmltree::Node<'a, 'a>,
+    ) -> Result<(Vec<Link>, HashMap<String, usize>), LoadError> {
+        let mut links = Vec::new();
+        let mut index = HashMap::new();
+        for n in root.children().filter(|c| c.has_tag_name("link")) {
+            let loc = self.node_pos(n);
+            let Some((name, _)) = self.attr(n, "name") else {
+                return Err(self.err(loc, "a <link> without a `name` attribute"));
+            };
+            if index.insert(name.to_string(), links.len()).is_some() {
+                return Err(self.err(loc, format!("link `{name}` is defined twice")));
+            }
+            let what = format!("link `{name}`");
+            let inertial = match n.children().find(|c| c.has_tag_name("inertial")) {
+                None => None,
+                Some(i) => Some((self.inertial(i, &what)?, self.node_pos(i))),
+            };
+            links.push(Link {
+                name: name.to_string(),
+                loc,
+                inertial,
+            });
+        }
+        if links.is_empty() {
+            return Err(self.err(self.node_pos(root), "the robot has no <link>"));
+        }
+        Ok((links, index))
+    }
+
+    /// One `<inertial>`, checked (mass ≥ 0, inertia positive semi-definite) and expressed in
+    /// its link's frame.
+    fn inertial(&mut self, n: roxmltree::Node<'_, '_>, what: &str) -> Result<Mass, LoadError> {
+        let here = self.node_pos(n);
+        let at = format!("{what} <inertial>");
+        let origin = self.origin(n, &at)?;
+        let mass_node = n
+            .children()
+            .find(|c| c.has_tag_name("mass"))
+            .ok_or_else(|| self.err(here, format!("{at} has no <mass>")))?;
+        let (mass, mass_loc) = self
+            .number_attr(mass_node, &format!("{at} <mass>"), "value")?
+            .ok_or_else(|| {
+                self.err(
+                    self.node_pos(mass_node),
+                    format!("{at} <mass> has no `value`"),
+                )
+            })?;
+        if let Err(message) = validate::check_mass(mass) {
+            return Err(self.err(mass_loc, format!("{at} <mass value>: {message}")));
+        }
+        let inertia_node = n
+            .children()
+            .find(|c| c.has_tag_name("inertia"))
+            .ok_or_else(|| self.err(here, format!("{at} has no <inertia>")))?;
+        let mut e = [0.0; 6];
+        for (slot, key) in e.iter_mut().zip(["ixx", "iyy", "izz", "ixy", "iyz", "ixz"]) {
+            *slot = self
+                .number_attr(inertia_node, &format!("{at} <inertia>"), key)?
+                .map_or(0.0, |(x, _)| x);
+        }
+        let [xx, yy, zz, xy, yz, xz] = e;
+        let tensor = [[xx, xy, xz], [xy, yy, yz], [xz, yz, zz]];
+        if let Err(message) = validate::check_inertia_tensor(&tensor, true) {
+            return Err(self.err(
+                self.node_pos(inertia_node),
+                format!("{at} <inertia>: {message}"),
+            ));
+        }
+        Ok(Mass {
+            mass,
+            com: Vector3::zeros(),
+            inertia: Matrix3::from_fn(|i, j| tensor[i][j]),
+        }
+        .moved(&origin.r, &origin.p))
+    }
+
+    fn joints(
+        &mut self,
+        root: roxmltree::Node<'a, 'a>,
+        links: &[Link],
+        index: &HashMap<String, usize>,
+    ) -> Result<Vec<Joint>, LoadError> {
+        let mut joints: Vec<Joint> = Vec::new();
+        let mut parent_of: Vec<Option<usize>> = vec![None; links.len()];
+        for n in root.children().filter(|c| c.has_tag_name("joint")) {
+            let loc = self.node_pos(n);
+            let Some((name, _)) = self.attr(n, "name") else {
+                return Err(self.err(loc, "a <joint> without a `name` attribute"));
+            };
+            let what = format!("joint `{name}`");
+            if joints.iter().any(|j| j.name == name) {
+                return Err(self.err(loc, format!("{what} is defined twice")));
+            }
+            let (kind_text, kind_loc) = self
+                .attr(n, "type")
+                .ok_or_else(|| self.err(loc, format!("{what} has no `type` attribute")))?;
+            let kind = match kind_text.as_str() {
+                "revolute" => Kind::Revolute,
+                "continuous" => Kind::Continuous,
+                "prismatic" => Kind::Prismatic,
+                "fixed" => Kind::Fixed,
+                "floating" => Kind::Floating,
+                "planar" => Kind::Planar,
+                other => {
+                    return Err(self.err(
+                        kind_loc,
+                        format!(
+                            "{what} has type {other:?}; URDF joint types are revolute, \
+                             continuous, prismatic, fixed, floating and planar"
+                        ),
+                    ));
+                }
+            };
+            let end = |tag: &str| -> Result<usize, LoadError> {
+                let e = n
+                    .children()
+                    .find(|c| c.has_tag_name(tag))
+                    .ok_or_else(|| self.err(loc, format!("{what} has no <{tag}>")))?;
+                let (link, link_loc) = self.attr(e, "link").ok_or_else(|| {
+                    self.err(self.node_pos(e), format!("{what} <{tag}> has no `link`"))
+                })?;
+                index.get(link.as_str()).copied().ok_or_else(|| {
+                    self.err(
+                        link_loc,
+                        format!("{what} <{tag} link>: there is no link `{link}`"),
+                    )
+                })
+            };
+            let parent = end("parent")?;
+            let child = end("child")?;
+            if let Some(other) = parent_of[child] {
+                return Err(self.err(
+                    loc,
+                    format!(
+                        "{what} makes a closed chain: its child link `{}` is already the child \
+                         of joint `{}`; dhgen reads trees (serial chains) only",
+                        links[child].name, joints[other].name
+                    ),
+                ));
+            }
+            parent_of[child] = Some(joints.len());
+            let origin = self.origin(n, &what)?;
+            let axis = match n.children().find(|c| c.has_tag_name("axis")) {
+                None => (Vector3::new(1.0, 0.0, 0.0), loc),
+                Some(a) => {
+                    let (v, aloc) = self.attr(a, "xyz").ok_or_else(|| {
+                        self.err(self.node_pos(a), format!("{what} <axis> has no `xyz`"))
+                    })?;
+                    let u = Vector3::from(self.numbers::<3>(
+                        &format!("{what} <axis xyz>"),
+                        &v,
+                        aloc,
+                    )?);
+                    if kind.movable() && !(u.norm() > 1e-9) {
+                        return Err(self.err(
+                            aloc,
+                            format!("{what} <axis xyz>: the axis {v:?} has no direction; give a non-zero vector"),
+                        ));
+                    }
+                    (u, aloc)
+                }
+            };
+            let limit = n.children().find(|c| c.has_tag_name("limit"));
+            let mut limits = None;
+            let (mut velocity, mut effort) = (None, None);
+            if let Some(l) = limit {
+                let lower = self.number_attr(l, &format!("{what} <limit>"), "lower")?;
+                let upper = self.number_attr(l, &format!("{what} <limit>"), "upper")?;
+                velocity = self
+                    .number_attr(l, &format!("{what} <limit>"), "velocity")?
+                    .map(|x| x.0);
+                effort = self
+                    .number_attr(l, &format!("{what} <limit>"), "effort")?
+                    .map(|x| x.0);
+                let lo = lower.map_or(0.0, |x| x.0);
+                let hi = upper.map_or(0.0, |x| x.0);
+                // URDF's defaults are 0 and 0: a joint whose limits are both absent or equal
+                // has no position limits worth the name; a continuous joint has none at all.
+                if kind != Kind::Continuous && (lower.is_some() || upper.is_some()) && lo != hi {
+                    let lloc = lower.or(upper).map_or(loc, |x| x.1);
+                    limits = Some(([lo, hi], lloc));
+                }
+            }
+            let dynamics = match n.children().find(|c| c.has_tag_name("dynamics")) {
+                None => None,
+                Some(d) => {
+                    let damping = self.number_attr(d, &format!("{what} <dynamics>"), "damping")?;
+                    let friction =
+                        self.number_attr(d, &format!("{what} <dynamics>"), "friction")?;
+                    Some((
+                        [damping.map_or(0.0, |x| x.0), friction.map_or(0.0, |x| x.0)],
+                        self.node_pos(d),
+                    ))
+                }
+            };
+            let mimic = n.children().any(|c| c.has_tag_name("mimic"));
+            joints.push(Joint {
+                name: name.to_string(),
+                loc,
+                kind,
+                parent,
+                child,
+                origin,
+                axis,
+                limits,
+                velocity,
+                effort,
+                dynamics,
+                mimic,
+            });
+        }
+        Ok(joints)
+    }
+
+    #[allow(clippy::type_complexity)]
+    fn chain(
+        &mut self,
+        name: &str,
+        links: &[Link],
+        joints: &[Joint],
+        index: &HashMap<String, usize>,
+    ) -> Result<(RobotModel, String, String, Vec<UrdfJoint>, Vec<String>), LoadError> {
+        let first = self.node_pos(self.doc.root_element());
+        let mut parent_joint: Vec<Option<usize>> = vec![None; links.len()];
+        let mut children: Vec<Vec<usize>> = vec![Vec::new(); links.len()];
+        for (j, joint) in joints.iter().enumerate() {
+            parent_joint[joint.child] = Some(j);
+            children[joint.parent].push(j);
+        }
+        // The root: the one link no joint moves; a tree has exactly one, reaching every link.
+        let roots: Vec<usize> = (0..links.len())
+            .filter(|&l| parent_joint[l].is_none())
+            .collect();
+        let root = match roots.as_slice() {
+            [r] => *r,
+            [] => {
+                return Err(self.err(
+                    first,
+                    "every link is the child of a joint: the joints form a cycle (a closed \
+                     chain), which dhgen does not read",
+                ));
+            }
+            many => {
+                let names: Vec<&str> = many.iter().map(|&l| links[l].name.as_str()).collect();
+                return Err(self.err(
+                    links[many[1]].loc,
+                    format!(
+                        "the file holds {} separate trees (root links `{}`); a robot is one tree",
+                        many.len(),
+                        names.join("`, `")
+                    ),
+                ));
+            }
+        };
+        // Depth from the root; a link the root does not reach sits on a cycle.
+        let mut reached = vec![false; links.len()];
+        let mut stack = vec![root];
+        while let Some(l) = stack.pop() {
+            reached[l] = true;
+            stack.extend(children[l].iter().map(|&j| joints[j].child));
+        }
+        if let Some(l) = reached.iter().position(|r| !r) {
+            let j = parent_joint[l].map_or(0, |j| j);
+            return Err(self.err(
+                joints[j].loc,
+                format!(
+                    "joint `{}` is part of a cycle (link `{}` is not reachable from the root \
+                     `{}`): closed chains are not read",
+                    joints[j].name, links[l].name, links[root].name
+                ),
+            ));
+        }
+        let link_named = |reader: &Self, n: &str, what: &str| {
+            index.get(n).copied().ok_or_else(|| {
+                let mut names: Vec<&str> = links.iter().map(|l| l.name.as_str()).collect();
+                names.sort_unstable();
+                reader.err(
+                    first,
+                    format!(
+                        "{what} `{n}` is not a link of the file; its links are `{}`",
+                        names.join("`, `")
+                    ),
+                )
+            })
+        };
+        let base = match &self.options.base {
+            Some(b) => link_named(self, b, "the base")?,
+            None => root,
+        };
+        // A link's movable-joint ancestry decides the default tip.
+        let below_movable = |l: usize| -> bool {
+            let mut stack: Vec<usize> = children[l].clone();
+            while let Some(j) = stack.pop() {
+                if joints[j].kind.movable() {
+                    return true;
+                }
+                stack.extend(children[joints[j].child].iter().copied());
+            }
+            false
+        };
+        let tip = match &self.options.tip {
+            Some(t) => link_named(self, t, "the tip")?,
+            None => {
+                // Ends of the movable tree below the base: children of movable joints with no
+                // movable joint below them.
+                let mut ends = Vec::new();
+                let mut stack = vec![base];
+                while let Some(l) = stack.pop() {
+                    for &j in &children[l] {
+                        let c = joints[j].child;
+                        if joints[j].kind.movable() && !below_movable(c) {
+                            ends.push(c);
+                        }
+                        stack.push(c);
+                    }
+                }
+                ends.sort_unstable();
+                match ends.as_slice() {
+                    [t] => *t,
+                    [] => {
+                        return Err(self.err(
+                            links[base].loc,
+                            format!(
+                                "no movable joint below link `{}`: a robot needs at least one \
+                                 revolute, continuous or prismatic joint",
+                                links[base].name
+                            ),
+                        ));
+                    }
+                    many => {
+                        let names: Vec<&str> =
+                            many.iter().map(|&l| links[l].name.as_str()).collect();
+                        return Err(self.err(
+                            first,
+                            format!(
+                                "the file is a tree with {} ends ({}); name the end of the \
+                                 chain with `tip`, e.g. tip = \"{}\"",
+                                many.len(),
+                                names
+                                    .iter()
+                                    .map(|n| format!("`{n}`"))
+                                    .collect::<Vec<_>>()
+                                    .join(", "),
+                                names[0]
+                            ),
+                        ));
+                    }
+                }
+            }
+        };
+        // The path base → tip, as joints.
+        let mut path = Vec::new();
+        let mut l = tip;
+        while l != base {
+            let Some(j) = parent_joint[l] else {
+                return Err(self.err(
+                    first,
+                    format!(
+                        "the tip `{}` is not below the base `{}`",
+                        links[tip].name, links[base].name
+                    ),
+                ));
+            };
+            path.push(j);
+            l = joints[j].parent;
+        }
+        path.reverse();
+        let on_path: Vec<bool> = (0..joints.len()).map(|j| path.contains(&j)).collect();
+        for &j in &path {
+            let joint = &joints[j];
+            let why = match joint.kind {
+                Kind::Floating => Some("a floating joint (a free body)"),
+                Kind::Planar => Some("a planar joint (three degrees of freedom)"),
+                _ if joint.mimic => Some("a mimic joint (its value follows another joint's)"),
+                _ => None,
+            };
+            if let Some(why) = why {
+                return Err(self.err(
+                    joint.loc,
+                    format!(
+                        "joint `{}` on the chain from `{}` to `{}` is {why}; dhgen reads \
+                         revolute, continuous, prismatic and fixed joints",
+                        joint.name, links[base].name, links[tip].name
+                    ),
+                ));
+            }
+        }
+        let moving: Vec<usize> = path
+            .iter()
+            .copied()
+            .filter(|&j| joints[j].kind.movable())
+            .collect();
+        if moving.is_empty() {
+            return Err(self.err(
+                links[tip].loc,
+                format!(
+                    "no movable joint between `{}` and `{}`",
+                    links[base].name, links[tip].name
+                ),
+            ));
+        }
+        // Mass properties: each moving joint's child link with everything rigidly attached
+        // to it (fixed joints, movable joints off the chain at q = 0), in its frame.
+        let has_dynamics = links.iter().any(|l| l.inertial.is_some());
+        let mut locked = Vec::new();
+        let body = |start: usize, locked: &mut Vec<String>| -> (Mass, bool) {
+            let mut total = Mass::ZERO;
+            let mut any = false;
+            let mut stack = vec![(start, Tf::IDENTITY)];
+            while let Some((l, tf)) = stack.pop() {
+                if let Some((m, _)) = &links[l].inertial {
+                    total = total.add(&m.moved(&tf.r, &tf.p));
+                    any = true;
+                }
+                for &j in &children[l] {
+                    if on_path[j] && joints[j].kind.movable() {
+                        continue;
+                    }
+                    if joints[j].kind.movable() || !matches!(joints[j].kind, Kind::Fixed) {
+                        locked.push(joints[j].name.clone());
+                    }
+                    stack.push((joints[j].child, tf.compose(&joints[j].origin)));
+                }
+            }
+            (total, any)
+        };
+        // The links above the first moving joint are the fixed base; their off-chain
+        // movable joints are locked too (listed), their mass is not the robot's.
+        let _ = body(base, &mut locked);
+        let mut bodies = Vec::new();
+        for &j in &moving {
+            let (m, any) = body(joints[j].child, &mut locked);
+            if has_dynamics && !any {
+                let child = &links[joints[j].child];
+                return Err(self.err(
+                    child.loc,
+                    format!(
+                        "link `{}` (moved by joint `{}`) has no <inertial>, nor has any link \
+                         fixed to it, while other links have one: give it its mass properties",
+                        child.name, joints[j].name
+                    ),
+                ));
+            }
+            bodies.push(m);
+        }
+        locked.sort();
+        locked.dedup();
+        // The description tree: placements accumulate fixed joints up to each moving joint.
+        let mut rows = Vec::new();
+        let mut pending = Tf::IDENTITY;
+        let mut k = 0;
+        let mut out_joints = Vec::new();
+        for &j in &path {
+            let joint = &joints[j];
+            pending = pending.compose(&joint.origin);
+            if !joint.kind.movable() {
+                continue;
+            }
+            let axis = self.snap_axis(joint.axis.0, joint.axis.1, &joint.name);
+            rows.push(self.row(
+                joint,
+                &pending,
+                axis,
+                has_dynamics.then_some(&bodies[k]),
+                links,
+            ));
+            out_joints.push(UrdfJoint {
+                name: joint.name.clone(),
+                child: links[joint.child].name.clone(),
+                velocity: joint.velocity,
+                effort: joint.effort,
+            });
+            pending = Tf::IDENTITY;
+            k += 1;
+        }
+        let loc = first;
+        let mut top = vec![
+            ("name".to_string(), loc, Value::Str(name.to_string(), loc)),
+            (
+                "convention".to_string(),
+                loc,
+                Value::Str("urdf".into(), loc),
+            ),
+            (
+                "allow_nonphysical_inertia".to_string(),
+                loc,
+                Value::Bool(true, loc),
+            ),
+        ];
+        if !is_identity(&pending) {
+            top.push(("tool".to_string(), loc, pose_value(&pending, loc)));
+        }
+        top.push(("links".to_string(), loc, Value::Array(rows, loc)));
+        let table = Table { entries: top, loc };
+        let model = validate::validate(&table, None).map_err(|e| {
+            let joint = e
+                .link
+                .and_then(|k| out_joints.get(k - 1))
+                .map_or_else(String::new, |j| format!("joint `{}`: ", j.name));
+            let field = e
+                .field
+                .as_ref()
+                .map_or_else(String::new, |f| format!("{f}: "));
+            self.err(e.loc, format!("{joint}{field}{}", e.message))
+        })?;
+        Ok((
+            model,
+            links[base].name.clone(),
+            links[tip].name.clone(),
+            out_joints,
+            locked,
+        ))
+    }
+
+    /// The axis, unit, snapped to a coordinate axis within the tolerance.
+    fn snap_axis(&mut self, u: Vector3<f64>, loc: Position, joint: &str) -> [f64; 3] {
+        let u = u / u.norm();
+        let i = u.iamax();
+        let mut e = Vector3::zeros();
+        e[i] = u[i].signum();
+        let angle = u.cross(&e).norm().atan2(u.dot(&e));
+        if u != e && angle <= self.options.snap {
+            self.snaps.push(Snap {
+                loc,
+                what: format!("joint `{joint}` <axis xyz>"),
+                from: angle,
+                to: 0.0,
+            });
+            e.into()
+        } else {
+            u.into()
+        }
+    }
+
+    fn row(
+        &self,
+        joint: &Joint,
+        origin: &Tf,
+        axis: [f64; 3],
+        mass: Option<&Mass>,
+        links: &[Link],
+    ) -> Value<Position> {
+        let loc = joint.loc;
+        let num = |x: f64, l: Position| Value::Number(x, l);
+        let vec = |v: &[f64], l: Position| Value::Array(v.iter().map(|x| num(*x, l)).collect(), l);
+        let kind = match joint.kind {
+            Kind::Prismatic => "prismatic",
+            _ => "revolute",
+        };
+        let mut e = vec![
+            ("joint".to_string(), loc, Value::Str(kind.into(), loc)),
+            ("origin".to_string(), loc, pose_value(origin, loc)),
+            ("axis".to_string(), joint.axis.1, vec(&axis, joint.axis.1)),
+        ];
+        if let Some((l, lloc)) = joint.limits {
+            e.push(("limits".to_string(), lloc, vec(&l, lloc)));
+        }
+        if let Some(m) = mass {
+            let mloc = links[joint.child]
+                .inertial
+                .map_or(links[joint.child].loc, |i| i.1);
+            e.push(("mass".to_string(), mloc, num(m.mass, mloc)));
+            e.push(("com".to_string(), mloc, vec(m.com.as_slice(), mloc)));
+            let t = &m.inertia;
+            let entries = [
+                ("xx", t[(0, 0)]),
+                ("yy", t[(1, 1)]),
+                ("zz", t[(2, 2)]),
+                ("xy", t[(0, 1)]),
+                ("yz", t[(1, 2)]),
+                ("xz", t[(0, 2)]),
+            ];
+            e.push((
+                "inertia".to_string(),
+                mloc,
+                Value::Table(Table {
+                    entries: entries
+                        .iter()
+                        .map(|(k, x)| (k.to_string(), mloc, num(*x, mloc)))
+                        .collect(),
+                    loc: mloc,
+                }),
+            ));
+        }
+        if let Some(([damping, friction], dloc)) = joint.dynamics
+            && (damping != 0.0 || friction != 0.0)
+        {
+            e.push((
+                "friction".to_string(),
+                dloc,
+                Value::Table(Table {
+                    entries: vec![
+                        ("viscous".into(), dloc, num(damping, dloc)),
+                        ("coulomb".into(), dloc, num(friction, dloc)),
+                    ],
+                    loc: dloc,
+                }),
+            ));
+        }
+        Value::Table(Table { entries: e, loc })
+    }
+}
+
+fn is_identity(t: &Tf) -> bool {
+    t.r == Matrix3::identity() && t.p == Vector3::zeros()
+}
+
+/// `Rz(yaw) Ry(pitch) Rx(roll)`, exact for quarter turns.
+fn rpy_matrix(rpy: [f64; 3]) -> Matrix3<f64> {
+    let r = crate::Pose {
+        xyz: [0.0; 3],
+        rpy: rpy.map(crate::Angle::from_radians),
+    }
+    .rotation();
+    Matrix3::from_fn(|i, j| r[i][j])
+}
+
+/// A transform as the description's `{ xyz, rpy }` table.
+fn pose_value(t: &Tf, loc: Position) -> Value<Position> {
+    let rpy = rpy_of(&t.r);
+    let v = |x: &[f64]| Value::Array(x.iter().map(|x| Value::Number(*x, loc)).collect(), loc);
+    Value::Table(Table {
+        entries: vec![
+            ("xyz".into(), loc, v(t.p.as_slice())),
+            ("rpy".into(), loc, v(&rpy)),
+        ],
+        loc,
+    })
+}
+
+/// Roll, pitch, yaw of a rotation `Rz(yaw) Ry(pitch) Rx(roll)`; exact multiples of π/2 for
+/// rotations whose entries are in {−1, 0, 1}.
+pub(crate) fn rpy_of(r: &Matrix3<f64>) -> [f64; 3] {
+    let cp = r[(0, 0)].hypot(r[(1, 0)]);
+    let pitch = (-r[(2, 0)]).atan2(cp);
+    if cp > 1e-12 {
+        [
+            r[(2, 1)].atan2(r[(2, 2)]),
+            pitch,
+            r[(1, 0)].atan2(r[(0, 0)]),
+        ]
+    } else {
+        // Pitch ±π/2: only roll − yaw (or roll + yaw) is defined; take yaw = 0.
+        let sp = -r[(2, 0)];
+        [(sp * r[(0, 1)]).atan2(r[(1, 1)]), pitch, 0.0]
+    }
+}

@@ -1,0 +1,398 @@
+//! URDF input: the chain a file describes, checked against URDF's own formula evaluated
+//! independently here (nalgebra's axis-angle rotations), mass merging by hand, the snapping
+//! rule, and one test per kind of bad file.
+
+use dhgen_model::urdf::{UrdfOptions, read};
+use dhgen_model::{Convention, JointKind, LoadError, RobotModel};
+use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
+
+/// `<origin>` as an isometry: URDF's `Rz(yaw) Ry(pitch) Rx(roll)` and the translation.
+fn origin(xyz: [f64; 3], rpy: [f64; 3]) -> Isometry3<f64> {
+    Isometry3::from_parts(
+        Translation3::new(xyz[0], xyz[1], xyz[2]),
+        UnitQuaternion::from_euler_angles(rpy[0], rpy[1], rpy[2]),
+    )
+}
+
+/// An arm exercising what a URDF can say: a world link, fixed joints before, between and
+/// after the movable ones, axes along y, −x and an oblique direction, a continuous and a
+/// prismatic joint, inertial frames with their own rpy, and an extra fixed child with mass.
+const ARM: &str = r#"<?xml version="1.0"?>
+<robot name="test_arm">
+  <link name="world"/>
+  <joint name="mount" type="fixed">
+    <parent link="world"/><child link="base"/>
+    <origin xyz="0.1 0 0.05" rpy="0 0 0.3"/>
+  </joint>
+  <link name="base">
+    <inertial><mass value="5"/><inertia ixx="1" iyy="1" izz="1" ixy="0" iyz="0" ixz="0"/></inertial>
+  </link>
+  <joint name="j1" type="revolute">
+    <parent link="base"/><child link="l1"/>
+    <origin xyz="0 0 0.3" rpy="0 0 0"/>
+    <axis xyz="0 1 0"/>
+    <limit lower="-2" upper="2" effort="50" velocity="3"/>
+    <dynamics damping="0.5" friction="0.2"/>
+  </joint>
+  <link name="l1">
+    <inertial>
+      <origin xyz="0.01 0.02 0.15" rpy="0.1 0.2 0.3"/>
+      <mass value="2.5"/>
+      <inertia ixx="0.05" iyy="0.04" izz="0.02" ixy="0.001" iyz="-0.002" ixz="0.003"/>
+    </inertial>
+  </link>
+  <joint name="elbow_mount" type="fixed">
+    <parent link="l1"/><child link="l1b"/>
+    <origin xyz="0 0.05 0.3" rpy="1.5707963267948966 0 0"/>
+  </joint>
+  <link name="l1b">
+    <inertial><origin xyz="0 0 0.02"/><mass value="0.5"/><inertia ixx="0.001" iyy="0.001" izz="0.001" ixy="0" iyz="0" ixz="0"/></inertial>
+  </link>
+  <joint name="j2" type="continuous">
+    <parent link="l1b"/><child link="l2"/>
+    <origin xyz="0.02 0 0.1" rpy="0 -1.5707963267948966 0"/>
+    <axis xyz="-1 0 0"/>
+  </joint>
+  <link name="l2">
+    <inertial><origin xyz="0 0 0.1"/><mass value="1.5"/><inertia ixx="0.02" iyy="0.02" izz="0.004" ixy="0" iyz="0" ixz="0"/></inertial>
+  </link>
+  <joint name="j3" type="prismatic">
+    <parent link="l2"/><child link="l3"/>
+    <origin xyz="0 0 0.2" rpy="0.4 0 0"/>
+    <axis xyz="0 0.6 0.8"/>
+    <limit lower="0" upper="0.3" effort="100" velocity="0.5"/>
+  </joint>
+  <link name="l3">
+    <inertial><mass value="0.8"/><inertia ixx="0.003" iyy="0.003" izz="0.001" ixy="0" iyz="0" ixz="0"/></inertial>
+  </link>
+  <joint name="flange" type="fixed">
+    <parent link="l3"/><child link="tool"/>
+    <origin xyz="0 0 0.12" rpy="3.141592653589793 0 0"/>
+  </joint>
+  <link name="tool"/>
+</robot>
+"#;
+
+/// The tool pose by URDF's definition: `Π origin_i · motion_i(q_i)`.
+fn urdf_tool(q: &[f64; 3]) -> Isometry3<f64> {
+    let rot = |axis: [f64; 3], a: f64| {
+        Isometry3::from_parts(
+            Translation3::identity(),
+            UnitQuaternion::from_axis_angle(&nalgebra::Unit::new_normalize(Vector3::from(axis)), a),
+        )
+    };
+    let slide = |axis: [f64; 3], d: f64| {
+        let u = Vector3::from(axis).normalize() * d;
+        Isometry3::translation(u.x, u.y, u.z)
+    };
+    let fr = core::f64::consts::FRAC_PI_2;
+    origin([0.1, 0.0, 0.05], [0.0, 0.0, 0.3])
+        * origin([0.0, 0.0, 0.3], [0.0; 3])
+        * rot([0.0, 1.0, 0.0], q[0])
+        * origin([0.0, 0.05, 0.3], [fr, 0.0, 0.0])
+        * origin([0.02, 0.0, 0.1], [0.0, -fr, 0.0])
+        * rot([-1.0, 0.0, 0.0], q[1])
+        * origin([0.0, 0.0, 0.2], [0.4, 0.0, 0.0])
+        * slide([0.0, 0.6, 0.8], q[2])
+        * origin([0.0, 0.0, 0.12], [core::f64::consts::PI, 0.0, 0.0])
+}
+
+#[test]
+fn urdf_chain_is_urdf_formula() {
+    let robot = read(ARM, "arm.urdf", &UrdfOptions::default()).unwrap();
+    assert_eq!(robot.base, "world");
+    assert_eq!(robot.tip, "l3", "the end of the movable joints");
+    let names: Vec<&str> = robot.joints.iter().map(|j| j.name.as_str()).collect();
+    assert_eq!(names, ["j1", "j2", "j3"]);
+    assert_eq!(robot.joints[0].velocity, Some(3.0));
+    assert_eq!(robot.joints[2].effort, Some(100.0));
+    let m = &robot.model;
+    assert_eq!(m.convention, Convention::Urdf);
+    assert_eq!(
+        m.links.iter().map(|l| l.joint).collect::<Vec<_>>(),
+        [
+            JointKind::Revolute,
+            JointKind::Revolute,
+            JointKind::Prismatic
+        ]
+    );
+    assert_eq!(m.links[0].limits, Some([-2.0, 2.0]));
+    assert_eq!(m.links[1].limits, None, "continuous");
+    let f = m.links[0].friction.unwrap();
+    assert_eq!((f.viscous, f.coulomb), (0.5, 0.2));
+    // Without `tip`, the tool is l3; with it, the fixed `tool` link.
+    let with_tool = read(
+        ARM,
+        "arm.urdf",
+        &UrdfOptions {
+            tip: Some("tool".into()),
+            ..Default::default()
+        },
+    )
+    .unwrap();
+    let chain = with_tool.model.chain();
+    for q in [[0.0, 0.0, 0.0], [0.3, -1.2, 0.1], [-1.9, 2.5, 0.29]] {
+        let got = chain.view().tool_at(&q);
+        let want = urdf_tool(&q).to_homogeneous();
+        for i in 0..3 {
+            assert!(
+                (got.p[i] - want[(i, 3)]).abs() < 1e-14,
+                "{q:?} {got:?} {want}"
+            );
+            for j in 0..3 {
+                assert!((got.r[i][j] - want[(i, j)]).abs() < 1e-14, "{q:?}");
+            }
+        }
+    }
+    // The description round-trips through its TOML form.
+    let text = with_tool.model.to_toml();
+    let back = RobotModel::from_toml_str(&text).unwrap();
+    assert_eq!(back, with_tool.model, "{text}");
+}
+
+#[test]
+fn urdf_fixed_links_merge_into_their_body() {
+    let robot = read(ARM, "arm.urdf", &UrdfOptions::default()).unwrap();
+    // Body 1 = l1 (inertial frame rotated) + l1b fixed to it, in l1's frame.
+    let l1_frame = origin([0.01, 0.02, 0.15], [0.1, 0.2, 0.3]);
+    let r1 = l1_frame.rotation.to_rotation_matrix().into_inner();
+    let i1 = nalgebra::Matrix3::new(0.05, 0.001, 0.003, 0.001, 0.04, -0.002, 0.003, -0.002, 0.02);
+    let i1 = r1 * i1 * r1.transpose();
+    let c1 = l1_frame.translation.vector;
+    let l1b = origin([0.0, 0.05, 0.3], [core::f64::consts::FRAC_PI_2, 0.0, 0.0]);
+    let c2 = l1b
+        .transform_point(&nalgebra::Point3::new(0.0, 0.0, 0.02))
+        .coords;
+    let (m1, m2) = (2.5, 0.5);
+    let c = (c1 * m1 + c2 * m2) / (m1 + m2);
+    let steiner = |d: Vector3<f64>, m: f64| {
+        (nalgebra::Matrix3::identity() * d.norm_squared() - d * d.transpose()) * m
+    };
+    let want =
+        i1 + steiner(c1 - c, m1) + nalgebra::Matrix3::identity() * 0.001 + steiner(c2 - c, m2);
+    let got = robot.model.links[0].inertial.unwrap();
+    assert!((got.mass - 3.0).abs() < 1e-15);
+    for i in 0..3 {
+        assert!((got.com[i] - c[i]).abs() < 1e-15, "{got:?} {c}");
+        for j in 0..3 {
+            assert!(
+                (got.inertia[i][j] - want[(i, j)]).abs() < 1e-15,
+                "{got:?} {want}"
+            );
+        }
+    }
+    // The base's 5 kg are the world's, not the robot's.
+    let total: f64 = robot
+        .model
+        .links
+        .iter()
+        .map(|l| l.inertial.unwrap().mass)
+        .sum();
+    assert!((total - (3.0 + 1.5 + 0.8)).abs() < 1e-15);
+}
+
+#[test]
+fn urdf_quarter_turns_snap_within_tolerance_only() {
+    let robot = read(ARM, "arm.urdf", &UrdfOptions::default()).unwrap();
+    // 1.5707963267948966 is π/2 as an f64 already: nothing to snap, and it is exact.
+    assert!(robot.snaps.is_empty(), "{:?}", robot.snaps);
+    let short = ARM.replace("1.5707963267948966", "1.5708");
+    let loose = read(&short, "arm.urdf", &UrdfOptions::default()).unwrap();
+    assert!(loose.snaps.is_empty());
+    let snapped = read(
+        &short,
+        "arm.urdf",
+        &UrdfOptions {
+            snap: 1e-4,
+            ..Default::default()
+        },
+    )
+    .unwrap();
+    assert_eq!(snapped.snaps.len(), 2, "{:?}", snapped.snaps);
+    assert_eq!(snapped.snaps[0].from, 1.5708);
+    assert_eq!(snapped.snaps[0].to, core::f64::consts::FRAC_PI_2);
+    assert!(
+        snapped.snaps[0].what.contains("elbow_mount"),
+        "{:?}",
+        snapped.snaps
+    );
+    // Snapped, the model equals the exact file's.
+    assert_eq!(snapped.model, robot.model);
+    // 10 digits snap at the default 1e-9; an axis 1e-10 off z snaps to z.
+    let ten = ARM
+        .replace("1.5707963267948966", "1.5707963268")
+        .replace("<axis xyz=\"0 1 0\"/>", "<axis xyz=\"1e-10 1 0\"/>");
+    let r = read(&ten, "arm.urdf", &UrdfOptions::default()).unwrap();
+    assert_eq!(r.snaps.len(), 3, "{:?}", r.snaps);
+    assert_eq!(r.model, robot.model);
+}
+
+fn error(text: &str, options: &UrdfOptions) -> String {
+    match read(text, "bad.urdf", options) {
+        Ok(r) => panic!("accepted: {:?}", r.model),
+        Err(e) => {
+            assert!(matches!(e, LoadError::Urdf { .. }), "{e:?}");
+            e.to_string()
+        }
+    }
+}
+
+fn bad(text: &str) -> String {
+    error(text, &UrdfOptions::default())
+}
+
+#[test]
+fn urdf_malformed_xml_is_located() {
+    let e = bad("<robot name=\"x\">\n  <link name=\"a\">\n</robot>\n");
+    assert!(e.starts_with("bad.urdf:3:"), "{e}");
+    assert!(e.contains("invalid XML"), "{e}");
+}
+
+#[test]
+fn urdf_missing_inertial_on_a_moving_link() {
+    let text = ARM.replace(
+        "<inertial><origin xyz=\"0 0 0.1\"/><mass value=\"1.5\"/><inertia ixx=\"0.02\" iyy=\"0.02\" izz=\"0.004\" ixy=\"0\" iyz=\"0\" ixz=\"0\"/></inertial>",
+        "",
+    );
+    let e = bad(&text);
+    assert!(
+        e.contains("link `l2`") && e.contains("no <inertial>"),
+        "{e}"
+    );
+    // A file with no inertial at all is a kinematics-only robot.
+    let kin: String = ARM
+        .lines()
+        .filter(|l| !l.contains("inertia") && !l.contains("mass"))
+        .collect::<Vec<_>>()
+        .join("\n")
+        .replace("<inertial>", "")
+        .replace("</inertial>", "")
+        .replace("<origin xyz=\"0.01 0.02 0.15\" rpy=\"0.1 0.2 0.3\"/>", "");
+    let r = read(&kin, "k.urdf", &UrdfOptions::default()).unwrap();
+    assert!(!r.model.has_dynamics());
+}
+
+#[test]
+fn urdf_unknown_tip_names_the_links() {
+    let e = error(
+        ARM,
+        &UrdfOptions {
+            tip: Some("hand".into()),
+            ..Default::default()
+        },
+    );
+    assert!(
+        e.contains("the tip `hand` is not a link") && e.contains("`l3`"),
+        "{e}"
+    );
+}
+
+#[test]
+fn urdf_tree_without_tip_lists_the_ends() {
+    let text = ARM.replace(
+        "  <link name=\"tool\"/>",
+        "  <link name=\"tool\"/>\n  <joint name=\"finger\" type=\"prismatic\"><parent link=\"l2\"/><child link=\"f\"/><axis xyz=\"1 0 0\"/><limit lower=\"0\" upper=\"0.04\"/></joint>\n  <link name=\"f\"><inertial><mass value=\"0.1\"/><inertia ixx=\"1e-5\" iyy=\"1e-5\" izz=\"1e-5\"/></inertial></link>",
+    );
+    let e = bad(&text);
+    assert!(
+        e.contains("2 ends") && e.contains("`f`") && e.contains("`l3`"),
+        "{e}"
+    );
+    assert!(e.contains("tip"), "{e}");
+    // Naming the tip reads the chain, the finger held at zero and its mass merged into l2.
+    let r = read(
+        &text,
+        "t.urdf",
+        &UrdfOptions {
+            tip: Some("l3".into()),
+            ..Default::default()
+        },
+    )
+    .unwrap();
+    assert_eq!(r.locked, ["finger"]);
+    assert!((r.model.links[1].inertial.unwrap().mass - 1.6).abs() < 1e-15);
+}
+
+#[test]
+fn urdf_mimic_joint_on_the_chain() {
+    let text = ARM.replace(
+        "<axis xyz=\"-1 0 0\"/>",
+        "<axis xyz=\"-1 0 0\"/><mimic joint=\"j1\" multiplier=\"2\"/>",
+    );
+    let e = bad(&text);
+    assert!(e.contains("joint `j2`") && e.contains("mimic"), "{e}");
+}
+
+#[test]
+fn urdf_floating_joint_on_the_chain() {
+    let text = ARM.replace(
+        "<joint name=\"j2\" type=\"continuous\">",
+        "<joint name=\"j2\" type=\"floating\">",
+    );
+    let e = bad(&text);
+    assert!(e.contains("joint `j2`") && e.contains("floating"), "{e}");
+}
+
+#[test]
+fn urdf_zero_axis() {
+    let text = ARM.replace("<axis xyz=\"0 1 0\"/>", "<axis xyz=\"0 0 0\"/>");
+    let e = bad(&text);
+    assert!(
+        e.contains("joint `j1` <axis xyz>") && e.contains("no direction"),
+        "{e}"
+    );
+    assert!(e.starts_with("bad.urdf:14:"), "{e}");
+}
+
+#[test]
+fn urdf_negative_mass() {
+    let text = ARM.replace("<mass value=\"1.5\"/>", "<mass value=\"-1.5\"/>");
+    let e = bad(&text);
+    assert!(e.contains("link `l2`") && e.contains("negative"), "{e}");
+}
+
+#[test]
+fn urdf_inertia_not_positive_semidefinite() {
+    let text = ARM.replace(
+        "ixx=\"0.02\" iyy=\"0.02\" izz=\"0.004\"",
+        "ixx=\"0.02\" iyy=\"-0.02\" izz=\"0.004\"",
+    );
+    let e = bad(&text);
+    assert!(
+        e.contains("link `l2`") && e.contains("positive semi-definite"),
+        "{e}"
+    );
+}
+
+#[test]
+fn urdf_cycle_is_a_closed_chain() {
+    let text = ARM.replace(
+        "  <link name=\"tool\"/>",
+        "  <link name=\"tool\"/>\n  <joint name=\"loop\" type=\"fixed\"><parent link=\"l3\"/><child link=\"l1\"/></joint>",
+    );
+    let e = bad(&text);
+    assert!(
+        e.contains("joint `loop`") && e.contains("closed chain"),
+        "{e}"
+    );
+}
+
+#[test]
+fn urdf_unknown_link_and_bad_numbers_are_located() {
+    let text = ARM.replace("<child link=\"l2\"/>", "<child link=\"l9\"/>");
+    let e = bad(&text);
+    assert!(e.contains("there is no link `l9`"), "{e}");
+    let text = ARM.replace("xyz=\"0 0 0.3\"", "xyz=\"0 zero 0.3\"");
+    let e = bad(&text);
+    assert!(
+        e.contains("joint `j1` <origin xyz>: expected 3 numbers"),
+        "{e}"
+    );
+    assert!(e.starts_with("bad.urdf:13:"), "{e}");
+    let text = ARM.replace(
+        "<origin xyz=\"0 0 0.2\" rpy=\"0.4 0 0\"/>",
+        "<origin xyz=\"0 0 2e3\" rpy=\"0.4 0 0\"/>",
+    );
+    let e = bad(&text);
+    assert!(e.contains("joint `j3`") && e.contains("length"), "{e}");
+}

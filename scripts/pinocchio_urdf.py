@@ -1,0 +1,648 @@
+#!/usr/bin/env python3
+"""Reference values for the URDF input, from Pinocchio, for tests/data/urdf_<name>.json.
+
+For each robot of ROBOTS below, reads tests/data/urdf/<file> and writes tests/data/urdf_<name>.json
+with 20 samples of (q, qd, qdd) and Pinocchio's T, J0, D, Cqd, C, g, tau and fd_qdd.
+
+The robot is the serial chain of URDF joints from the root link to the `tip` link:
+  - the revolute / continuous / prismatic joints on that path are the robot's joints q, in path
+    order (root to tip); fixed joints are merged;
+  - every other movable joint (not on the path) is locked at q = 0: its subtree is rigidly
+    attached and its inertia counted (pin.buildReducedModel at pin.neutral);
+  - gravity [0, 0, -9.81] in the root link's frame.
+
+Checks (the script fails loudly if one does not hold):
+  - the reduced model's joints are exactly the chain's joints, in order; armature is zero;
+  - T agrees with an independent numpy forward kinematics of the URDF (origin xyz/rpy, axis);
+  - J0 agrees with central finite differences of T;
+  - g agrees with finite differences of the potential energy, and 1/2 qd' D qd with the kinetic
+    energy, both from the independent forward kinematics of EVERY link (locked subtrees included)
+    and the URDF's <inertial> elements;
+  - tau = D qdd + Cqd + g; aba(q, qd, tau) = qdd; C qd = Cqd; Ddot - 2C skew-symmetric
+    (Ddot by central finite differences of crba along qd); C equals the Christoffel-symbol
+    matrix built from central finite differences of crba.
+
+    python3 scripts/pinocchio_urdf.py            # write tests/data/urdf_*.json
+    python3 scripts/pinocchio_urdf.py --summary  # print each URDF's joint structure
+    python3 scripts/pinocchio_urdf.py --copy     # (re)copy the URDFs from an installed
+                                                 # example-robot-data (pip install --no-deps
+                                                 # example-robot-data==6.0.0), byte for byte
+"""
+import hashlib
+import json
+import math
+import shutil
+import sys
+import xml.etree.ElementTree as ET
+from pathlib import Path
+
+import numpy as np
+import pinocchio as pin
+
+ROOT = Path(__file__).resolve().parent.parent
+DATA = ROOT / "tests" / "data"
+URDF_DIR = DATA / "urdf"
+SCRIPT = "scripts/pinocchio_urdf.py"
+
+PACKAGE = "example-robot-data"
+PACKAGE_VERSION = "6.0.0"
+# Path of the robots inside the installed wheel (site-packages/cmeel.prefix/...).
+PACKAGE_PREFIX = "cmeel.prefix/share/example-robot-data/robots"
+
+SAMPLES = 20
+GRAVITY = [0.0, 0.0, -9.81]
+
+ROBOTS = [
+    {
+        "name": "panda",
+        "urdf": "panda.urdf",
+        "source_path": "robots/panda_description/urdf/panda.urdf",
+        "licence": "Apache-2.0 (robots/panda_description/LICENSE; upstream "
+        "frankaemika/franka_ros franka_description)",
+        "tip": "panda_hand",
+        "seed": 1101,
+    },
+    {
+        "name": "ur5",
+        "urdf": "ur5.urdf",
+        "source_path": "robots/ur_description/urdf/ur5_joint_limited_robot.urdf",
+        "licence": "BSD (robots/ur_description/README.md; upstream "
+        "ros-industrial/universal_robot ur_description)",
+        "tip": "wrist_3_link",
+        "seed": 1102,
+    },
+    {
+        "name": "baxter",
+        "urdf": "baxter.urdf",
+        "source_path": "robots/baxter_description/urdf/baxter.urdf",
+        "licence": "BSD-3-Clause, Copyright (c) 2013-2015 Rethink Robotics "
+        "(robots/baxter_description/LICENSE; upstream RethinkRobotics/baxter_common)",
+        "tip": "left_gripper",
+        "seed": 1103,
+    },
+    {
+        "name": "kinova",
+        "urdf": "kinova.urdf",
+        "source_path": "robots/kinova_description/robots/kinova.urdf",
+        "licence": "BSD (robots/kinova_description/README.md; upstream "
+        "Kinovarobotics/kinova-ros kinova_description)",
+        "tip": "j2s6s200_end_effector",
+        "seed": 1104,
+    },
+    {
+        "name": "double_pendulum",
+        "urdf": "double_pendulum_continuous.urdf",
+        "source_path": "robots/double_pendulum_description/urdf/double_pendulum_continuous.urdf",
+        "licence": "BSD (robots/double_pendulum_description/README.md; original work "
+        "of example-robot-data's contributors)",
+        "tip": "link2",
+        "seed": 1105,
+    },
+]
+
+MOVABLE = ("revolute", "continuous", "prismatic")
+
+
+def fail(msg):
+    print("FAILED: " + msg, file=sys.stderr)
+    sys.exit(1)
+
+
+def check(cond, msg):
+    if not cond:
+        fail(msg)
+
+
+# ---------------------------------------------------------------------------------------------
+# An independent reading of the URDF (numpy only), used to choose the chain and to check Pinocchio.
+
+
+def floats(text, default):
+    if text is None:
+        return list(default)
+    return [float(x) for x in text.split()]
+
+
+def rpy_matrix(rpy):
+    r, p, y = rpy
+    cr, sr, cp, sp, cy, sy = (math.cos(r), math.sin(r), math.cos(p), math.sin(p),
+                              math.cos(y), math.sin(y))
+    rx = np.array([[1, 0, 0], [0, cr, -sr], [0, sr, cr]])
+    ry = np.array([[cp, 0, sp], [0, 1, 0], [-sp, 0, cp]])
+    rz = np.array([[cy, -sy, 0], [sy, cy, 0], [0, 0, 1]])
+    return rz @ ry @ rx
+
+
+def transform(xyz, rpy):
+    t = np.eye(4)
+    t[:3, :3] = rpy_matrix(rpy)
+    t[:3, 3] = xyz
+    return t
+
+
+def axis_angle(axis, angle):
+    k = np.array(axis) / np.linalg.norm(axis)
+    kx = np.array([[0, -k[2], k[1]], [k[2], 0, -k[0]], [-k[1], k[0], 0]])
+    return np.eye(3) + math.sin(angle) * kx + (1 - math.cos(angle)) * kx @ kx
+
+
+def origin_of(elem):
+    o = elem.find("origin")
+    if o is None:
+        return [0.0, 0.0, 0.0], [0.0, 0.0, 0.0]
+    return floats(o.get("xyz"), [0, 0, 0]), floats(o.get("rpy"), [0, 0, 0])
+
+
+class Urdf:
+    def __init__(self, path):
+        self.path = path
+        root = ET.parse(path).getroot()
+        # Only the direct children of <robot>: <transmission> also holds <joint name=...> tags.
+        self.links = {l.get("name"): l for l in root.findall("link")}
+        self.joints = {}
+        self.joint_order = []
+        self.parent_joint = {}  # child link -> joint name
+        for j in root.findall("joint"):
+            name = j.get("name")
+            lim = j.find("limit")
+            dyn = j.find("dynamics")
+            xyz, rpy = origin_of(j)
+            self.joints[name] = {
+                "name": name,
+                "type": j.get("type"),
+                "parent": j.find("parent").get("link"),
+                "child": j.find("child").get("link"),
+                "xyz": xyz,
+                "rpy": rpy,
+                "rpy_text": None if j.find("origin") is None else j.find("origin").get("rpy"),
+                "axis": floats(j.find("axis").get("xyz") if j.find("axis") is not None else None,
+                               [1, 0, 0]),
+                "axis_text": None if j.find("axis") is None else j.find("axis").get("xyz"),
+                "lower": None if lim is None or lim.get("lower") is None else float(lim.get("lower")),
+                "upper": None if lim is None or lim.get("upper") is None else float(lim.get("upper")),
+                "has_limit": lim is not None,
+                "dynamics": None if dyn is None else dict(dyn.attrib),
+                "mimic": None if j.find("mimic") is None else dict(j.find("mimic").attrib),
+            }
+            self.joint_order.append(name)
+            check(self.joints[name]["child"] not in self.parent_joint,
+                  f"{path}: link {self.joints[name]['child']} has two parent joints")
+            self.parent_joint[self.joints[name]["child"]] = name
+        roots = [l for l in self.links if l not in self.parent_joint]
+        check(len(roots) == 1, f"{path}: expected one root link, found {roots}")
+        self.root = roots[0]
+
+    def path_joints(self, tip):
+        """Joint names from the root link to `tip`, root first."""
+        check(tip in self.links, f"{self.path}: no link {tip}")
+        out = []
+        link = tip
+        while link != self.root:
+            j = self.parent_joint[link]
+            out.append(j)
+            link = self.joints[j]["parent"]
+        return out[::-1]
+
+    def joint_motion(self, j, q):
+        t = np.eye(4)
+        if j["type"] in ("revolute", "continuous"):
+            t[:3, :3] = axis_angle(j["axis"], q)
+        elif j["type"] == "prismatic":
+            t[:3, 3] = np.array(j["axis"]) / np.linalg.norm(j["axis"]) * q
+        elif j["type"] != "fixed":
+            fail(f"{self.path}: joint type {j['type']} not handled")
+        return t
+
+    def link_poses(self, qmap):
+        """World pose of every link; movable joints not in qmap are at 0."""
+        poses = {self.root: np.eye(4)}
+        pending = list(self.joint_order)
+        while pending:
+            rest = []
+            for name in pending:
+                j = self.joints[name]
+                if j["parent"] not in poses:
+                    rest.append(name)
+                    continue
+                poses[j["child"]] = (poses[j["parent"]] @ transform(j["xyz"], j["rpy"])
+                                     @ self.joint_motion(j, qmap.get(name, 0.0)))
+            check(len(rest) < len(pending), f"{self.path}: joint tree is disconnected")
+            pending = rest
+        return poses
+
+    def inertials(self):
+        """(link, mass, com in link frame, inertia tensor about the COM in link axes)."""
+        out = []
+        for name, link in self.links.items():
+            inert = link.find("inertial")
+            if inert is None:
+                continue
+            m = float(inert.find("mass").get("value"))
+            xyz, rpy = origin_of(inert)
+            a = inert.find("inertia").attrib
+            i = np.array([
+                [float(a["ixx"]), float(a["ixy"]), float(a["ixz"])],
+                [float(a["ixy"]), float(a["iyy"]), float(a["iyz"])],
+                [float(a["ixz"]), float(a["iyz"]), float(a["izz"])],
+            ])
+            r = rpy_matrix(rpy)
+            out.append((name, m, np.array(xyz), r @ i @ r.T))
+        return out
+
+
+def rot_log(r):
+    return pin.log3(r)
+
+
+# ---------------------------------------------------------------------------------------------
+# Pinocchio model of the chain.
+
+
+def reduced_model(urdf_path, u, chain):
+    full = pin.buildModelFromUrdf(str(urdf_path))
+    full.gravity.linear = np.array(GRAVITY)
+    chain_set = set(chain)
+    movable = [n for n in u.joint_order if u.joints[n]["type"] in MOVABLE]
+    full_names = [full.names[i] for i in range(1, full.njoints)]
+    check(sorted(full_names) == sorted(movable),
+          f"Pinocchio's joints {full_names} are not the URDF's movable joints {movable}")
+    locked_names = [n for n in full_names if n not in chain_set]
+    locked_ids = [full.getJointId(n) for n in locked_names]
+    model = pin.buildReducedModel(full, locked_ids, pin.neutral(full))
+    model.gravity.linear = np.array(GRAVITY)
+    names = [model.names[i] for i in range(1, model.njoints)]
+    check(names == chain, f"reduced model joints {names} != chain {chain}")
+    for i in range(1, model.njoints):
+        check(model.parents[i] == i - 1, f"reduced model is not a chain at joint {names[i - 1]}")
+    check(np.all(model.armature == 0), "armature is not zero")
+    check(np.all(model.rotorInertia == 0), "rotor inertia is not zero")
+    check(model.nv == len(chain), "nv != n")
+    return model, locked_names
+
+
+def to_pin_q(model, u, chain, q):
+    qp = np.zeros(model.nq)
+    for i, name in enumerate(chain):
+        jm = model.joints[i + 1]
+        if u.joints[name]["type"] == "continuous":
+            check(jm.nq == 2 and jm.nv == 1, f"{name}: continuous joint is not nq=2/nv=1")
+            qp[jm.idx_q] = math.cos(q[i])
+            qp[jm.idx_q + 1] = math.sin(q[i])
+        else:
+            check(jm.nq == 1 and jm.nv == 1, f"{name}: joint is not nq=nv=1")
+            qp[jm.idx_q] = q[i]
+        check(jm.idx_v == i, f"{name}: velocity index {jm.idx_v} != {i}")
+    return qp
+
+
+def sym(d):
+    return np.triu(d) + np.triu(d, 1).T
+
+
+def crba(model, data, qp):
+    return sym(pin.crba(model, data, qp).copy())
+
+
+def close(a, b, tol, what):
+    a, b = np.asarray(a, dtype=float), np.asarray(b, dtype=float)
+    err = float(np.max(np.abs(a - b))) if a.size else 0.0
+    scale = max(1.0, float(np.max(np.abs(b))) if b.size else 1.0)
+    check(err <= tol * scale, f"{what}: max error {err:.3e} > {tol:.1e} * {scale:.3g}")
+    return err / scale
+
+
+def sample_q(rng, u, chain):
+    q = []
+    for name in chain:
+        j = u.joints[name]
+        if j["type"] == "continuous":
+            q.append(rng.uniform(-math.pi, math.pi))
+        else:
+            check(j["lower"] is not None and j["upper"] is not None and j["lower"] < j["upper"],
+                  f"{name}: no usable limits")
+            q.append(rng.uniform(j["lower"], j["upper"]))
+    return np.array(q)
+
+
+def independent_energy(u, chain, q, qd, h=1e-6):
+    """Potential energy, and kinetic energy by central differences of every link's pose."""
+    grav = np.array(GRAVITY)
+    inert = u.inertials()
+
+    def poses(qq):
+        return u.link_poses(dict(zip(chain, qq)))
+
+    p0, pp, pm = poses(q), poses(q + h * qd), poses(q - h * qd)
+    pot, kin = 0.0, 0.0
+    for name, m, c, ic in inert:
+        t0 = p0[name]
+        com = t0[:3, :3] @ c + t0[:3, 3]
+        pot -= m * grav @ com
+        v = ((pp[name][:3, :3] @ c + pp[name][:3, 3]) - (pm[name][:3, :3] @ c + pm[name][:3, 3])) / (2 * h)
+        w = rot_log(pp[name][:3, :3] @ pm[name][:3, :3].T) / (2 * h)
+        iw = t0[:3, :3] @ ic @ t0[:3, :3].T
+        kin += 0.5 * m * v @ v + 0.5 * w @ iw @ w
+    return pot, kin
+
+
+def independent_gravity(u, chain, q, h=1e-6):
+    g = np.zeros(len(q))
+    for i in range(len(q)):
+        e = np.zeros(len(q))
+        e[i] = h
+        g[i] = (independent_energy(u, chain, q + e, np.zeros(len(q)))[0]
+                - independent_energy(u, chain, q - e, np.zeros(len(q)))[0]) / (2 * h)
+    return g
+
+
+def lists(a):
+    return np.asarray(a, dtype=float).tolist()
+
+
+CONVENTIONS = {
+    "fields": "name: robot name; source: where the URDF comes from (package, version, path inside "
+    "it, licence, sha256 of the file in tests/data/urdf, modified = false: the copy is byte for "
+    "byte the package's file); urdf: file name in tests/data/urdf; tip: the chain's last link; "
+    "base: the chain's first link when not the URDF root (null: the root link); root_link: the "
+    "URDF's root link; n: number of joints; joint_names / joint_types / joint_axes: the chain's "
+    "joints in order, with their URDF type and <axis> xyz; qlim: URDF [lower, upper] (null for "
+    "continuous joints); locked_joints: the movable joints off the chain, locked at 0; "
+    "friction_included: false, tau has no damping/friction; joint_dynamics: see below; sampling: "
+    "how the samples were drawn; generator: the script, the library versions and the worst "
+    "relative error of each consistency check; samples: list of {q, qd, qdd, T, J0, D, Cqd, C, g, "
+    "tau, fd_qdd}.",
+    "robot": "The serial chain of URDF joints from the root link (or `base` when not null) to the "
+    "link `tip`. The revolute, continuous and prismatic joints on that path are the robot's joints "
+    "q, in path order (root first), named in `joint_names`; fixed joints are merged into their "
+    "parent link. Every other movable joint of the file (`locked_joints`, not on the path) is "
+    "locked at q = 0: its subtree is rigidly attached to its parent link and its mass and inertia "
+    "are counted. Pinocchio: buildModelFromUrdf, then buildReducedModel(model, locked, "
+    "neutral(model)); mimic tags are ignored (every locked joint is at 0).",
+    "urdf_kinematics": "A joint's child link frame = parent link frame * Trans(origin xyz) * "
+    "Rot(origin rpy) * motion(q); Rot(rpy) = Rz(yaw) Ry(pitch) Rx(roll) (fixed axes X, Y, Z); "
+    "motion(q) is a rotation by q about the unit `axis` (joint frame coordinates) for revolute "
+    "and continuous joints, a translation q * axis for prismatic ones, identity for fixed ones. "
+    "A missing <origin> is identity, a missing <axis> is 1 0 0.",
+    "joint_variable": "q[i] is the URDF joint value: the angle in rad (revolute, continuous) or the "
+    "displacement in m (prismatic) of motion(q) above; q = 0 is the URDF's zero configuration. "
+    "(Pinocchio stores a continuous joint as (cos q, sin q); converted.)",
+    "sampling": "q uniform in each joint's URDF [lower, upper], uniform in [-pi, pi] for a "
+    "continuous joint; qd and qdd uniform in [-2, 2]; numpy default_rng(seed).",
+    "gravity": "gravitational acceleration in the root link's frame (Pinocchio model.gravity).",
+    "T": "4x4 homogeneous pose of the `tip` link frame in the root link frame = Pinocchio "
+    "data.oMf of the tip's BODY frame.",
+    "J0": "6xn geometric Jacobian of the tip link frame origin, in root-frame axes, rows "
+    "[vx,vy,vz,wx,wy,wz] = Pinocchio getFrameJacobian(tip, LOCAL_WORLD_ALIGNED). Column j of a "
+    "revolute joint: [a x (p_tip - p_j); a]; prismatic: [a; 0], a = joint axis in root axes.",
+    "dynamics_equation": "tau = D(q) qdd + C(q,qd) qd + g(q); no friction, no damping, no motor "
+    "/rotor inertia (armature) - see `friction_included` and `joint_dynamics`.",
+    "D": "n x n joint-space inertia matrix = Pinocchio crba(q), symmetrised.",
+    "Cqd": "n-vector of Coriolis+centrifugal torques = rnea(q, qd, 0) - g(q) (equals C @ qd).",
+    "C": "n x n Christoffel-form Coriolis matrix C[i][j] = sum_k Gamma[i][j][k] qd[k], Gamma[i][j][k] "
+    "= 1/2 (dD_ij/dq_k + dD_ik/dq_j - dD_jk/dq_i), computed as 1/2 d(Cqd)/d(qd) = 1/2 dtau_dv of "
+    "Pinocchio's computeRNEADerivatives(q, qd, 0). C qd = Cqd and Ddot - 2C skew-symmetric are "
+    "checked.",
+    "g": "n-vector of gravity torques = computeGeneralizedGravity(q) = rnea(q, 0, 0); the torque "
+    "needed to hold the arm static.",
+    "tau": "n-vector inverse dynamics = rnea(q, qd, qdd) with `gravity`.",
+    "qdd": "the input joint acceleration.",
+    "fd_qdd": "aba(q, qd, tau): forward dynamics of `tau`, equal to qdd (to 1e-10, checked).",
+    "joint_dynamics": "per chain joint, the damping and friction attributes of its URDF "
+    "<dynamics> tag (null when absent); NOT included in tau.",
+    "units": "SI (m, rad, kg, kg m^2, N, N m).",
+    "layout": "all matrices are row-major nested lists (list of rows).",
+}
+
+
+def generate(robot):
+    path = URDF_DIR / robot["urdf"]
+    u = Urdf(path)
+    tip = robot["tip"]
+    path_joints = u.path_joints(tip)
+    for name in path_joints:
+        check(u.joints[name]["type"] in MOVABLE + ("fixed",),
+              f"{name}: joint type {u.joints[name]['type']} on the chain")
+    chain = [n for n in path_joints if u.joints[n]["type"] in MOVABLE]
+    n = len(chain)
+    model, locked = reduced_model(path, u, chain)
+    data = model.createData()
+    fid = model.getFrameId(tip, pin.FrameType.BODY)
+    check(fid < len(model.frames) and model.frames[fid].name == tip, f"no BODY frame {tip}")
+    check(model.frames[fid].parentJoint == n, "the tip frame is not on the chain's last joint")
+
+    rng = np.random.default_rng(robot["seed"])
+    samples = []
+    worst = {}
+
+    def note(k, v):
+        worst[k] = max(worst.get(k, 0.0), v)
+
+    for _ in range(SAMPLES):
+        q = sample_q(rng, u, chain)
+        qd = rng.uniform(-2, 2, n)
+        qdd = rng.uniform(-2, 2, n)
+        qp = to_pin_q(model, u, chain, q)
+        zero = np.zeros(n)
+
+        pin.forwardKinematics(model, data, qp)
+        pin.updateFramePlacements(model, data)
+        pin.computeJointJacobians(model, data, qp)
+        t = data.oMf[fid].homogeneous.copy()
+        j0 = pin.getFrameJacobian(model, data, fid, pin.ReferenceFrame.LOCAL_WORLD_ALIGNED).copy()
+
+        d = crba(model, data, qp)
+        g = pin.computeGeneralizedGravity(model, data, qp).copy()
+        tau = pin.rnea(model, data, qp, qd, qdd).copy()
+        cqd = pin.rnea(model, data, qp, qd, zero).copy() - g
+        _, dtau_dv, _ = pin.computeRNEADerivatives(model, data, qp, qd, zero)
+        c = 0.5 * np.array(dtau_dv)
+        fd = pin.aba(model, data, qp, qd, tau).copy()
+
+        # Consistency checks.
+        note("T vs numpy FK", close(t, u.link_poses(dict(zip(chain, q)))[tip], 1e-12, "T vs numpy FK"))
+        h = 1e-6
+        for k in range(n):
+            e = np.zeros(n)
+            e[k] = h
+            tp = u.link_poses(dict(zip(chain, q + e)))[tip]
+            tm = u.link_poses(dict(zip(chain, q - e)))[tip]
+            col = np.concatenate([(tp[:3, 3] - tm[:3, 3]) / (2 * h),
+                                  rot_log(tp[:3, :3] @ tm[:3, :3].T) / (2 * h)])
+            note("J0 vs FD", close(j0[:, k], col, 1e-7, f"J0 column {k} vs finite differences"))
+        note("g vs rnea(q,0,0)", close(g, pin.rnea(model, data, qp, zero, zero), 1e-12, "g vs rnea(q,0,0)"))
+        note("g vs FD potential", close(g, independent_gravity(u, chain, q), 1e-6, "g vs dV/dq"))
+        kin = independent_energy(u, chain, q, qd)[1]
+        note("KE", close(0.5 * qd @ d @ qd, kin, 1e-7, "1/2 qd'D qd vs kinetic energy"))
+        note("tau = D qdd + Cqd + g", close(tau, d @ qdd + cqd + g, 1e-12, "tau = D qdd + Cqd + g"))
+        note("aba", close(fd, qdd, 1e-10, "aba(q, qd, tau) vs qdd"))
+        note("C qd", close(c @ qd, cqd, 1e-12, "C qd vs Cqd"))
+        hh = 1e-6
+        ddot = (crba(model, data, pin.integrate(model, qp, qd * hh))
+                - crba(model, data, pin.integrate(model, qp, -qd * hh))) / (2 * hh)
+        n_skew = ddot - 2 * c
+        dd = []
+        for k in range(n):
+            e = np.zeros(n)
+            e[k] = hh
+            dd.append((crba(model, data, pin.integrate(model, qp, e))
+                       - crba(model, data, pin.integrate(model, qp, -e))) / (2 * hh))
+        c_fd = np.array([[sum(0.5 * (dd[k][i, j] + dd[j][i, k] - dd[i][j, k]) * qd[k]
+                              for k in range(n)) for j in range(n)] for i in range(n)])
+        note("C vs Christoffel of FD D", close(c, c_fd, 1e-6, "C vs Christoffel symbols of D"))
+        note("Ddot - 2C skew", close(n_skew + n_skew.T, np.zeros((n, n)), 1e-6, "Ddot - 2C skew"))
+
+        samples.append({
+            "q": lists(q), "qd": lists(qd), "qdd": lists(qdd),
+            "T": lists(t), "J0": lists(j0), "D": lists(d), "Cqd": lists(cqd), "C": lists(c),
+            "g": lists(g), "tau": lists(tau), "fd_qdd": lists(fd),
+        })
+
+    raw = path.read_bytes()
+    joint_dynamics = []
+    for name in chain:
+        dyn = u.joints[name]["dynamics"]
+        joint_dynamics.append({
+            "name": name,
+            "damping": None if dyn is None or "damping" not in dyn else float(dyn["damping"]),
+            "friction": None if dyn is None or "friction" not in dyn else float(dyn["friction"]),
+        })
+    out = {
+        "name": robot["name"],
+        "source": {
+            "package": PACKAGE,
+            "version": PACKAGE_VERSION,
+            "path": robot["source_path"],
+            "installed_as": f"site-packages/{PACKAGE_PREFIX}/{robot['source_path'][len('robots/'):]}",
+            "licence": robot["licence"],
+            "sha256": hashlib.sha256(raw).hexdigest(),
+            "modified": False,
+        },
+        "urdf": robot["urdf"],
+        "tip": tip,
+        "base": None,
+        "root_link": u.root,
+        "n": n,
+        "joint_names": chain,
+        "joint_types": [u.joints[j]["type"] for j in chain],
+        "joint_axes": [u.joints[j]["axis"] for j in chain],
+        "qlim": [None if u.joints[j]["type"] == "continuous"
+                 else [u.joints[j]["lower"], u.joints[j]["upper"]] for j in chain],
+        "locked_joints": locked,
+        "gravity": GRAVITY,
+        "friction_included": False,
+        "joint_dynamics": joint_dynamics,
+        "sampling": {"seed": robot["seed"], "samples": SAMPLES,
+                     "q": "uniform in [lower, upper]; uniform in [-pi, pi] for continuous joints",
+                     "qd": [-2.0, 2.0], "qdd": [-2.0, 2.0]},
+        "conventions": CONVENTIONS,
+        "generator": {"script": SCRIPT, "pinocchio": pin.__version__, "numpy": np.__version__,
+                      "checks_worst_relative_error": worst},
+        "samples": samples,
+    }
+    dest = DATA / f"urdf_{robot['name']}.json"
+    dest.write_text(json.dumps(out, indent=1) + "\n")
+    print(f"{dest.relative_to(ROOT)}: n={n}, tip={tip}, locked={locked}")
+    for k, v in worst.items():
+        print(f"    {k}: {v:.2e}")
+
+
+# ---------------------------------------------------------------------------------------------
+
+
+def quarter_turn_forms(text):
+    """Values of an rpy string that are within 1e-3 of a nonzero multiple of pi/2."""
+    out = []
+    if text is None:
+        return out
+    for tok in text.split():
+        v = float(tok)
+        k = round(v / (math.pi / 2))
+        if k != 0 and abs(v - k * math.pi / 2) < 1e-3:
+            out.append((tok, k, v - k * math.pi / 2))
+    return out
+
+
+def summary(robot):
+    path = URDF_DIR / robot["urdf"]
+    u = Urdf(path)
+    print(f"== {robot['urdf']} (root link {u.root}, {len(u.links)} links, {len(u.joints)} joints)")
+    chain = set(u.path_joints(robot["tip"]))
+    types = {}
+    forms = {}
+    for name in u.joint_order:
+        j = u.joints[name]
+        types[j["type"]] = types.get(j["type"], 0) + 1
+        extra = []
+        if j["type"] != "fixed":
+            extra.append(f"axis {j['axis_text']}")
+        if j["dynamics"] is not None:
+            extra.append(f"dynamics {j['dynamics']}")
+        if j["mimic"] is not None:
+            extra.append(f"mimic {j['mimic']}")
+        if j["type"] in MOVABLE:
+            extra.append(f"limit [{j['lower']}, {j['upper']}]")
+        print(f"  {'*' if name in chain else ' '} {name:40s} {j['type']:10s} rpy={j['rpy_text']!s:35s} "
+              + "; ".join(extra))
+        for tok, k, err in quarter_turn_forms(j["rpy_text"]):
+            forms.setdefault(tok, [k, err, 0])[2] += 1
+    # Inertial and visual/collision origins, for completeness.
+    other = {}
+    for l in u.links.values():
+        for o in l.iter("origin"):
+            for tok, k, err in quarter_turn_forms(o.get("rpy")):
+                other.setdefault(tok, [k, err, 0])[2] += 1
+    print(f"  joint types: {types}")
+    axes = sorted({u.joints[n]['axis_text'] for n in u.joint_order if u.joints[n]['type'] in MOVABLE})
+    print(f"  movable-joint axes: {axes}")
+    print("  joint-origin rpy values near k*pi/2 (text, k, value - k*pi/2, count):")
+    for tok, (k, err, cnt) in sorted(forms.items(), key=lambda x: (x[1][0], x[0])):
+        print(f"    {tok:>22s}  k={k:+d}  {err:+.3e}  x{cnt}")
+    if other:
+        print("  link (inertial/visual/collision) origin rpy values near k*pi/2:")
+        for tok, (k, err, cnt) in sorted(other.items(), key=lambda x: (x[1][0], x[0])):
+            print(f"    {tok:>22s}  k={k:+d}  {err:+.3e}  x{cnt}")
+
+
+def copy():
+    import importlib.metadata as md
+    import site
+    version = md.version(PACKAGE)
+    check(version == PACKAGE_VERSION, f"{PACKAGE} {version} installed, expected {PACKAGE_VERSION}")
+    prefix = None
+    for sp in site.getsitepackages():
+        if (Path(sp) / PACKAGE_PREFIX).is_dir():
+            prefix = Path(sp) / PACKAGE_PREFIX
+    check(prefix is not None, f"no {PACKAGE_PREFIX} in site-packages")
+    URDF_DIR.mkdir(parents=True, exist_ok=True)
+    for robot in ROBOTS:
+        src = prefix / robot["source_path"][len("robots/"):]
+        shutil.copyfile(src, URDF_DIR / robot["urdf"])
+        print(f"{src} -> {(URDF_DIR / robot['urdf']).relative_to(ROOT)}")
+    # The licence texts that come with the files: the package's own, and the robots' that have one.
+    licences = {"LICENSE.example-robot-data": Path(md.distribution(PACKAGE).locate_file(
+        f"example_robot_data-{PACKAGE_VERSION}.dist-info/licenses/LICENSE"))}
+    for robot in ROBOTS:
+        f = prefix / robot["source_path"][len("robots/"):].split("/")[0] / "LICENSE"
+        if f.is_file():
+            licences[f"LICENSE.{robot['name']}"] = f
+    for name, src in licences.items():
+        shutil.copyfile(src, URDF_DIR / name)
+        print(f"{src} -> {(URDF_DIR / name).relative_to(ROOT)}")
+
+
+def main():
+    if "--copy" in sys.argv:
+        copy()
+        return
+    if "--summary" in sys.argv:
+        for robot in ROBOTS:
+            summary(robot)
+        return
+    if pin.__version__ != "4.1.0":
+        print(f"warning: Pinocchio {pin.__version__}; the files were made with 4.1.0", file=sys.stderr)
+    for robot in ROBOTS:
+        generate(robot)
+
+
+if __name__ == "__main__":
+    main()
