@@ -50,4 +50,5 @@ mod trajectory_multi;
 mod trajectory_polynomial;
 mod trajectory_sampling;
 mod trajectory_via;
+mod urdf;
 mod velocity;
