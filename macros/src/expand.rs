@@ -12,6 +12,7 @@ pub fn expand(input: RobotInput) -> syn::Result<proc_macro2::TokenStream> {
         name,
         body,
         options,
+        urdf,
     } = input;
     let (at, source) = match &body {
         Body::File(lit) => (lit.span(), format!("{}: ", lit.value())),
@@ -34,8 +35,21 @@ pub fn expand(input: RobotInput) -> syn::Result<proc_macro2::TokenStream> {
                 )
             })?;
             // `file:line:column: link N, field F: ...`, at the path literal.
-            let model = RobotModel::from_toml_named(&text, &shown)
-                .map_err(|e| syn::Error::new(lit.span(), e))?;
+            let model = if dhgen_model::urdf::is_urdf_path(&path) {
+                dhgen_model::urdf::read(&text, &shown, &urdf.0)
+                    .map_err(|e| syn::Error::new(lit.span(), e))?
+                    .model
+            } else {
+                if let Some(at) = urdf.1 {
+                    return Err(syn::Error::new(
+                        at,
+                        "`tip`, `base` and `snap` choose how a URDF file is read; this \
+                         description is TOML (a `.urdf` file name selects URDF)",
+                    ));
+                }
+                RobotModel::from_toml_named(&text, &shown)
+                    .map_err(|e| syn::Error::new(lit.span(), e))?
+            };
             let abs = path.to_string_lossy().into_owned();
             // Editing the file must rebuild the crate.
             (
@@ -46,6 +60,13 @@ pub fn expand(input: RobotInput) -> syn::Result<proc_macro2::TokenStream> {
             )
         }
         Body::Inline(table) => {
+            if let Some(at) = urdf.1 {
+                return Err(syn::Error::new(
+                    at,
+                    "`tip`, `base` and `snap` choose how a URDF file is read; an inline \
+                     description has no file to read",
+                ));
+            }
             let model =
                 validate::validate(&table, Some(&name.to_string())).map_err(|e| e.loc.error(&e))?;
             (model, quote!())

@@ -22,6 +22,9 @@ pub struct RobotInput {
     pub body: Body,
     /// The option words after the description (`, derivatives`).
     pub options: dhgen_codegen::Options,
+    /// How to read a URDF file (`, tip = "hand", base = "link0", snap = 1e-6`), with the
+    /// span of the first such option, which a TOML description must not have.
+    pub urdf: (dhgen_model::urdf::UrdfOptions, Option<Span>),
 }
 
 /// Where the description is.
@@ -95,14 +98,48 @@ impl Parse for RobotInput {
             let tokens: TokenStream = content.parse()?;
             Body::Inline(table(tokens, Loc::of(brace.span.join()))?)
         };
-        // `, derivatives`: option words, each naming what the module holds beyond the default.
+        // `, derivatives`: option words, each naming what the module holds beyond the default;
+        // `, tip = "..."`: how to read a URDF file.
         let mut options = dhgen_codegen::Options::default();
+        let mut urdf = (dhgen_model::urdf::UrdfOptions::default(), None);
         while input.peek(Token![,]) {
             input.parse::<Token![,]>()?;
             if input.is_empty() || input.peek(Token![;]) {
                 break;
             }
             let word: Ident = input.parse()?;
+            if input.peek(Token![=]) {
+                input.parse::<Token![=]>()?;
+                urdf.1.get_or_insert(word.span());
+                match word.to_string().as_str() {
+                    "tip" => urdf.0.tip = Some(input.parse::<LitStr>()?.value()),
+                    "base" => urdf.0.base = Some(input.parse::<LitStr>()?.value()),
+                    "snap" => {
+                        let lit: syn::LitFloat = input.parse()?;
+                        let x: f64 = lit.base10_parse()?;
+                        if !(0.0..=0.1).contains(&x) {
+                            return Err(syn::Error::new(
+                                lit.span(),
+                                format!(
+                                    "snap = {x}: the tolerance for reading angles as exact \
+                                     quarter turns is in radians, from 0 to 0.1"
+                                ),
+                            ));
+                        }
+                        urdf.0.snap = x;
+                    }
+                    other => {
+                        return Err(syn::Error::new(
+                            word.span(),
+                            format!(
+                                "unknown setting `{other}`; a URDF file takes `tip = \"link\"`, \
+                                 `base = \"link\"` and `snap = 1e-6`"
+                            ),
+                        ));
+                    }
+                }
+                continue;
+            }
             if !options.set(&word.to_string()) {
                 let known = dhgen_codegen::Options::WORDS
                     .iter()
@@ -126,6 +163,7 @@ impl Parse for RobotInput {
             name,
             body,
             options,
+            urdf,
         })
     }
 }

@@ -29,3 +29,10 @@ dhgen::robot!(pub mod snake17 = "tests/fixtures/snake17.toml");
 dhgen::robot!(pub mod puma560_derivatives = "robots/puma560.toml", derivatives);
 dhgen::robot!(pub mod scara_derivatives = "robots/scara.toml", derivatives);
 dhgen::robot!(pub mod odd_derivatives = "tests/fixtures/odd.toml", derivatives);
+
+// URDF files (tests/data/urdf/, from example-robot-data), read as `robot!` reads them.
+dhgen::robot!(pub mod panda_urdf = "tests/data/urdf/panda.urdf", tip = "panda_hand");
+dhgen::robot!(pub mod ur5_urdf = "tests/data/urdf/ur5.urdf");
+dhgen::robot!(pub mod baxter_left = "tests/data/urdf/baxter.urdf", tip = "left_gripper");
+dhgen::robot!(pub mod kinova_urdf = "tests/data/urdf/kinova.urdf", tip = "j2s6s200_end_effector");
+dhgen::robot!(pub mod double_pendulum_urdf = "tests/data/urdf/double_pendulum_continuous.urdf");

@@ -192,3 +192,77 @@ fn double_pendulum_runtime_matches_pinocchio() {
     check_runtime("double_pendulum", UrdfOptions::DEFAULT_SNAP);
     check_runtime("double_pendulum", 0.0);
 }
+
+/// The generated modules of the same files (`robot!(pub mod m = "x.urdf", tip = "...")`),
+/// against the same references, and against the runtime path.
+mod generated {
+    use super::{Worst, data, friction, qdd_matches, robot, vector};
+    use crate::catalogue::{baxter_left, double_pendulum_urdf, kinova_urdf, panda_urdf, ur5_urdf};
+    use dhgen::model::urdf::UrdfOptions;
+    use nalgebra::DMatrix;
+
+    macro_rules! check {
+        ($test:ident, $m:ident, $name:literal) => {
+            #[test]
+            fn $test() {
+                use $m as r;
+                const N: usize = r::DOF;
+                let d = data($name);
+                let runtime = robot($name, UrdfOptions::DEFAULT_SNAP);
+                let mut worst = Worst::default();
+                for s in d["samples"].as_array().unwrap() {
+                    let q: [f64; N] = vector(&s["q"]).try_into().unwrap();
+                    let qd: [f64; N] = vector(&s["qd"]).try_into().unwrap();
+                    let qdd: [f64; N] = vector(&s["qdd"]).try_into().unwrap();
+                    let st = r::State::new(&q);
+                    let t = st.fk().to_homogeneous();
+                    worst.matrix("T", &DMatrix::from_fn(4, 4, |i, j| t[(i, j)]), &s["T"]);
+                    let j = st.jacobian();
+                    worst.matrix("J", &DMatrix::from_fn(6, N, |a, b| j[(a, b)]), &s["J0"]);
+                    let dm = st.mass_matrix();
+                    worst.matrix("D", &DMatrix::from_fn(N, N, |a, b| dm[(a, b)]), &s["D"]);
+                    let c = st.coriolis(&qd);
+                    worst.matrix("C", &DMatrix::from_fn(N, N, |a, b| c[(a, b)]), &s["C"]);
+                    let g = st.gravity();
+                    worst.matrix("g", &DMatrix::from_fn(N, 1, |a, _| g[a]), &s["g"]);
+                    let f = friction(&runtime, &qd);
+                    let tau = st.inverse_dynamics(&qd, &qdd);
+                    worst.matrix(
+                        "tau",
+                        &DMatrix::from_fn(N, 1, |a, _| tau[a] - f[a]),
+                        &s["tau"],
+                    );
+                    let applied: [f64; N] =
+                        core::array::from_fn(|a| s["tau"][a].as_f64().unwrap() + f[a]);
+                    let acc = st
+                        .forward_dynamics(&qd, &applied)
+                        .expect("D is positive definite");
+                    qdd_matches(&mut worst, UrdfOptions::DEFAULT_SNAP, acc.as_slice(), s);
+                    // The two paths of dhgen agree more closely still.
+                    let rt = runtime.inverse_dynamics(&q[..], &qd[..], &qdd[..]);
+                    for a in 0..N {
+                        let err = (rt[a] - tau[a]).abs() / rt[a].abs().max(1.0);
+                        assert!(err < 1e-12, "{}: tau[{a}] {} vs {}", $name, rt[a], tau[a]);
+                    }
+                }
+                for (k, w) in &worst.0 {
+                    println!("{} generated {k}: worst relative error {w:.2e}", $name);
+                }
+            }
+        };
+    }
+
+    check!(panda_generated_matches_pinocchio, panda_urdf, "panda");
+    check!(ur5_generated_matches_pinocchio, ur5_urdf, "ur5");
+    check!(
+        baxter_left_arm_generated_matches_pinocchio,
+        baxter_left,
+        "baxter"
+    );
+    check!(kinova_generated_matches_pinocchio, kinova_urdf, "kinova");
+    check!(
+        double_pendulum_generated_matches_pinocchio,
+        double_pendulum_urdf,
+        "double_pendulum"
+    );
+}
