@@ -269,3 +269,72 @@ fn wrist_text(robot: &Robot) -> String {
         ),
     }
 }
+
+/// What reading a URDF file decided: the chain's ends, its joints by name, the joints held
+/// at zero, and every value read as an exact quarter turn or coordinate axis.
+pub fn urdf_report(u: &dhgen_model::urdf::UrdfRobot) -> String {
+    let mut out = String::new();
+    let field = |out: &mut String, name: &str, value: &str| {
+        let _ = writeln!(out, "{:<16} {value}", format!("{name}:"));
+    };
+    field(
+        &mut out,
+        "URDF chain",
+        &format!(
+            "from link `{}` to link `{}` (the tool frame)",
+            u.base, u.tip
+        ),
+    );
+    let names: Vec<String> = u
+        .joints
+        .iter()
+        .enumerate()
+        .map(|(i, j)| format!("{} {}", i + 1, j.name))
+        .collect();
+    field(&mut out, "URDF joints", &names.join(", "));
+    field(
+        &mut out,
+        "held at zero",
+        &if u.locked.is_empty() {
+            "none".to_string()
+        } else {
+            format!(
+                "{} (off the chain; their links' mass merged)",
+                u.locked.join(", ")
+            )
+        },
+    );
+    if u.snaps.is_empty() {
+        field(
+            &mut out,
+            "snapped",
+            "none (no value within the tolerance of a quarter turn)",
+        );
+    } else {
+        field(
+            &mut out,
+            "snapped",
+            &format!("{} values read as exact:", u.snaps.len()),
+        );
+        for s in &u.snaps {
+            if s.what.contains("<axis") {
+                let _ = writeln!(
+                    out,
+                    "  line {}: {}: {:.3e} rad from a coordinate axis, read as that axis",
+                    s.loc, s.what, s.from
+                );
+            } else {
+                let _ = writeln!(
+                    out,
+                    "  line {}: {}: {} read as {} ({}°)",
+                    s.loc,
+                    s.what,
+                    s.from,
+                    s.to,
+                    trimmed(s.to.to_degrees(), 6)
+                );
+            }
+        }
+    }
+    out
+}

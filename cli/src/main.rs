@@ -38,14 +38,14 @@ enum Command {
     /// Print the DH table, DOF, convention, joint types, limits, masses and whether the arm
     /// has a spherical wrist.
     Info {
-        /// The robot description (TOML).
-        robot: PathBuf,
+        #[command(flatten)]
+        robot: Source,
     },
     /// Evaluate the pose T, Jacobian J, and (with mass properties) D, C, g and τ at one
     /// configuration, on the runtime path (`dhgen::Robot`).
     Eval {
-        /// The robot description (TOML).
-        robot: PathBuf,
+        #[command(flatten)]
+        robot: Source,
         /// Joint positions, one per joint: radians (or `90deg`, `pi/2`) and metres for
         /// prismatic joints; one argument, comma-separated (`--q -0.5,0,pi/2,0,0,0`) or
         /// quoted and space-separated.
@@ -64,8 +64,8 @@ enum Command {
     /// Write the module `dhgen::robot!` generates for the description, formatted, as a Rust
     /// source file.
     Emit {
-        /// The robot description (TOML).
-        robot: PathBuf,
+        #[command(flatten)]
+        robot: Source,
         /// Output file; standard output if omitted.
         #[arg(short, long)]
         output: Option<PathBuf>,
@@ -80,8 +80,8 @@ enum Command {
     /// Print D(q), the Christoffel symbols c_ijk and g(q) as LaTeX equations, from the
     /// symbolic engine.
     Latex {
-        /// The robot description (TOML).
-        robot: PathBuf,
+        #[command(flatten)]
+        robot: Source,
         /// Write runs of parallel axes with cumulative angles, c_{23} = cos(θ2 + θ3), where
         /// that shortens an entry.
         #[arg(long)]
@@ -92,8 +92,8 @@ enum Command {
     },
     /// Print the operation count of every generated function and the generation time.
     Ops {
-        /// The robot description (TOML).
-        robot: PathBuf,
+        #[command(flatten)]
+        robot: Source,
         /// Include the derivatives of the dynamics (`robot!(..., derivatives)`).
         #[arg(long)]
         derivatives: bool,
@@ -117,6 +117,29 @@ enum Command {
     },
 }
 
+/// A description file and, for a URDF file, how to read it.
+#[derive(clap::Args, Debug)]
+struct Source {
+    /// The robot description: TOML, or URDF (a `.urdf` file).
+    robot: PathBuf,
+    /// URDF: the last link of the chain (default: the one end of the movable joints).
+    #[arg(long, value_name = "LINK")]
+    tip: Option<String>,
+    /// URDF: the first link of the chain, fixed in the world (default: the root link).
+    #[arg(long, value_name = "LINK")]
+    base: Option<String>,
+    /// URDF: read angles within this many radians of a multiple of 90° as exact (default
+    /// 1e-9; `dhgen info` lists every value read so).
+    #[arg(long, value_name = "RAD")]
+    snap: Option<f64>,
+}
+
+impl Source {
+    fn display(&self) -> std::path::Display<'_> {
+        self.robot.display()
+    }
+}
+
 /// The styles of `dhgen random`.
 #[derive(clap::ValueEnum, Clone, Copy, Debug)]
 enum RandomStyle {
@@ -128,13 +151,52 @@ enum RandomStyle {
 
 /// Loads a description; the error (one line) names the file, and for a syntax error or a
 /// rule violation the line, column, link and field.
-fn load(path: &Path) -> Result<Robot, String> {
-    Robot::from_toml_file(path).map_err(|e| e.to_string())
+fn load(source: &Source) -> Result<Robot, String> {
+    read(source).map(|(robot, _)| robot)
+}
+
+/// Loads a description, with what the URDF reader found for a URDF file.
+fn read(source: &Source) -> Result<(Robot, Option<dhgen_model::urdf::UrdfRobot>), String> {
+    let path: &Path = &source.robot;
+    if dhgen_model::urdf::is_urdf_path(path) {
+        let mut options = dhgen_model::urdf::UrdfOptions {
+            tip: source.tip.clone(),
+            base: source.base.clone(),
+            ..Default::default()
+        };
+        if let Some(snap) = source.snap {
+            if !(0.0..=0.1).contains(&snap) {
+                return Err(format!(
+                    "--snap {snap}: the tolerance is in radians, from 0 to 0.1"
+                ));
+            }
+            options.snap = snap;
+        }
+        let urdf = dhgen_model::urdf::read_file(path, &options).map_err(|e| e.to_string())?;
+        Ok((Robot::from_model(urdf.model.clone()), Some(urdf)))
+    } else {
+        if source.tip.is_some() || source.base.is_some() || source.snap.is_some() {
+            return Err(format!(
+                "{}: --tip, --base and --snap read URDF files; this is a TOML description",
+                path.display()
+            ));
+        }
+        Robot::from_toml_file(path)
+            .map(|r| (r, None))
+            .map_err(|e| e.to_string())
+    }
 }
 
 fn run(command: Command) -> Result<String, String> {
     match command {
-        Command::Info { robot } => Ok(info::report(&load(&robot)?)),
+        Command::Info { robot } => {
+            let (r, urdf) = read(&robot)?;
+            let mut text = info::report(&r);
+            if let Some(u) = urdf {
+                text += &info::urdf_report(&u);
+            }
+            Ok(text)
+        }
         Command::Eval {
             robot,
             q,
@@ -161,7 +223,7 @@ fn run(command: Command) -> Result<String, String> {
         } => {
             let r = load(&robot)?;
             let options = dhgen_codegen::Options { derivatives };
-            let code = emit::emit(r.model(), &robot, name.as_deref(), options)?;
+            let code = emit::emit(r.model(), &robot.robot, name.as_deref(), options)?;
             match output {
                 Some(path) => {
                     std::fs::write(&path, code)
