@@ -40,7 +40,10 @@ fn place_file_fixtures() {
     let mut copied = 0;
     for entry in entries {
         let path = entry.expect("directory entry").path();
-        if path.extension().is_some_and(|ext| ext == "toml") {
+        if path
+            .extension()
+            .is_some_and(|ext| ext == "toml" || ext == "urdf")
+        {
             let to = scratch.join(path.file_name().expect("a file name"));
             std::fs::copy(&path, &to).unwrap_or_else(|e| {
                 panic!("cannot copy {} to {}: {e}", path.display(), to.display())
