@@ -157,12 +157,30 @@ pub fn read_file(
         origin: origin.clone(),
         source,
     })?;
-    let text = String::from_utf8(bytes).map_err(|e| LoadError::Urdf {
-        origin: origin.clone(),
-        loc: Position { line: 1, column: 1 },
-        message: format!("the file is not UTF-8 text: {e}"),
-    })?;
-    read(&text, &origin, options)
+    read_bytes(&bytes, &origin, options)
+}
+
+/// Reads URDF given as bytes (a file's contents); bytes that are not UTF-8 are an error at
+/// the first one that is not.
+pub fn read_bytes(
+    bytes: &[u8],
+    origin: &str,
+    options: &UrdfOptions,
+) -> Result<UrdfRobot, LoadError> {
+    match core::str::from_utf8(bytes) {
+        Ok(text) => read(text, origin, options),
+        Err(e) => {
+            let valid = core::str::from_utf8(&bytes[..e.valid_up_to()]).unwrap_or("");
+            Err(LoadError::Urdf {
+                origin: origin.to_string(),
+                loc: Position {
+                    line: valid.matches('\n').count() + 1,
+                    column: valid.rsplit('\n').next().unwrap_or("").chars().count() + 1,
+                },
+                message: "the file is not UTF-8 text".into(),
+            })
+        }
+    }
 }
 
 /// True for a file name that ends in `.urdf` (any case): what the command line and `robot!`

@@ -31,6 +31,7 @@ mod generated_reference;
 mod generated_velocity;
 mod generated_vs_runtime;
 mod hostile_descriptions;
+mod hostile_urdf;
 mod ik_closed_form;
 mod ik_numeric;
 mod ik_random;

@@ -1,0 +1,118 @@
+//! Hostile URDF files: seeded variants (`dhgen_model::hostile::mutate`: byte flips,
+//! truncations, deleted, duplicated and swapped lines, NaN/inf/1e308, invalid UTF-8, ...) of
+//! the URDF fixtures through the URDF reader and the runtime path.
+//!
+//! The laws, as for TOML descriptions: reading never panics; every error is one line that
+//! starts with `file:line:column:`; every accepted variant evaluates to finite values.
+//! `DHGEN_HOSTILE_URDF_CASES` sets the number of variants (default 5,000).
+
+use dhgen::Robot;
+use dhgen::model::urdf::{UrdfOptions, read_bytes};
+use std::panic::{AssertUnwindSafe, catch_unwind};
+
+const ORIGIN: &str = "hostile.urdf";
+
+fn check(bytes: &[u8], tip: Option<&str>) -> Result<bool, String> {
+    let options = UrdfOptions {
+        tip: tip.map(str::to_string),
+        ..Default::default()
+    };
+    match read_bytes(bytes, ORIGIN, &options) {
+        Ok(urdf) => {
+            let robot = Robot::from_model(urdf.model);
+            let q = vec![0.1; robot.dof()];
+            let pose = robot.fk(&q);
+            let j = robot.jacobian(&q);
+            if !pose
+                .translation
+                .vector
+                .iter()
+                .chain(j.iter())
+                .all(|x| x.is_finite())
+            {
+                return Err("an accepted file gives a non-finite pose or Jacobian".into());
+            }
+            if robot.has_dynamics() && robot.dof() <= dhgen_codegen::limits::MAX_DYNAMICS_DOF {
+                let d = robot.mass_matrix(&q);
+                let g = robot.gravity(&q);
+                if !d.iter().chain(g.iter()).all(|x| x.is_finite()) {
+                    return Err("an accepted file gives a non-finite D or g".into());
+                }
+                let _ = robot.forward_dynamics(&q, &q, &g);
+            }
+            let _ = dhgen_codegen::limits::check(robot.chain());
+            Ok(true)
+        }
+        Err(e) => {
+            let shown = e.to_string();
+            if shown.contains('\n') {
+                return Err(format!("the error is not one line: {shown:?}"));
+            }
+            let located = shown
+                .strip_prefix(ORIGIN)
+                .and_then(|rest| rest.strip_prefix(':'))
+                .and_then(|rest| {
+                    let mut parts = rest.splitn(3, ':');
+                    let line = parts.next()?.parse::<usize>().ok()?;
+                    let column = parts.next()?.parse::<usize>().ok()?;
+                    (line > 0 && column > 0 && parts.next()?.starts_with(' ')).then_some(())
+                })
+                .is_some();
+            if !located {
+                return Err(format!(
+                    "the error does not start with file:line:column: {shown:?}"
+                ));
+            }
+            Ok(false)
+        }
+    }
+}
+
+#[test]
+fn hostile_urdf_files_load_or_fail_with_one_located_line() {
+    let cases: u64 = std::env::var("DHGEN_HOSTILE_URDF_CASES")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(5_000);
+    let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/urdf");
+    let seeds: Vec<(String, Option<&str>)> = [
+        ("panda.urdf", Some("panda_hand")),
+        ("ur5.urdf", None),
+        ("kinova.urdf", Some("j2s6s200_end_effector")),
+        ("double_pendulum_continuous.urdf", None),
+    ]
+    .iter()
+    .map(|(f, tip)| (std::fs::read_to_string(format!("{dir}/{f}")).unwrap(), *tip))
+    .collect();
+    let hook = std::panic::take_hook();
+    std::panic::set_hook(Box::new(|_| {}));
+    let (mut accepted, mut rejected) = (0u64, 0u64);
+    let mut failures = Vec::new();
+    for seed in 0..cases {
+        let (text, tip) = &seeds[(seed % seeds.len() as u64) as usize];
+        let bytes = dhgen::model::hostile::mutate(text, seed);
+        let outcome = catch_unwind(AssertUnwindSafe(|| check(&bytes, *tip))).unwrap_or_else(|p| {
+            let why = p
+                .downcast_ref::<String>()
+                .cloned()
+                .or_else(|| p.downcast_ref::<&str>().map(|s| s.to_string()))
+                .unwrap_or_default();
+            Err(format!("panicked: {why}"))
+        });
+        match outcome {
+            Ok(true) => accepted += 1,
+            Ok(false) => rejected += 1,
+            Err(why) => failures.push(format!("seed {seed}: {why}")),
+        }
+        if failures.len() >= 20 {
+            break;
+        }
+    }
+    std::panic::set_hook(hook);
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+    eprintln!("{cases} hostile URDF variants: {accepted} accepted, {rejected} rejected");
+    assert!(
+        accepted > cases / 20 && rejected > cases / 5,
+        "{accepted} accepted, {rejected} rejected"
+    );
+}
