@@ -396,3 +396,34 @@ fn urdf_unknown_link_and_bad_numbers_are_located() {
     let e = bad(&text);
     assert!(e.contains("joint `j3`") && e.contains("length"), "{e}");
 }
+
+#[test]
+fn urdf_convention_rows_take_origin_and_axis_only() {
+    let row = |fields: &str| {
+        format!("name = \"x\"\nconvention = \"urdf\"\n[[links]]\njoint = \"revolute\"\n{fields}\n")
+    };
+    let m = RobotModel::from_toml_str(&row("origin = { xyz = [0, 0, 0.3] }\naxis = [0, 2, 0]"))
+        .unwrap();
+    let p = m.links[0].placement.unwrap();
+    assert_eq!(p.axis, [0.0, 1.0, 0.0], "scaled to unit length, exactly");
+    // The DH fields belong to the DH conventions.
+    let e = RobotModel::from_toml_str(&row("a = 0.5"))
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("<string>:5:1: link 1, field `a`: unknown field `a`")
+            && e.contains("origin, axis"),
+        "{e}"
+    );
+    let e = RobotModel::from_toml_str(&row("axis = [0, 0, 0]"))
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("field `axis`") && e.contains("no direction"),
+        "{e}"
+    );
+    // And `origin` to the urdf convention.
+    let dh = "name = \"x\"\nconvention = \"standard\"\n[[links]]\njoint = \"revolute\"\na = 0\nalpha = 0\nd = 0\ntheta = 0\norigin = { xyz = [0, 0, 1] }\n";
+    let e = RobotModel::from_toml_str(dh).unwrap_err().to_string();
+    assert!(e.contains("unknown field `origin`"), "{e}");
+}
