@@ -714,3 +714,64 @@ fn hostile_files_never_crash_a_command() {
         "{ok} succeeded, {rejected} failed"
     );
 }
+
+#[test]
+fn urdf_files_work_in_every_command() {
+    let ur5 = "tests/data/urdf/ur5.urdf";
+    let info = stdout(&["info", ur5]);
+    assert!(info.contains("convention:      urdf"), "{info}");
+    assert!(
+        info.contains("URDF chain:      from link `world` to link `wrist_3_link`"),
+        "{info}"
+    );
+    assert!(
+        info.contains("1 shoulder_pan_joint, 2 shoulder_lift_joint"),
+        "{info}"
+    );
+    // ROS-Industrial's 1.57079632679 is 4.9e-12 from π/2: listed, with its line.
+    assert!(
+        info.contains("line 86:13: joint `shoulder_lift_joint` <origin rpy> pitch: 1.57079632679 read as 1.5707963267948966 (90°)"),
+        "{info}"
+    );
+    let strict = stdout(&["info", ur5, "--snap", "0"]);
+    assert!(strict.contains("snapped:         none"), "{strict}");
+    // eval agrees with the runtime path reading the same file.
+    let robot = Robot::from_urdf_file(root().join(ur5)).unwrap();
+    let q = [0.1, -0.5, 0.7, 0.2, -0.3, 0.4];
+    let json = stdout(&["eval", ur5, "--q", "0.1,-0.5,0.7,0.2,-0.3,0.4", "--json"]);
+    let v: serde_json::Value = serde_json::from_str(&json).unwrap();
+    let g = robot.gravity(&q[..]);
+    for (i, gi) in g.iter().enumerate() {
+        let got = v["g"][i].as_f64().unwrap();
+        assert!(
+            (got - gi).abs() <= 1e-12 * gi.abs().max(1.0),
+            "{got} vs {gi}"
+        );
+    }
+    // A tree needs its tip; with it, every command runs.
+    let panda = "tests/data/urdf/panda.urdf";
+    let e = failure(&["info", panda]);
+    assert!(
+        e.contains("2 ends (`panda_leftfinger`, `panda_rightfinger`)"),
+        "{e}"
+    );
+    let info = stdout(&["info", panda, "--tip", "panda_hand"]);
+    assert!(
+        info.contains("held at zero:    panda_finger_joint1, panda_finger_joint2"),
+        "{info}"
+    );
+    let code = stdout(&["emit", panda, "--tip", "panda_hand", "--name", "panda"]);
+    assert!(code.contains("pub mod panda"), "{}", &code[..200]);
+    let ops = stdout(&["ops", panda, "--tip", "panda_hand"]);
+    assert!(ops.contains("inverse_dynamics_smooth"), "{ops}");
+    let tex = stdout(&["latex", "tests/data/urdf/double_pendulum_continuous.urdf"]);
+    assert!(tex.contains("\\begin"), "{tex}");
+    // URDF settings on a TOML file are a mistake, said so.
+    let e = failure(&["info", "robots/puma560.toml", "--tip", "link6"]);
+    assert!(
+        e.contains("--tip, --base and --snap read URDF files"),
+        "{e}"
+    );
+    let e = failure(&["info", ur5, "--snap", "1"]);
+    assert!(e.contains("from 0 to 0.1"), "{e}");
+}
