@@ -7,6 +7,7 @@
 //!   generates, formatted;
 //! - `dhgen latex ROBOT.toml`: D(q), c_ijk and g(q) as LaTeX equations;
 //! - `dhgen ops ROBOT.toml`: operation counts of the generated functions;
+//! - `dhgen convert ROBOT --to dh|mdh|toml|urdf`: between URDF and the description format;
 //! - `dhgen random --dof N [--style general|industrial] [--seed S]`: a random valid arm.
 //!
 //! Any failure is one line on stderr and a non-zero exit status: 2 for a malformed command
@@ -98,6 +99,20 @@ enum Command {
         #[arg(long)]
         derivatives: bool,
     },
+    /// Convert a description: a URDF file to a DH table (`dh`, `mdh`) or to the description
+    /// format's `urdf` convention (`toml`), a TOML description to URDF (`urdf`) or to the
+    /// other DH convention.
+    Convert {
+        #[command(flatten)]
+        robot: Source,
+        /// The form to write: `dh` (standard DH), `mdh` (modified DH), `toml` (the chain as
+        /// read, `urdf` convention), `urdf`.
+        #[arg(long)]
+        to: ConvertTo,
+        /// Output file; standard output if omitted.
+        #[arg(short, long)]
+        output: Option<PathBuf>,
+    },
     /// Write a random valid arm (a seeded, reproducible description) for scale tests and
     /// benchmarks: `general` (no exact angles, full inertias) or `industrial` (twists and
     /// offsets in {0, ±90°}).
@@ -138,6 +153,19 @@ impl Source {
     fn display(&self) -> std::path::Display<'_> {
         self.robot.display()
     }
+}
+
+/// The targets of `dhgen convert`.
+#[derive(clap::ValueEnum, Clone, Copy, Debug)]
+enum ConvertTo {
+    /// A standard (distal) DH table, with base and tool poses and the inertias in DH frames.
+    Dh,
+    /// A modified (proximal, Craig) DH table.
+    Mdh,
+    /// The description format as read (for a URDF file: the `urdf` convention).
+    Toml,
+    /// A URDF document.
+    Urdf,
 }
 
 /// The styles of `dhgen random`.
@@ -252,6 +280,29 @@ fn run(command: Command) -> Result<String, String> {
             dhgen_codegen::Options { derivatives },
         )
         .map_err(|e| format!("{}: {e}", robot.display())),
+        Command::Convert { robot, to, output } => {
+            use dhgen_model::convert::{to_dh, to_urdf};
+            let r = load(&robot)?;
+            let model = r.model();
+            let text = match to {
+                ConvertTo::Dh => to_dh(model, dhgen::Convention::Standard)
+                    .map_err(|e| format!("{}: {e}", robot.display()))?
+                    .to_toml(),
+                ConvertTo::Mdh => to_dh(model, dhgen::Convention::Modified)
+                    .map_err(|e| format!("{}: {e}", robot.display()))?
+                    .to_toml(),
+                ConvertTo::Toml => model.to_toml(),
+                ConvertTo::Urdf => to_urdf(model),
+            };
+            match output {
+                Some(path) => {
+                    std::fs::write(&path, text)
+                        .map_err(|e| format!("{}: cannot write: {e}", path.display()))?;
+                    Ok(String::new())
+                }
+                None => Ok(text),
+            }
+        }
         Command::Random {
             dof,
             style,
@@ -287,7 +338,7 @@ fn main() -> ExitCode {
                 }
                 ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand => {
                     eprintln!(
-                        "dhgen: missing command: info, eval, emit, latex, ops or random (see dhgen --help)"
+                        "dhgen: missing command: info, eval, emit, latex, ops, convert or random (see dhgen --help)"
                     );
                     ExitCode::from(2)
                 }

@@ -775,3 +775,73 @@ fn urdf_files_work_in_every_command() {
     let e = failure(&["info", ur5, "--snap", "1"]);
     assert!(e.contains("from 0 to 0.1"), "{e}");
 }
+
+#[test]
+fn convert_goes_between_urdf_and_dh() {
+    let dir = std::env::temp_dir().join(format!("dhgen-convert-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let q = [0.3, -0.4, 0.9, -0.2, 0.5, 0.1];
+    // A URDF robot as a DH table: the same runtime robot.
+    let ur5 = root().join("tests/data/urdf/ur5.urdf");
+    let urdf = Robot::from_urdf_file(&ur5).unwrap();
+    let dh_text = stdout(&["convert", "tests/data/urdf/ur5.urdf", "--to", "dh"]);
+    assert!(dh_text.contains("convention = \"standard\""), "{dh_text}");
+    let dh = Robot::from_toml_str(&dh_text).unwrap();
+    let mdh = Robot::from_toml_str(&stdout(&[
+        "convert",
+        "tests/data/urdf/ur5.urdf",
+        "--to",
+        "mdh",
+    ]))
+    .unwrap();
+    let as_toml = Robot::from_toml_str(&stdout(&[
+        "convert",
+        "tests/data/urdf/ur5.urdf",
+        "--to",
+        "toml",
+    ]))
+    .unwrap();
+    let tau = |r: &Robot| r.inverse_dynamics(&q[..], &[0.5; 6][..], &[-1.0; 6][..]);
+    let want = tau(&urdf);
+    for (what, r) in [("dh", &dh), ("mdh", &mdh), ("toml", &as_toml)] {
+        let got = tau(r);
+        for i in 0..6 {
+            assert!(
+                (got[i] - want[i]).abs() < 1e-12 * want[i].abs().max(1.0),
+                "{what}"
+            );
+        }
+        let (a, b) = (r.fk(&q[..]), urdf.fk(&q[..]));
+        assert!(
+            (a.translation.vector - b.translation.vector).norm() < 1e-14,
+            "{what}"
+        );
+    }
+    // A DH description to URDF and back through the reader.
+    let out = dir.join("puma.urdf");
+    stdout(&[
+        "convert",
+        "robots/puma560.toml",
+        "--to",
+        "urdf",
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    let back = Robot::from_urdf_file(&out).unwrap();
+    let puma = puma();
+    let (a, b) = (back.mass_matrix(&q[..]), puma.mass_matrix(&q[..]));
+    // The URDF carries no motor inertia: compare without the armature on the diagonal.
+    for i in 0..6 {
+        for j in 0..6 {
+            let arm = if i == j {
+                puma.chain().bodies[i].armature
+            } else {
+                0.0
+            };
+            assert!((a[(i, j)] - (b[(i, j)] - arm)).abs() < 1e-12, "D[{i}][{j}]");
+        }
+    }
+    let e = failure(&["convert", "robots/puma560.toml", "--to", "xml"]);
+    assert!(e.contains("xml"), "{e}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}

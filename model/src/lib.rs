@@ -31,6 +31,8 @@ mod angle;
 pub mod chain;
 pub mod closed_form;
 #[cfg(feature = "std")]
+pub mod convert;
+#[cfg(feature = "std")]
 pub mod hostile;
 mod math;
 mod model;

@@ -4,7 +4,9 @@
 //! What is read, in the terms of the [URDF specification](http://wiki.ros.org/urdf/XML):
 //! - the chain runs from the root link (or the link named `base`) to the `tip` link. Without a
 //!   `tip`, the chain ends at the one link that is moved by a movable joint and has no movable
-//!   joint below it; when there are several, the error lists them;
+//!   joint below it (when there are several, the error lists them), or further down at the end
+//!   of a run of fixed joints from it in which every link has exactly one child (a flange, a
+//!   tool frame: what dhgen's own URDF export writes);
 //! - `revolute`, `continuous` and `prismatic` joints on the chain are the robot's joints, in
 //!   order, with their `<origin>` (xyz, rpy), `<axis>` (default x, as URDF says), position
 //!   `<limit lower upper>` (velocity and effort are kept in [`UrdfJoint`]) and
@@ -604,7 +606,8 @@ impl<'a> Reader<'a> {
                         &v,
                         aloc,
                     )?);
-                    if kind.movable() && !(u.norm() > 1e-9) {
+                    // The numbers are finite: a zero or tiny vector has no direction.
+                    if kind.movable() && u.norm() <= 1e-9 {
                         return Err(self.err(
                             aloc,
                             format!("{what} <axis xyz>: the axis {v:?} has no direction; give a non-zero vector"),
@@ -769,7 +772,16 @@ impl<'a> Reader<'a> {
                 }
                 ends.sort_unstable();
                 match ends.as_slice() {
-                    [t] => *t,
+                    // A flange or tool frame fixed below the end, alone, is the tip.
+                    [t] => {
+                        let mut t = *t;
+                        while let [j] = children[t].as_slice()
+                            && joints[*j].kind == Kind::Fixed
+                        {
+                            t = joints[*j].child;
+                        }
+                        t
+                    }
                     [] => {
                         return Err(self.err(
                             links[base].loc,

@@ -698,7 +698,8 @@ fn link<L: Clone>(
 fn unit_axis<L: Clone>(at: At<'_>, v: &Value<L>) -> Result<[f64; 3], Error<L>> {
     let u = vec3(at, v, LENGTH)?;
     let norm = (u[0] * u[0] + u[1] * u[1] + u[2] * u[2]).sqrt();
-    if !(norm > 1e-9) {
+    // The components are finite (checked by `vec3`).
+    if norm <= 1e-9 {
         return Err(at.err(
             v.loc(),
             format!(

@@ -36,3 +36,5 @@ dhgen::robot!(pub mod ur5_urdf = "tests/data/urdf/ur5.urdf");
 dhgen::robot!(pub mod baxter_left = "tests/data/urdf/baxter.urdf", tip = "left_gripper");
 dhgen::robot!(pub mod kinova_urdf = "tests/data/urdf/kinova.urdf", tip = "j2s6s200_end_effector");
 dhgen::robot!(pub mod double_pendulum_urdf = "tests/data/urdf/double_pendulum_continuous.urdf");
+dhgen::robot!(pub mod random_urdf_2 = "tests/data/urdf/random_2.urdf", tip = "link_7");
+dhgen::robot!(pub mod random_urdf_3 = "tests/data/urdf/random_3.urdf", tip = "tool");

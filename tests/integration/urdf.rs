@@ -187,6 +187,19 @@ fn kinova_runtime_matches_pinocchio() {
     check_runtime("kinova", 0.0);
 }
 
+/// Random chains written by scripts/pinocchio_urdf.py --random: negative and oblique
+/// (unnormalised) axes, prismatic and continuous joints, fixed joints with and without mass in
+/// the middle of the chain, movable branches held at zero, exact ±π/2 pitches (the RPY gimbal
+/// case), shuffled element order, 4 to 12 joints.
+#[test]
+fn random_urdf_chains_runtime_match_pinocchio() {
+    for k in 1..=4 {
+        let name = format!("random_{k}");
+        check_runtime(&name, UrdfOptions::DEFAULT_SNAP);
+        check_runtime(&name, 0.0);
+    }
+}
+
 #[test]
 fn double_pendulum_runtime_matches_pinocchio() {
     check_runtime("double_pendulum", UrdfOptions::DEFAULT_SNAP);
@@ -197,7 +210,10 @@ fn double_pendulum_runtime_matches_pinocchio() {
 /// against the same references, and against the runtime path.
 mod generated {
     use super::{Worst, data, friction, qdd_matches, robot, vector};
-    use crate::catalogue::{baxter_left, double_pendulum_urdf, kinova_urdf, panda_urdf, ur5_urdf};
+    use crate::catalogue::{
+        baxter_left, double_pendulum_urdf, kinova_urdf, panda_urdf, random_urdf_2, random_urdf_3,
+        ur5_urdf,
+    };
     use dhgen::model::urdf::UrdfOptions;
     use nalgebra::DMatrix;
 
@@ -265,4 +281,63 @@ mod generated {
         double_pendulum_urdf,
         "double_pendulum"
     );
+    check!(
+        random_2_generated_matches_pinocchio,
+        random_urdf_2,
+        "random_2"
+    );
+    check!(
+        random_3_generated_matches_pinocchio,
+        random_urdf_3,
+        "random_3"
+    );
+}
+
+/// The URDF robots converted to DH tables (`dhgen convert --to dh|mdh`: base and tool poses,
+/// inertias re-expressed in the DH frames) are still Pinocchio's robots.
+#[test]
+fn urdf_robots_converted_to_dh_match_pinocchio() {
+    use dhgen::Convention;
+    use dhgen::model::convert::to_dh;
+    let names = [
+        "panda",
+        "ur5",
+        "baxter",
+        "kinova",
+        "double_pendulum",
+        "random_1",
+        "random_2",
+        "random_3",
+        "random_4",
+    ];
+    for name in names {
+        let urdf = robot(name, UrdfOptions::DEFAULT_SNAP);
+        let d = data(name);
+        for convention in [Convention::Standard, Convention::Modified] {
+            let dh = Robot::from_model(to_dh(urdf.model(), convention).unwrap());
+            let n = dh.dof();
+            let mut worst = Worst::default();
+            for s in d["samples"].as_array().unwrap() {
+                let (q, qd, qdd) = (vector(&s["q"]), vector(&s["qd"]), vector(&s["qdd"]));
+                let t = dh.fk(&q[..]).to_homogeneous();
+                worst.matrix("T", &DMatrix::from_fn(4, 4, |i, j| t[(i, j)]), &s["T"]);
+                let j = dh.jacobian(&q[..]);
+                worst.matrix("J", &DMatrix::from_fn(6, n, |r, c| j[(r, c)]), &s["J0"]);
+                worst.matrix("D", &dh.mass_matrix(&q[..]), &s["D"]);
+                let g = dh.gravity(&q[..]);
+                worst.matrix(
+                    "g",
+                    &DMatrix::from_column_slice(n, 1, g.as_slice()),
+                    &s["g"],
+                );
+                let f = friction(&dh, &qd);
+                let tau = dh.inverse_dynamics(&q[..], &qd[..], &qdd[..]);
+                let tau: Vec<f64> = tau.iter().zip(&f).map(|(t, f)| t - f).collect();
+                worst.matrix("tau", &DMatrix::from_column_slice(n, 1, &tau), &s["tau"]);
+            }
+            for (k, w) in &worst.0 {
+                println!("{name} as {convention:?} DH {k}: worst relative error {w:.2e}");
+            }
+        }
+    }
 }

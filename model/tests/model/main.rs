@@ -12,5 +12,6 @@ mod support;
 
 mod catalogue;
 mod chain;
+mod convert;
 mod urdf;
 mod validation;

@@ -101,7 +101,8 @@ fn urdf_tool(q: &[f64; 3]) -> Isometry3<f64> {
 fn urdf_chain_is_urdf_formula() {
     let robot = read(ARM, "arm.urdf", &UrdfOptions::default()).unwrap();
     assert_eq!(robot.base, "world");
-    assert_eq!(robot.tip, "l3", "the end of the movable joints");
+    // The end of the movable joints is l3; the fixed `tool` alone below it is the tip.
+    assert_eq!(robot.tip, "tool");
     let names: Vec<&str> = robot.joints.iter().map(|j| j.name.as_str()).collect();
     assert_eq!(names, ["j1", "j2", "j3"]);
     assert_eq!(robot.joints[0].velocity, Some(3.0));
@@ -120,16 +121,19 @@ fn urdf_chain_is_urdf_formula() {
     assert_eq!(m.links[1].limits, None, "continuous");
     let f = m.links[0].friction.unwrap();
     assert_eq!((f.viscous, f.coulomb), (0.5, 0.2));
-    // Without `tip`, the tool is l3; with it, the fixed `tool` link.
-    let with_tool = read(
+    // With `tip = "l3"`, the chain stops at the last moving link: no tool transform.
+    let at_l3 = read(
         ARM,
         "arm.urdf",
         &UrdfOptions {
-            tip: Some("tool".into()),
+            tip: Some("l3".into()),
             ..Default::default()
         },
     )
     .unwrap();
+    assert!(at_l3.model.tool.is_none());
+    assert!(robot.model.tool.is_some());
+    let with_tool = robot.clone();
     let chain = with_tool.model.chain();
     for q in [[0.0, 0.0, 0.0], [0.3, -1.2, 0.1], [-1.9, 2.5, 0.29]] {
         let got = chain.view().tool_at(&q);
@@ -192,6 +196,8 @@ fn urdf_fixed_links_merge_into_their_body() {
 }
 
 #[test]
+// `1.5708` is the decimal a URDF file writes for π/2, which the test is about.
+#[allow(clippy::approx_constant)]
 fn urdf_quarter_turns_snap_within_tolerance_only() {
     let robot = read(ARM, "arm.urdf", &UrdfOptions::default()).unwrap();
     // 1.5707963267948966 is π/2 as an f64 already: nothing to snap, and it is exact.

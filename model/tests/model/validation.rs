@@ -720,7 +720,7 @@ fn unknown_convention() {
         1,
         None,
         "convention",
-        "unknown convention `craig`; expected `standard` or `modified`",
+        "unknown convention `craig`; expected `standard` or `modified` or `urdf`",
     );
 }
 
@@ -1060,7 +1060,7 @@ fn messages_are_one_line_whatever_the_text_holds() {
     let (_, shown) = rejection(text);
     assert_eq!(
         shown,
-        "robots/bad.toml:2:14: field `convention`: unknown convention `st\\nandard`; expected `standard` or `modified`"
+        "robots/bad.toml:2:14: field `convention`: unknown convention `st\\nandard`; expected `standard` or `modified` or `urdf`"
     );
     let text = "name = \"x\"\nconvention = \"standard\"\n\"bad\\nkey\" = 1\n[[links]]\n";
     let (_, shown) = rejection(text);
