@@ -1096,6 +1096,11 @@ fn pose_value(t: &Tf, loc: Position) -> Value<Position> {
 /// Roll, pitch, yaw of a rotation `Rz(yaw) Ry(pitch) Rx(roll)`; exact multiples of π/2 for
 /// rotations whose entries are in {−1, 0, 1}.
 pub(crate) fn rpy_of(r: &Matrix3<f64>) -> [f64; 3] {
+    // `+ 0.0` writes −0 (atan2 of a −0 entry) as 0.
+    rpy_signed(r).map(|a| a + 0.0)
+}
+
+fn rpy_signed(r: &Matrix3<f64>) -> [f64; 3] {
     let cp = r[(0, 0)].hypot(r[(1, 0)]);
     let pitch = (-r[(2, 0)]).atan2(cp);
     if cp > 1e-12 {
