@@ -34,6 +34,17 @@
 //! Exact quarter turns of the table stay exact: every constant here is a product of the
 //! exact cosines and sines of [`Angle`].
 //!
+//! # From `urdf` rows
+//! A [`Convention::Urdf`](crate::Convention::Urdf) row is `origin_k · Rot(axis_k, q_k)`. With
+//! `A_k` its [alignment](crate::Placement::alignment) (`A_k z = axis_k`, exact for coordinate
+//! axes) this is `(origin_k A_k) · Z_k(q_k) · A_kᵀ`: the joint frame is `origin_k A_k`, the link
+//! frame (the URDF child link's) is `L_k = A_kᵀ` in it, `P_0 = base · origin_1 A_1`,
+//! `P_k = A_kᵀ origin_{k+1} A_{k+1}`, `P_n = A_nᵀ · tool`. A turn of a revolute joint's frame
+//! about its own axis (the last factor `Rz(θ)` of `P_{k−1}`'s rotation in ZXZ angles) moves
+//! into the joint's offset, as it sits in a DH table's `θ`: consecutive parallel axes then have
+//! nothing but a translation between them, and the symbolic engine adds their angles (UR5 from
+//! its URDF: 363 operations for C(q, q̇), from its DH table 352).
+//!
 //! # Structural questions
 //! [`ChainRef`] answers them once for every consumer: the joint axes at `q = 0`
 //! ([`axis`](ChainRef::axis)), how consecutive axes sit ([`twist`](ChainRef::twist): their
@@ -380,7 +391,7 @@ pub use owned::JointChain;
 #[cfg(feature = "std")]
 mod owned {
     use super::{Body, ChainRef};
-    use crate::{Convention, Frame, Inertial, JointKind, JointValue, RobotModel};
+    use crate::{Angle, Convention, Frame, Inertial, JointKind, JointValue, RobotModel};
 
     /// A robot's kinematic structure, owned: what [`RobotModel::chain`] builds, once, and
     /// every consumer reads through [`view`](JointChain::view).
@@ -409,7 +420,7 @@ mod owned {
             let mut before = Vec::with_capacity(n);
             let mut link = Vec::with_capacity(n);
             let mut constant = Vec::with_capacity(n);
-            let mut offset = Vec::with_capacity(n);
+            let mut offset: Vec<f64> = Vec::with_capacity(n);
             for l in &model.links {
                 let (b, k, c, o) = match (conv, &l.placement) {
                     (Convention::Urdf, Some(p)) => {
@@ -451,6 +462,23 @@ mod owned {
                 placements.push(link[k - 1].compose(&before[k]).compose(&constant[k]));
             }
             placements.push(link[n - 1].compose(&tool));
+            if conv == Convention::Urdf {
+                // A URDF origin may turn the joint frame about the joint's own axis (UR's
+                // parallel shoulder and elbow axes, a quarter turn apart): that turn belongs
+                // to the joint's offset, as in a DH table, where the symbolic engine sees
+                // parallel axes with no rotation between them and adds their angles.
+                for k in 0..n {
+                    if model.links[k].joint == JointKind::Revolute {
+                        let theta = turn_about_z(&placements[k].r);
+                        if theta != 0.0 {
+                            let (cos, sin) = Angle::from_radians(-theta).cos_sin();
+                            placements[k] =
+                                placements[k].compose(&JointValue::Revolute { cos, sin }.motion());
+                            offset[k] += theta;
+                        }
+                    }
+                }
+            }
             let bodies = model
                 .links
                 .iter()
@@ -484,6 +512,31 @@ mod owned {
                 gravity: self.gravity,
             }
         }
+    }
+
+    /// The angle θ of the last factor of `r = Rz(ψ) · Rx(α) · Rz(θ)` (ZXZ angles), with
+    /// |θ| ≤ π/2 where the choice is free; for a rotation about z alone (α = 0 or π), all of
+    /// it. Exact multiples of π/2 for rotations with entries in {−1, 0, 1}.
+    fn turn_about_z(r: &[[f64; 3]; 3]) -> f64 {
+        let (r20, r21) = (r[2][0], r[2][1]);
+        let theta = if r20 == 0.0 && r21 == 0.0 {
+            if r[2][2] > 0.0 {
+                // Rz(θ)
+                r[1][0].atan2(r[0][0])
+            } else {
+                // Rx(π) · Rz(θ)
+                (-r[1][0]).atan2(r[0][0])
+            }
+        } else {
+            let t = r20.atan2(r21);
+            if t.abs() > core::f64::consts::FRAC_PI_2 {
+                (-r20).atan2(-r21)
+            } else {
+                t
+            }
+        };
+        // −0 and 0 alike: no turn.
+        theta + 0.0
     }
 
     /// Mass properties given in frame `f` (centre of mass in it, inertia in its axes),

@@ -433,3 +433,38 @@ fn urdf_convention_rows_take_origin_and_axis_only() {
     let e = RobotModel::from_toml_str(dh).unwrap_err().to_string();
     assert!(e.contains("unknown field `origin`"), "{e}");
 }
+
+#[test]
+fn urdf_turns_about_the_joint_axis_become_offsets() {
+    // UR5's shoulder, elbow and first wrist axes are parallel (y in the file), their frames a
+    // quarter turn apart about that axis: the chain sees parallel axes with nothing but a
+    // translation between them, as from UR's DH table, so the engine adds their angles.
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../tests/data/urdf/ur5.urdf");
+    let ur5 = dhgen_model::urdf::read_file(path, &UrdfOptions::default()).unwrap();
+    let chain = ur5.model.chain();
+    let view = chain.view();
+    assert!(view.parallel_to_previous(2), "elbow after shoulder");
+    assert!(view.parallel_to_previous(3), "wrist 1 after elbow");
+    let offsets: Vec<f64> = view.bodies.iter().map(|b| b.offset).collect();
+    assert_eq!(offsets[3], core::f64::consts::FRAC_PI_2, "{offsets:?}");
+    // The frames are unchanged: the tool pose is URDF's at any q.
+    let q = [0.3, -1.1, 0.8, 0.4, -0.6, 1.2];
+    let t = view.tool_at(&q);
+    let mut m = nalgebra::Matrix4::<f64>::identity();
+    for (k, l) in ur5.model.links.iter().enumerate() {
+        let p = l.placement.unwrap();
+        let rpy = p.origin.rpy.map(|a| a.radians());
+        m *= origin(p.origin.xyz, rpy).to_homogeneous()
+            * nalgebra::Rotation3::from_axis_angle(
+                &nalgebra::Unit::new_normalize(Vector3::from(p.axis)),
+                q[k],
+            )
+            .to_homogeneous();
+    }
+    for i in 0..3 {
+        assert!((t.p[i] - m[(i, 3)]).abs() < 1e-14);
+        for j in 0..3 {
+            assert!((t.r[i][j] - m[(i, j)]).abs() < 1e-14);
+        }
+    }
+}
