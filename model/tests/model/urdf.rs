@@ -468,3 +468,54 @@ fn urdf_turns_about_the_joint_axis_become_offsets() {
         }
     }
 }
+
+#[test]
+fn urdf_base_starts_the_chain_below_the_root() {
+    // From l1b: the chain is j2, j3 and the fixed tool; l1b's own mass stays with the fixed
+    // base, j1 is above the chain.
+    let r = read(
+        ARM,
+        "arm.urdf",
+        &UrdfOptions {
+            base: Some("l1b".into()),
+            ..Default::default()
+        },
+    )
+    .unwrap();
+    let names: Vec<&str> = r.joints.iter().map(|j| j.name.as_str()).collect();
+    assert_eq!(names, ["j2", "j3"]);
+    assert_eq!((r.base.as_str(), r.tip.as_str()), ("l1b", "tool"));
+    let full = read(ARM, "arm.urdf", &UrdfOptions::default()).unwrap();
+    // The pose of `tool` relative to l1b, with j1 at zero, equals the full chain's at q1 = 0
+    // seen from l1b's pose.
+    let q = [0.7, 0.2];
+    let sub = r.model.chain().view().tool_at(&q);
+    let l1b = origin([0.1, 0.0, 0.05], [0.0, 0.0, 0.3])
+        * origin([0.0, 0.0, 0.3], [0.0; 3])
+        * origin([0.0, 0.05, 0.3], [core::f64::consts::FRAC_PI_2, 0.0, 0.0]);
+    let whole = full.model.chain().view().tool_at(&[0.0, q[0], q[1]]);
+    let want = l1b.inverse().to_homogeneous()
+        * nalgebra::Matrix4::from_fn(|i, j| match (i, j) {
+            (3, 3) => 1.0,
+            (3, _) => 0.0,
+            (i, 3) => whole.p[i],
+            (i, j) => whole.r[i][j],
+        });
+    for i in 0..3 {
+        assert!((sub.p[i] - want[(i, 3)]).abs() < 1e-14, "{sub:?} {want}");
+        for j in 0..3 {
+            assert!((sub.r[i][j] - want[(i, j)]).abs() < 1e-14);
+        }
+    }
+    assert!((r.model.links[0].inertial.unwrap().mass - 1.5).abs() < 1e-15);
+    // A tip that is not below the base.
+    let e = error(
+        ARM,
+        &UrdfOptions {
+            base: Some("l2".into()),
+            tip: Some("l1".into()),
+            ..Default::default()
+        },
+    );
+    assert!(e.contains("the tip `l1` is not below the base `l2`"), "{e}");
+}
