@@ -115,6 +115,14 @@ pub use dhgen_model::{ChainRef, JointKind};
 pub use dhgen_model::{Convention, JointChain, LoadError, RobotModel};
 #[cfg(feature = "std")]
 pub use dynamics::{Christoffel, ChristoffelPlane};
+/// Inertial parameters: the regressor `Y` with `τ = Y π` ([`Robot::regressor`],
+/// [`Robot::parameters`], the order and frames of `π`) and the base parameters
+/// ([`Robot::base_parameters`], [`BaseParameters`](parameters::BaseParameters)).
+#[cfg(feature = "std")]
+pub mod parameters {
+    pub use crate::dynamics::base_parameters::BaseParameters;
+    pub use crate::dynamics::regressor::{BODY_PARAMETER_NAMES, BODY_PARAMETERS, body_parameters};
+}
 #[cfg(feature = "std")]
 pub use error::Error;
 #[cfg(feature = "std")]

@@ -6,7 +6,9 @@
 //! - [`coriolis`]: the Christoffel-consistent Coriolis matrix in O(n²);
 //! - [`forward`]: forward dynamics by CRBA, RNEA and a Cholesky solve;
 //! - [`derivatives`]: ∂τ/∂q by tangents of the recursion, ∂τ/∂q̇, D⁻¹, ∂q̈/∂(q, q̇, τ);
-//! - [`rates`]: Ḋ(q, q̇) and Cᵀ(q, q̇) q̇.
+//! - [`rates`]: Ḋ(q, q̇) and Cᵀ(q, q̇) q̇;
+//! - [`regressor`]: the inertial parameters π and the joint torque regressor Y, τ = Y π;
+//! - [`base_parameters`]: the minimal set of parameter combinations Y determines.
 //!
 //! All of them share one per-call pass ([`Robot::body_states`]) that puts each joint axis and
 //! each body inertia into world coordinates; the constants come from
@@ -16,6 +18,7 @@
 //! `sign(0) = 0`) are joint-side terms: they enter the mass matrix, inverse and forward
 //! dynamics, but not the Christoffel symbols, the Coriolis matrix or gravity.
 
+pub mod base_parameters;
 mod christoffel;
 mod coriolis;
 mod crba;
@@ -23,6 +26,7 @@ mod derivatives;
 mod forward;
 mod gravity;
 mod rates;
+pub mod regressor;
 mod rnea;
 mod spatial;
 
@@ -98,7 +102,7 @@ pub(crate) fn accumulate_composites(states: &mut [BodyState]) {
 
 /// The sign of `x`, with `sign(0) = 0` (`f64::signum` gives ±1 for ±0).
 #[inline]
-fn sign(x: f64) -> f64 {
+pub(crate) fn sign(x: f64) -> f64 {
     if x > 0.0 {
         1.0
     } else if x < 0.0 {

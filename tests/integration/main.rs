@@ -41,6 +41,7 @@ mod planning_collision;
 mod planning_potential;
 mod planning_prm;
 mod planning_workspace;
+mod regressor;
 mod rotation;
 mod runtime_laws;
 mod runtime_reference;

@@ -1,0 +1,231 @@
+//! The inertial parameters and the regressor (`dhgen::parameters`): `Y π = τ` on every
+//! robot, the base parameters `Y_b π_b = τ`, their count against an independent rank
+//! computation, and the planar elbow's regrouping against the textbook's closed form.
+
+use dhgen::Robot;
+use nalgebra::{DMatrix, DVector};
+
+/// Every description of the repository with mass properties, and the URDF fixtures.
+fn robots() -> Vec<(String, Robot)> {
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    let mut out = Vec::new();
+    for dir in ["robots", "tests/fixtures"] {
+        let mut paths: Vec<_> = std::fs::read_dir(root.join(dir))
+            .unwrap()
+            .map(|e| e.unwrap().path())
+            .filter(|p| p.extension().is_some_and(|e| e == "toml"))
+            .collect();
+        paths.sort();
+        for p in paths {
+            let r = Robot::from_toml_file(&p).unwrap();
+            // The 17-joint snake is covered by the generator tests; here it would only be slow.
+            if r.has_dynamics() && r.dof() <= 12 {
+                out.push((p.file_stem().unwrap().to_string_lossy().into_owned(), r));
+            }
+        }
+    }
+    for (file, tip) in [
+        ("panda.urdf", "panda_hand"),
+        ("random_2.urdf", "link_7"),
+        ("random_3.urdf", "tool"),
+    ] {
+        let path = root.join("tests/data/urdf").join(file);
+        let options = dhgen::model::urdf::UrdfOptions {
+            tip: Some(tip.into()),
+            ..Default::default()
+        };
+        let r = dhgen::model::urdf::read_file(&path, &options).unwrap();
+        out.push((file.to_string(), Robot::from_model(r.model)));
+    }
+    out
+}
+
+/// A seeded state within the joint limits.
+fn state(robot: &Robot, seed: u64) -> (Vec<f64>, Vec<f64>, Vec<f64>) {
+    let mut x = seed.wrapping_mul(0x9E37_79B9_7F4A_7C15) | 1;
+    let mut next = move || {
+        x ^= x << 13;
+        x ^= x >> 7;
+        x ^= x << 17;
+        (x >> 11) as f64 / (1u64 << 53) as f64
+    };
+    let q = robot
+        .chain()
+        .bodies
+        .iter()
+        .map(|b| match b.limits {
+            Some([lo, hi]) => lo + (hi - lo) * next(),
+            None => (2.0 * next() - 1.0) * 3.0,
+        })
+        .collect();
+    let n = robot.dof();
+    let qd = (0..n).map(|_| 4.0 * next() - 2.0).collect();
+    let qdd = (0..n).map(|_| 4.0 * next() - 2.0).collect();
+    (q, qd, qdd)
+}
+
+fn close(what: &str, got: &DVector<f64>, want: &DVector<f64>, tol: f64) -> f64 {
+    let scale = want.amax().max(1.0);
+    let err = (got - want).amax() / scale;
+    assert!(err <= tol, "{what}: {got} vs {want}: {err:e}");
+    err
+}
+
+#[test]
+fn regressor_times_parameters_is_inverse_dynamics() {
+    for (name, robot) in robots() {
+        let pi = robot.parameters();
+        assert_eq!(pi.len(), robot.parameter_count());
+        assert_eq!(robot.parameter_names().len(), pi.len());
+        let base = robot.base_parameters();
+        let pi_b = base.reduce(&pi);
+        let (mut worst, mut worst_b) = (0.0f64, 0.0f64);
+        for seed in 0..20 {
+            let (q, qd, qdd) = state(&robot, seed);
+            let tau = robot.inverse_dynamics(&q[..], &qd[..], &qdd[..]);
+            let y = robot.regressor(&q[..], &qd[..], &qdd[..]);
+            worst = worst.max(close(&name, &(&y * &pi), &tau, 1e-12));
+            let yb = base.base_regressor(&y);
+            worst_b = worst_b.max(close(&name, &(&yb * &pi_b), &tau, 1e-12));
+        }
+        println!(
+            "{name}: {} parameters, {} base; Y π = τ to {worst:.1e}, Y_b π_b = τ to {worst_b:.1e}",
+            pi.len(),
+            base.count()
+        );
+    }
+}
+
+/// The rank of the regressor stacked over `states` seeded states, by Householder QR of
+/// blocks (no pivoting) and a singular value decomposition of the triangular factor: a
+/// computation that shares nothing with the pivoted reduction but the regressor.
+fn stacked_rank(robot: &Robot, states: u64) -> usize {
+    let p = robot.parameter_count();
+    let mut r = DMatrix::<f64>::zeros(0, p);
+    for seed in 1000..1000 + states {
+        let (q, qd, qdd) = state(robot, seed);
+        let y = robot.regressor(&q[..], &qd[..], &qdd[..]);
+        let mut block = DMatrix::zeros(r.nrows() + y.nrows(), p);
+        block.rows_mut(0, r.nrows()).copy_from(&r);
+        block.rows_mut(r.nrows(), y.nrows()).copy_from(&y);
+        let rr = block.qr().r();
+        r = rr.rows(0, rr.nrows().min(p)).into_owned();
+    }
+    let s = r.singular_values();
+    let top = s.amax();
+    s.iter().filter(|&&x| x > 1e-9 * top).count()
+}
+
+#[test]
+fn base_parameter_count_is_the_rank() {
+    for (name, robot) in robots() {
+        let count = robot.base_parameters().count();
+        let rank = stacked_rank(&robot, 1000);
+        println!("{name}: {count} base parameters, rank over 1,000 states {rank}");
+        assert_eq!(count, rank, "{name}");
+    }
+}
+
+#[test]
+fn planar_elbow_base_parameters_are_the_textbooks() {
+    // Spong, Hutchinson and Vidyasagar's planar elbow (§7.4): with the centres of mass on the
+    // links' x axes, τ = Y_text(q, q̇, q̈) θ with
+    // θ = [m1 lc1² + m2 (l1² + lc2²) + I1 + I2, m2 l1 lc2, m2 lc2² + I2, m1 lc1 + m2 l1, m2 lc2].
+    let robot = Robot::from_toml_file(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/robots/planar_elbow.toml"
+    ))
+    .unwrap();
+    let links = &robot.model().links;
+    let (l1, m1, m2) = (
+        links[0].a,
+        links[0].inertial.unwrap().mass,
+        links[1].inertial.unwrap().mass,
+    );
+    // The centre of mass sits at com.x from the far end (standard DH frames).
+    let lc1 = l1 + links[0].inertial.unwrap().com[0];
+    let lc2 = links[1].a + links[1].inertial.unwrap().com[0];
+    let (i1, i2) = (
+        links[0].inertial.unwrap().inertia[2][2],
+        links[1].inertial.unwrap().inertia[2][2],
+    );
+    let theta = DVector::from_vec(vec![
+        m1 * lc1 * lc1 + m2 * (l1 * l1 + lc2 * lc2) + i1 + i2,
+        m2 * l1 * lc2,
+        m2 * lc2 * lc2 + i2,
+        m1 * lc1 + m2 * l1,
+        m2 * lc2,
+    ]);
+    let g = 9.81;
+    let y_text = |q: &[f64], qd: &[f64], qdd: &[f64]| {
+        let (c1, c2, s2, c12) = (q[0].cos(), q[1].cos(), q[1].sin(), (q[0] + q[1]).cos());
+        DMatrix::from_row_slice(
+            2,
+            5,
+            &[
+                qdd[0],
+                2.0 * c2 * qdd[0] + c2 * qdd[1] - s2 * qd[1] * qd[1] - 2.0 * s2 * qd[0] * qd[1],
+                qdd[1],
+                g * c1,
+                g * c12,
+                0.0,
+                c2 * qdd[0] + s2 * qd[0] * qd[0],
+                qdd[0] + qdd[1],
+                0.0,
+                g * c12,
+            ],
+        )
+    };
+    let base = robot.base_parameters();
+    let pi_b = base.reduce(&robot.parameters());
+    let b = base.count();
+    let samples = 40;
+    let mut yb = DMatrix::zeros(2 * samples, b);
+    let mut yt = DMatrix::zeros(2 * samples, 5);
+    for s in 0..samples {
+        let (q, qd, qdd) = state(&robot, s as u64);
+        let y = robot.regressor(&q[..], &qd[..], &qdd[..]);
+        yb.rows_mut(2 * s, 2).copy_from(&base.base_regressor(&y));
+        yt.rows_mut(2 * s, 2).copy_from(&y_text(&q, &qd, &qdd));
+        // The textbook's closed form is this robot's dynamics.
+        let tau = robot.inverse_dynamics(&q[..], &qd[..], &qdd[..]);
+        close("textbook τ", &(y_text(&q, &qd, &qdd) * &theta), &tau, 1e-12);
+    }
+    // The textbook's five are not independent: θ2 = m2 l1 lc2 = l1 θ5 with l1 a constant of
+    // the geometry, so its columns 1 and 4 enter the dynamics only as l1·Y1 + Y4: neither alone
+    // is a combination of base columns, their sum is.
+    let merged = DMatrix::from_columns(&[
+        yt.column(0).into_owned(),
+        yt.column(2).into_owned(),
+        yt.column(3).into_owned(),
+        yt.column(1) * l1 + yt.column(4),
+    ]);
+    let theta_merged = DVector::from_vec(vec![theta[0], theta[2], theta[3], theta[4]]);
+    let svd = yb.clone().svd(true, true);
+    let residual_of = |target: &DMatrix<f64>| {
+        let m = svd.solve(target, 1e-12).unwrap();
+        ((&yb * &m - target).amax(), m)
+    };
+    for c in [1, 4] {
+        let (r, _) = residual_of(&yt.columns(c, 1).into_owned());
+        assert!(
+            r > 1e-3,
+            "textbook column {c} alone is a base combination ({r:e})"
+        );
+    }
+    // Every merged textbook column is a fixed combination of base columns: Y_text = Y_b M ...
+    let (residual, m) = residual_of(&merged);
+    assert!(residual < 1e-10, "residual {residual:e}");
+    // ... so Y_b (π_b − M θ) = 0, and Y_b has full column rank: π_b = M θ. The base
+    // parameters beyond the textbook's are the first moments along y, zero here.
+    close("π_b = M θ", &(&m * &theta_merged), &pi_b, 1e-12);
+    let names = robot.parameter_names();
+    let rules = base.rules(&names);
+    println!("planar elbow: {b} base parameters: {rules:?}; π_b = {pi_b}");
+    assert_eq!(b, 6, "{rules:?}");
+    assert_eq!(
+        (0..b).filter(|&k| pi_b[k].abs() > 1e-12).count(),
+        4,
+        "four non-zero base parameters (θ1, θ3, θ4 and θ5 = θ2 / l1): {rules:?} = {pi_b}"
+    );
+}
