@@ -115,6 +115,8 @@ pub use dhgen_model::{ChainRef, JointKind};
 pub use dhgen_model::{Convention, JointChain, LoadError, RobotModel};
 #[cfg(feature = "std")]
 pub use dynamics::{Christoffel, ChristoffelPlane};
+#[cfg(feature = "std")]
+pub mod payload;
 /// Inertial parameters: the regressor `Y` with `τ = Y π` ([`Robot::regressor`],
 /// [`Robot::parameters`], the order and frames of `π`) and the base parameters
 /// ([`Robot::base_parameters`], [`BaseParameters`](parameters::BaseParameters)).

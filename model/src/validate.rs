@@ -810,7 +810,14 @@ fn check_inertia<L: Clone>(
     tensor: &[[f64; 3]; 3],
     allow_nonphysical: bool,
 ) -> Result<(), Error<L>> {
-    check_inertia_tensor(tensor, allow_nonphysical).map_err(|message| at.err(&loc, message))
+    check_inertia_tensor(tensor, allow_nonphysical).map_err(|message| {
+        let hint = if message.contains("triangle") {
+            "; set `allow_nonphysical_inertia = true` at the top level to accept published values like these"
+        } else {
+            ""
+        };
+        at.err(&loc, format!("{message}{hint}"))
+    })
 }
 
 /// The rule for an inertia tensor about the centre of mass, as a message: finite entries,
@@ -837,8 +844,7 @@ pub fn check_inertia_tensor(tensor: &[[f64; 3]; 3], allow_nonphysical: bool) -> 
     }
     if !allow_nonphysical && !obeys_triangle_inequality(tensor) {
         return Err(format!(
-            "principal moments {a}, {b}, {c} violate the triangle inequality ({a} + {b} < {c}); \
-                 set `allow_nonphysical_inertia = true` at the top level to accept published values like these",
+            "principal moments {a}, {b}, {c} violate the triangle inequality ({a} + {b} < {c})",
             a = short(e[0]),
             b = short(e[1]),
             c = short(e[2])

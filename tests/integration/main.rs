@@ -36,6 +36,7 @@ mod ik_closed_form;
 mod ik_numeric;
 mod ik_random;
 mod non_finite;
+mod payload;
 mod planar_elbow;
 mod planning_collision;
 mod planning_potential;

@@ -1,0 +1,250 @@
+//! A payload held by the tool, given at run time: what the gripper picked up.
+//!
+//! The dynamics are linear in the inertial parameters, so a payload adds
+//! `Jᵀ(q) · W(q, q̇, q̈; π_p)` to the arm's own terms: `J` the tool's geometric Jacobian, and
+//! `W` the wrench the payload needs at the tool frame's origin, linear in its ten parameters
+//! `π_p`. Nothing is re-derived: the functions here take any arm, generated (`m::Robot`) or
+//! runtime (`dhgen::Robot`), through [`ArmDynamics`], and add the payload's terms to the arm's.
+//!
+//! ```
+//! dhgen::robot!(mod puma560 = "robots/puma560.toml");
+//! use dhgen::payload::{Payload, inverse_dynamics};
+//!
+//! // 2 kg, 5 cm out along the tool's z axis, a 10 cm cube.
+//! let box_ = Payload::new(2.0, [0.0, 0.0, 0.05], [[3.3e-3, 0.0, 0.0], [0.0, 3.3e-3, 0.0], [0.0, 0.0, 3.3e-3]])
+//!     .unwrap();
+//! let q = dhgen::nalgebra::SVector::from([0.1, -0.6, 0.4, 0.3, 0.8, -0.2]);
+//! let zero = dhgen::nalgebra::SVector::<f64, 6>::zeros();
+//! let tau = inverse_dynamics(&puma560::Robot, &box_, &q, &zero, &zero);
+//! let tau0 = dhgen::ArmDynamics::inverse_dynamics(&puma560::Robot, &q, &zero, &zero);
+//! assert!((tau - tau0).norm() > 1.0); // holding 2 kg takes torque
+//! ```
+
+use crate::arm::{Arm, ArmAllocator, ArmDynamics};
+use nalgebra::{DefaultAllocator, Matrix3, Matrix6, OMatrix, OVector, Vector3, Vector6};
+
+/// A rigid body fixed in the tool frame: mass, centre of mass and inertia about it, in the
+/// tool frame's axes. Built only through [`Payload::new`], which checks it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Payload {
+    mass: f64,
+    com: [f64; 3],
+    inertia: [[f64; 3]; 3],
+}
+
+/// Why a payload was refused.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+#[error("payload: {0}")]
+pub struct PayloadError(String);
+
+impl Payload {
+    /// A payload of `mass` kg with centre of mass `com` (m, tool frame) and inertia tensor
+    /// `inertia` about the centre of mass (kg·m², tool-frame axes). Refused, with the reason:
+    /// a negative or non-finite mass, a non-finite centre of mass, an inertia tensor that is
+    /// not symmetric, not positive semi-definite or breaks the triangle inequality (the rules
+    /// of the description format).
+    pub fn new(mass: f64, com: [f64; 3], inertia: [[f64; 3]; 3]) -> Result<Payload, PayloadError> {
+        dhgen_model::validate::check_mass(mass).map_err(PayloadError)?;
+        if com.iter().any(|c| !c.is_finite()) {
+            return Err(PayloadError(format!(
+                "centre of mass {com:?} is not finite"
+            )));
+        }
+        for a in 0..3 {
+            for b in 0..a {
+                if inertia[a][b] != inertia[b][a] {
+                    return Err(PayloadError(format!(
+                        "inertia tensor is not symmetric: [{a}][{b}] = {} but [{b}][{a}] = {}",
+                        inertia[a][b], inertia[b][a]
+                    )));
+                }
+            }
+        }
+        dhgen_model::validate::check_inertia_tensor(&inertia, false).map_err(PayloadError)?;
+        Ok(Payload { mass, com, inertia })
+    }
+
+    /// No payload.
+    pub const NONE: Payload = Payload {
+        mass: 0.0,
+        com: [0.0; 3],
+        inertia: [[0.0; 3]; 3],
+    };
+
+    /// The ten parameters about the tool frame's origin, tool-frame axes, in the order of
+    /// [`BODY_PARAMETER_NAMES`](crate::parameters::BODY_PARAMETER_NAMES).
+    pub fn parameters(&self) -> [f64; 10] {
+        crate::parameters::body_parameters(self.mass, &self.com, &self.inertia)
+    }
+
+    /// Mass, kg.
+    pub fn mass(&self) -> f64 {
+        self.mass
+    }
+
+    /// Centre of mass, tool frame, m.
+    pub fn com(&self) -> [f64; 3] {
+        self.com
+    }
+
+    /// Inertia about the centre of mass, tool-frame axes, kg·m².
+    pub fn inertia(&self) -> [[f64; 3]; 3] {
+        self.inertia
+    }
+}
+
+/// The payload in world axes at the tool pose: mass, first moment `h = m·c` and inertia about
+/// the tool origin.
+struct World {
+    mass: f64,
+    h: Vector3<f64>,
+    i: Matrix3<f64>,
+}
+
+fn world<A: Arm>(arm: &A, p: &Payload, q: &OVector<f64, A::Dof>) -> World
+where
+    DefaultAllocator: ArmAllocator<A::Dof>,
+{
+    let r = arm.fk(q).rotation.to_rotation_matrix().into_inner();
+    let pi = p.parameters();
+    let h_tool = Vector3::new(pi[1], pi[2], pi[3]);
+    let i_tool = Matrix3::new(
+        pi[4], pi[5], pi[7], pi[5], pi[6], pi[8], pi[7], pi[8], pi[9],
+    );
+    World {
+        mass: pi[0],
+        h: r * h_tool,
+        i: r * i_tool * r.transpose(),
+    }
+}
+
+/// The wrench `[force; moment about the tool origin]` (world axes) that moves the payload
+/// with tool twist `v = [v; ω]` and classical acceleration `a = [a; α]` under gravity `g`.
+fn wrench(w: &World, v: &Vector6<f64>, a: &Vector6<f64>, g: &Vector3<f64>) -> Vector6<f64> {
+    let (omega, lin) = (v.fixed_rows::<3>(3), a.fixed_rows::<3>(0) - g);
+    let alpha = a.fixed_rows::<3>(3);
+    let force = lin * w.mass + alpha.cross(&w.h) + omega.cross(&omega.cross(&w.h));
+    let moment = w.i * alpha + omega.cross(&(w.i * omega)) + w.h.cross(&lin);
+    Vector6::new(force.x, force.y, force.z, moment.x, moment.y, moment.z)
+}
+
+fn gravity_vector<A: Arm>(arm: &A) -> Vector3<f64>
+where
+    DefaultAllocator: ArmAllocator<A::Dof>,
+{
+    Vector3::from(arm.chain().gravity)
+}
+
+/// Inverse dynamics with the payload: the arm's `τ` plus `Jᵀ W`.
+pub fn inverse_dynamics<A: ArmDynamics>(
+    arm: &A,
+    payload: &Payload,
+    q: &OVector<f64, A::Dof>,
+    qd: &OVector<f64, A::Dof>,
+    qdd: &OVector<f64, A::Dof>,
+) -> OVector<f64, A::Dof>
+where
+    DefaultAllocator: ArmAllocator<A::Dof>,
+{
+    arm.inverse_dynamics(q, qd, qdd) + payload_torque(arm, payload, q, qd, Some(qdd))
+}
+
+/// `C q̇ + g` plus friction with the payload.
+pub fn bias<A: ArmDynamics>(
+    arm: &A,
+    payload: &Payload,
+    q: &OVector<f64, A::Dof>,
+    qd: &OVector<f64, A::Dof>,
+) -> OVector<f64, A::Dof>
+where
+    DefaultAllocator: ArmAllocator<A::Dof>,
+{
+    arm.bias(q, qd) + payload_torque(arm, payload, q, qd, None)
+}
+
+/// The payload's share of inverse dynamics, `Jᵀ W(q, q̇, q̈)` (`q̈ = None`: zero).
+pub fn payload_torque<A: Arm>(
+    arm: &A,
+    payload: &Payload,
+    q: &OVector<f64, A::Dof>,
+    qd: &OVector<f64, A::Dof>,
+    qdd: Option<&OVector<f64, A::Dof>>,
+) -> OVector<f64, A::Dof>
+where
+    DefaultAllocator: ArmAllocator<A::Dof>,
+{
+    let j = arm.jacobian(q);
+    let v = &j * qd;
+    let mut a = arm.jdot_qdot(q, qd);
+    if let Some(qdd) = qdd {
+        a += &j * qdd;
+    }
+    let w = world(arm, payload, q);
+    j.tr_mul(&wrench(&w, &v, &a, &gravity_vector(arm)))
+}
+
+/// The payload's 6×6 spatial inertia at the tool origin, world axes, rows `[force; moment]`
+/// against `[a; α]`.
+fn spatial_inertia(w: &World) -> Matrix6<f64> {
+    let mut m = Matrix6::zeros();
+    let hx = w.h.cross_matrix();
+    m.fixed_view_mut::<3, 3>(0, 0)
+        .copy_from(&(Matrix3::identity() * w.mass));
+    m.fixed_view_mut::<3, 3>(0, 3).copy_from(&(-hx));
+    m.fixed_view_mut::<3, 3>(3, 0).copy_from(&hx);
+    m.fixed_view_mut::<3, 3>(3, 3).copy_from(&w.i);
+    m
+}
+
+/// The mass matrix with the payload: `D(q) + Jᵀ M J`, `M` the payload's spatial inertia at
+/// the tool origin.
+pub fn mass_matrix<A: ArmDynamics>(
+    arm: &A,
+    payload: &Payload,
+    q: &OVector<f64, A::Dof>,
+) -> OMatrix<f64, A::Dof, A::Dof>
+where
+    DefaultAllocator: ArmAllocator<A::Dof>,
+{
+    let j = arm.jacobian(q);
+    let m = spatial_inertia(&world(arm, payload, q));
+    arm.mass_matrix(q) + j.tr_mul(&(m * &j))
+}
+
+/// Gravity torques with the payload: `g(q) − Jᵀ [m g; h × g]`.
+pub fn gravity<A: ArmDynamics>(
+    arm: &A,
+    payload: &Payload,
+    q: &OVector<f64, A::Dof>,
+) -> OVector<f64, A::Dof>
+where
+    DefaultAllocator: ArmAllocator<A::Dof>,
+{
+    let w = world(arm, payload, q);
+    let g = gravity_vector(arm);
+    let f = -g * w.mass;
+    let n = -w.h.cross(&g);
+    arm.gravity(q)
+        + arm
+            .jacobian(q)
+            .tr_mul(&Vector6::new(f.x, f.y, f.z, n.x, n.y, n.z))
+}
+
+/// Forward dynamics with the payload: `(D + Jᵀ M J) q̈ = τ − bias`, by the one rule for a
+/// singular inertia matrix ([`inertia_cholesky`](crate::inertia_cholesky)); `None` where it
+/// is singular to working precision or q̈ is not finite.
+pub fn forward_dynamics<A: ArmDynamics>(
+    arm: &A,
+    payload: &Payload,
+    q: &OVector<f64, A::Dof>,
+    qd: &OVector<f64, A::Dof>,
+    tau: &OVector<f64, A::Dof>,
+) -> Option<OVector<f64, A::Dof>>
+where
+    DefaultAllocator: ArmAllocator<A::Dof>,
+{
+    let d = mass_matrix(arm, payload, q);
+    let rhs = tau - bias(arm, payload, q, qd);
+    let qdd = crate::inertia_cholesky(d)?.solve(&rhs);
+    qdd.iter().all(|x| x.is_finite()).then_some(qdd)
+}

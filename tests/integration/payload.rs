@@ -1,0 +1,188 @@
+//! A payload given at run time (`dhgen::payload`) against the same body written into the
+//! description: added to the last link through the description format, τ, D, g, the bias and
+//! q̈ are the same to 1e-12, on the runtime path and on generated modules.
+
+use crate::catalogue::{odd, panda, puma560};
+use dhgen::payload::{self, Payload};
+use dhgen::{ArmDynamics, Robot, RobotModel};
+use nalgebra::{DVector, Matrix3, SVector, Vector3};
+
+fn box_payload() -> Payload {
+    // 1.7 kg, off-centre, with products of inertia (a tilted box).
+    Payload::new(
+        1.7,
+        [0.03, -0.02, 0.06],
+        [
+            [0.012, 0.001, -0.002],
+            [0.001, 0.010, 0.0015],
+            [-0.002, 0.0015, 0.008],
+        ],
+    )
+    .unwrap()
+}
+
+/// The description with the payload merged into the last link, written through the format
+/// (`to_toml` and back), as a user would edit the file.
+fn with_payload_in_description(model: &RobotModel, p: &Payload) -> Robot {
+    let mut m = model.clone();
+    let tool = m
+        .tool
+        .map_or_else(dhgen::model::Frame::identity, |t| t.frame::<f64>());
+    let r = Matrix3::from_fn(|i, j| tool.r[i][j]);
+    let com_p = r * Vector3::from(p.com()) + Vector3::from(tool.p);
+    let i_p = r * Matrix3::from_fn(|i, j| p.inertia()[i][j]) * r.transpose();
+    let last = m.links.last_mut().unwrap();
+    let own = last.inertial.unwrap();
+    let (m1, m2) = (own.mass, p.mass());
+    let c1 = Vector3::from(own.com);
+    let mass = m1 + m2;
+    let com = (c1 * m1 + com_p * m2) / mass;
+    let steiner =
+        |d: Vector3<f64>, m: f64| (Matrix3::identity() * d.norm_squared() - d * d.transpose()) * m;
+    let inertia = Matrix3::from_fn(|i, j| own.inertia[i][j])
+        + steiner(c1 - com, m1)
+        + i_p
+        + steiner(com_p - com, m2);
+    last.inertial = Some(dhgen::model::Inertial {
+        mass,
+        com: com.into(),
+        inertia: core::array::from_fn(|i| core::array::from_fn(|j| inertia[(i, j)])),
+    });
+    Robot::from_toml_str(&m.to_toml()).unwrap()
+}
+
+fn close(what: &str, got: &[f64], want: &[f64]) {
+    let scale = want.iter().fold(1.0f64, |m, x| m.max(x.abs()));
+    for (g, w) in got.iter().zip(want) {
+        assert!(
+            (g - w).abs() <= 1e-12 * scale,
+            "{what}: {got:?} vs {want:?}"
+        );
+    }
+}
+
+fn check<A: ArmDynamics<Dof = nalgebra::Const<N>>, const N: usize>(
+    name: &str,
+    arm: &A,
+    model: &RobotModel,
+) {
+    let p = box_payload();
+    let merged = with_payload_in_description(model, &p);
+    for s in 0..10 {
+        let t = s as f64;
+        let q = SVector::<f64, N>::from_fn(|i, _| (0.7 * t + 1.3 * i as f64).sin());
+        let qd = SVector::<f64, N>::from_fn(|i, _| (0.3 * t - 0.9 * i as f64).cos());
+        let qdd = SVector::<f64, N>::from_fn(|i, _| (1.1 * t + 0.5 * i as f64).sin() * 2.0);
+        let (qv, qdv, qddv) = (
+            DVector::from_column_slice(q.as_slice()),
+            DVector::from_column_slice(qd.as_slice()),
+            DVector::from_column_slice(qdd.as_slice()),
+        );
+        let tau = payload::inverse_dynamics(arm, &p, &q, &qd, &qdd);
+        let want = merged.inverse_dynamics(&qv, &qdv, &qddv);
+        close(&format!("{name} tau"), tau.as_slice(), want.as_slice());
+        let d = payload::mass_matrix(arm, &p, &q);
+        close(
+            &format!("{name} D"),
+            d.as_slice(),
+            merged.mass_matrix(&qv).as_slice(),
+        );
+        let g = payload::gravity(arm, &p, &q);
+        close(
+            &format!("{name} g"),
+            g.as_slice(),
+            merged.gravity(&qv).as_slice(),
+        );
+        let b = payload::bias(arm, &p, &q, &qd);
+        close(
+            &format!("{name} bias"),
+            b.as_slice(),
+            merged.bias(&qv, &qdv).as_slice(),
+        );
+        let acc = payload::forward_dynamics(arm, &p, &q, &qd, &tau).unwrap();
+        close(&format!("{name} qdd"), acc.as_slice(), qdd.as_slice());
+        // No payload is the arm itself.
+        let none = payload::inverse_dynamics(arm, &Payload::NONE, &q, &qd, &qdd);
+        close(
+            &format!("{name} none"),
+            none.as_slice(),
+            arm.inverse_dynamics(&q, &qd, &qdd).as_slice(),
+        );
+    }
+}
+
+/// A runtime robot seen with a fixed number of joints (the `Arm` of `dhgen::Robot` is
+/// dynamically sized; this checks it through the same generic functions).
+fn check_runtime(name: &str, robot: &Robot) {
+    let p = box_payload();
+    let merged = with_payload_in_description(robot.model(), &p);
+    let n = robot.dof();
+    for s in 0..10 {
+        let t = s as f64;
+        let q = DVector::from_fn(n, |i, _| (0.7 * t + 1.3 * i as f64).sin());
+        let qd = DVector::from_fn(n, |i, _| (0.3 * t - 0.9 * i as f64).cos());
+        let qdd = DVector::from_fn(n, |i, _| (1.1 * t + 0.5 * i as f64).sin() * 2.0);
+        let tau = payload::inverse_dynamics(robot, &p, &q, &qd, &qdd);
+        close(
+            name,
+            tau.as_slice(),
+            merged.inverse_dynamics(&q, &qd, &qdd).as_slice(),
+        );
+        let d = payload::mass_matrix(robot, &p, &q);
+        close(name, d.as_slice(), merged.mass_matrix(&q).as_slice());
+        let acc = payload::forward_dynamics(robot, &p, &q, &qd, &tau).unwrap();
+        close(name, acc.as_slice(), qdd.as_slice());
+    }
+}
+
+#[test]
+fn generated_payload_equals_the_body_in_the_description() {
+    let model = |f: &str| {
+        RobotModel::from_toml_file(format!("{}/{f}", env!("CARGO_MANIFEST_DIR"))).unwrap()
+    };
+    check::<_, 6>("puma560", &puma560::Robot, &model("robots/puma560.toml"));
+    check::<_, 7>("panda", &panda::Robot, &model("robots/panda.toml"));
+    check::<_, { odd::DOF }>("odd", &odd::Robot, &model("tests/fixtures/odd.toml"));
+}
+
+#[test]
+fn runtime_payload_equals_the_body_in_the_description() {
+    for f in [
+        "robots/stanford.toml",
+        "robots/scara.toml",
+        "tests/fixtures/tilted_modified.toml",
+    ] {
+        let robot = Robot::from_toml_file(format!("{}/{f}", env!("CARGO_MANIFEST_DIR"))).unwrap();
+        check_runtime(f, &robot);
+    }
+    let urdf = dhgen::model::urdf::read_file(
+        concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/urdf/ur5.urdf"),
+        &Default::default(),
+    )
+    .unwrap();
+    check_runtime("ur5.urdf", &Robot::from_model(urdf.model));
+}
+
+#[test]
+fn bad_payloads_are_refused_at_construction() {
+    let i = [[0.01, 0.0, 0.0], [0.0, 0.01, 0.0], [0.0, 0.0, 0.01]];
+    let e = Payload::new(-1.0, [0.0; 3], i).unwrap_err().to_string();
+    assert!(e.contains("negative"), "{e}");
+    let e = Payload::new(f64::NAN, [0.0; 3], i).unwrap_err().to_string();
+    assert!(e.contains("finite"), "{e}");
+    let e = Payload::new(1.0, [0.0, f64::INFINITY, 0.0], i)
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("not finite"), "{e}");
+    let not_psd = [[0.01, 0.0, 0.0], [0.0, -0.01, 0.0], [0.0, 0.0, 0.01]];
+    let e = Payload::new(1.0, [0.0; 3], not_psd)
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("positive semi-definite"), "{e}");
+    let thin = [[0.01, 0.0, 0.0], [0.0, 0.01, 0.0], [0.0, 0.0, 0.05]];
+    let e = Payload::new(1.0, [0.0; 3], thin).unwrap_err().to_string();
+    assert!(e.contains("triangle"), "{e}");
+    let skew = [[0.01, 0.001, 0.0], [0.0, 0.01, 0.0], [0.0, 0.0, 0.01]];
+    let e = Payload::new(1.0, [0.0; 3], skew).unwrap_err().to_string();
+    assert!(e.contains("symmetric"), "{e}");
+}
