@@ -1,0 +1,105 @@
+//! Inertial parameters: the payload's cost over plain inverse dynamics (generated and
+//! runtime), and the runtime regressor `Y` and base regressor, for the PUMA 560 and the Panda:
+//! `{robot}/{quantity}/{variant}`. Every call takes the next of 64 fixed random states.
+//!
+//! `cargo bench --bench parameters`.
+
+use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
+use dhgen::payload::{self, Payload};
+use dhgen::{ArmDynamics, Robot};
+use nalgebra::{DVector, SVector};
+use rand::rngs::StdRng;
+use rand::{Rng, SeedableRng};
+use std::hint::black_box;
+use std::time::Duration;
+
+const STATES: usize = 64;
+
+dhgen::robot!(mod puma560 = "robots/puma560.toml");
+dhgen::robot!(mod panda = "robots/panda.toml");
+
+fn states<const N: usize>(seed: u64) -> Vec<[SVector<f64, N>; 3]> {
+    let mut rng = StdRng::seed_from_u64(seed);
+    (0..STATES)
+        .map(|_| {
+            [
+                SVector::from_fn(|_, _| rng.random_range(-2.5..2.5)),
+                SVector::from_fn(|_, _| rng.random_range(-2.0..2.0)),
+                SVector::from_fn(|_, _| rng.random_range(-5.0..5.0)),
+            ]
+        })
+        .collect()
+}
+
+fn run<S, R>(
+    c: &mut Criterion,
+    robot: &str,
+    what: &str,
+    variant: &str,
+    s: &[S],
+    f: impl Fn(&S) -> R,
+) {
+    c.benchmark_group(robot)
+        .bench_function(BenchmarkId::new(what, variant), |b| {
+            let mut i = 0;
+            b.iter(|| {
+                let x = black_box(&s[i % STATES]);
+                i += 1;
+                black_box(f(x))
+            })
+        });
+}
+
+macro_rules! bench_robot {
+    ($c:expr, $m:ident, $file:literal) => {{
+        const N: usize = $m::DOF;
+        let name = stringify!($m);
+        let s = states::<N>(7);
+        let p = Payload::new(
+            1.7,
+            [0.03, -0.02, 0.06],
+            [
+                [0.012, 0.001, -0.002],
+                [0.001, 0.010, 0.0015],
+                [-0.002, 0.0015, 0.008],
+            ],
+        )
+        .unwrap();
+        run($c, name, "tau", "generated", &s, |[q, qd, qdd]| {
+            $m::Robot.inverse_dynamics(q, qd, qdd)
+        });
+        run($c, name, "tau_payload", "generated", &s, |[q, qd, qdd]| {
+            payload::inverse_dynamics(&$m::Robot, &p, q, qd, qdd)
+        });
+        let robot = Robot::from_toml_file(concat!(env!("CARGO_MANIFEST_DIR"), "/", $file)).unwrap();
+        let d: Vec<[DVector<f64>; 3]> = s
+            .iter()
+            .map(|x| x.clone().map(|v| DVector::from_column_slice(v.as_slice())))
+            .collect();
+        run($c, name, "tau", "runtime", &d, |[q, qd, qdd]| {
+            robot.inverse_dynamics(q, qd, qdd)
+        });
+        run($c, name, "tau_payload", "runtime", &d, |[q, qd, qdd]| {
+            payload::inverse_dynamics(&robot, &p, q, qd, qdd)
+        });
+        run($c, name, "regressor", "runtime", &d, |[q, qd, qdd]| {
+            robot.regressor(q, qd, qdd)
+        });
+        let base = robot.base_parameters();
+        run($c, name, "base_regressor", "runtime", &d, |[q, qd, qdd]| {
+            base.base_regressor(&robot.regressor(q, qd, qdd))
+        });
+    }};
+}
+
+fn parameters(c: &mut Criterion) {
+    bench_robot!(c, puma560, "robots/puma560.toml");
+    bench_robot!(c, panda, "robots/panda.toml");
+}
+
+criterion_group! {
+    name = benches;
+    config = Criterion::default().warm_up_time(Duration::from_millis(300)).measurement_time(Duration::from_millis(1200)).sample_size(50);
+    targets = parameters
+}
+criterion_main!(benches);
