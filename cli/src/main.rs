@@ -8,6 +8,7 @@
 //! - `dhgen latex ROBOT.toml`: D(q), c_ijk and g(q) as LaTeX equations;
 //! - `dhgen ops ROBOT.toml`: operation counts of the generated functions;
 //! - `dhgen convert ROBOT --to dh|mdh|toml|urdf`: between URDF and the description format;
+//! - `dhgen params ROBOT [--latex]`: the inertial parameters and the base parameters;
 //! - `dhgen random --dof N [--style general|industrial] [--seed S]`: a random valid arm.
 //!
 //! Any failure is one line on stderr and a non-zero exit status: 2 for a malformed command
@@ -112,6 +113,16 @@ enum Command {
         /// Output file; standard output if omitted.
         #[arg(short, long)]
         output: Option<PathBuf>,
+    },
+    /// Print the inertial parameters π (the order `regressor` uses: per link m, m·c, inertia
+    /// about the link frame's origin; then armature and friction), the number of base
+    /// parameters and the regrouping rules.
+    Params {
+        #[command(flatten)]
+        robot: Source,
+        /// Print the base parameters as LaTeX equations.
+        #[arg(long)]
+        latex: bool,
     },
     /// Write a random valid arm (a seeded, reproducible description) for scale tests and
     /// benchmarks: `general` (no exact angles, full inertias) or `industrial` (twists and
@@ -303,6 +314,16 @@ fn run(command: Command) -> Result<String, String> {
                 None => Ok(text),
             }
         }
+        Command::Params { robot, latex } => {
+            let r = load(&robot)?;
+            if !r.has_dynamics() {
+                return Err(format!(
+                    "{}: the robot has no mass properties, so no inertial parameters",
+                    robot.display()
+                ));
+            }
+            Ok(params_report(&r, latex))
+        }
         Command::Random {
             dof,
             style,
@@ -327,6 +348,73 @@ fn run(command: Command) -> Result<String, String> {
     }
 }
 
+/// `dhgen params`: π by name, then the base parameters and what each regroups.
+fn params_report(r: &Robot, latex: bool) -> String {
+    use std::fmt::Write as _;
+    let names = r.parameter_names();
+    let pi = r.parameters();
+    let base = r.base_parameters();
+    let rules = base.rules(&names);
+    let pi_b = base.reduce(&pi);
+    let mut out = String::new();
+    if latex {
+        let tex = |name: &str| {
+            let split = name
+                .find(|c: char| c.is_ascii_digit())
+                .unwrap_or(name.len());
+            let (stem, index) = name.split_at(split);
+            format!("\\mathrm{{{stem}}}_{{{index}}}")
+        };
+        let _ = writeln!(out, "\\begin{{align*}}");
+        for (k, rule) in rules.iter().enumerate() {
+            let mut body = String::new();
+            for token in rule.split(' ') {
+                let t = match token {
+                    "+" | "−" => token.replace('−', "-"),
+                    t => match t.split_once('·') {
+                        Some((c, n)) => format!("{c}\\,{}", tex(n)),
+                        None => tex(t),
+                    },
+                };
+                body += &t;
+                body.push(' ');
+            }
+            let _ = writeln!(
+                out,
+                "\\pi_{{b,{}}} &= {}&&= {:.6} \\\\",
+                k + 1,
+                body.trim_end(),
+                pi_b[k]
+            );
+        }
+        let _ = writeln!(out, "\\end{{align*}}");
+        return out;
+    }
+    let _ = writeln!(
+        out,
+        "{}: {} parameters (per link: m, m·c, inertia about the link frame origin; then armature and friction)",
+        r.model().name,
+        pi.len()
+    );
+    for (chunk, values) in names.chunks(10).zip(pi.as_slice().chunks(10)) {
+        let row: Vec<String> = chunk
+            .iter()
+            .zip(values)
+            .map(|(n, v)| format!("{n} = {v:.6}"))
+            .collect();
+        let _ = writeln!(out, "  {}", row.join(", "));
+    }
+    let _ = writeln!(
+        out,
+        "{} base parameters (the rest are without effect or regrouped into these):",
+        base.count()
+    );
+    for (k, rule) in rules.iter().enumerate() {
+        let _ = writeln!(out, "  πb{} = {rule} = {:.6}", k + 1, pi_b[k]);
+    }
+    out
+}
+
 fn main() -> ExitCode {
     let cli = match Cli::try_parse() {
         Ok(cli) => cli,
@@ -338,7 +426,7 @@ fn main() -> ExitCode {
                 }
                 ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand => {
                     eprintln!(
-                        "dhgen: missing command: info, eval, emit, latex, ops, convert or random (see dhgen --help)"
+                        "dhgen: missing command: info, eval, emit, latex, ops, convert, params or random (see dhgen --help)"
                     );
                     ExitCode::from(2)
                 }

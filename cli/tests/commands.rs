@@ -845,3 +845,16 @@ fn convert_goes_between_urdf_and_dh() {
     assert!(e.contains("xml"), "{e}");
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+#[test]
+fn params_prints_the_parameters_and_the_base_set() {
+    let out = stdout(&["params", "robots/planar_elbow.toml"]);
+    assert!(out.contains("planar_elbow: 20 parameters"), "{out}");
+    assert!(out.contains("m1 = 2.000000, mx1 = -1.000000"), "{out}");
+    assert!(out.contains("6 base parameters"), "{out}");
+    let tex = stdout(&["params", "robots/puma560.toml", "--latex"]);
+    assert!(tex.starts_with("\\begin{align*}"), "{tex}");
+    assert_eq!(tex.matches("\\pi_{b,").count(), 36, "{tex}");
+    let e = failure(&["params", "tests/fixtures/bare.toml"]);
+    assert!(e.contains("no mass properties"), "{e}");
+}
