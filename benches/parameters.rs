@@ -68,8 +68,17 @@ macro_rules! bench_robot {
         run($c, name, "tau", "generated", &s, |[q, qd, qdd]| {
             $m::Robot.inverse_dynamics(q, qd, qdd)
         });
+        run(
+            $c,
+            name,
+            "tau_payload",
+            "generated_jt_w",
+            &s,
+            |[q, qd, qdd]| payload::inverse_dynamics(&$m::Robot, &p, q, qd, qdd),
+        );
+        let pp = p.parameters();
         run($c, name, "tau_payload", "generated", &s, |[q, qd, qdd]| {
-            payload::inverse_dynamics(&$m::Robot, &p, q, qd, qdd)
+            $m::inverse_dynamics_with_payload(q, qd, qdd, &pp)
         });
         let robot = Robot::from_toml_file(concat!(env!("CARGO_MANIFEST_DIR"), "/", $file)).unwrap();
         let d: Vec<[DVector<f64>; 3]> = s

@@ -6,6 +6,12 @@
 //! `π_p`. Nothing is re-derived: the functions here take any arm, generated (`m::Robot`) or
 //! runtime (`dhgen::Robot`), through [`ArmDynamics`], and add the payload's terms to the arm's.
 //!
+//! For τ in a control loop, generated modules have a faster form: `m::inverse_dynamics_with_payload(q,
+//! qd, qdd, &payload.parameters())` runs the Newton–Euler recursion once with the payload's ten
+//! parameters as inputs of the last body (PUMA 560: 513 operations against 457 for τ alone;
+//! Panda 882 against 818), where `inverse_dynamics` here adds `Jᵀ W` from the Jacobian and
+//! `J̇ q̇` (about 3× the cost of τ).
+//!
 //! ```
 //! dhgen::robot!(mod puma560 = "robots/puma560.toml");
 //! use dhgen::payload::{Payload, inverse_dynamics};

@@ -119,7 +119,8 @@ impl<R: Ring> MassMoments<R> {
         }
     }
 
-    fn plus(&self, o: &MassMoments<R>) -> MassMoments<R> {
+    /// Two bodies' moments about the same origin, combined.
+    pub fn plus(&self, o: &MassMoments<R>) -> MassMoments<R> {
         MassMoments {
             m: self.m.clone() + o.m.clone(),
             h: add3(&self.h, &o.h),

@@ -58,6 +58,7 @@ fn sym_load(s: Sym) -> (Ident, TokenStream) {
         Sym::Qd(j) => (format!("qd{}", j + 1), quote!(qd[#j])),
         Sym::Qdd(j) => (format!("qdd{}", j + 1), quote!(qdd[#j])),
         Sym::Tau(j) => (format!("tau{}", j + 1), quote!(tau[#j])),
+        Sym::Payload(k) => (format!("pl{k}"), quote!(payload[#k])),
     };
     (ident(&name), load)
 }
@@ -209,6 +210,7 @@ pub fn emit(graph: &SharedGraph, outputs: Vec<Output>) -> Emitted {
                         Sym::Qd(_) => Some("qd"),
                         Sym::Qdd(_) => Some("qdd"),
                         Sym::Tau(_) => Some("tau"),
+                        Sym::Payload(_) => Some("payload"),
                         _ => None,
                     };
                     if let Some(a) = array.filter(|a| !inputs.contains(a)) {

@@ -65,6 +65,7 @@ fn check<A: ArmDynamics<Dof = nalgebra::Const<N>>, const N: usize>(
     name: &str,
     arm: &A,
     model: &RobotModel,
+    generated: impl Fn(&[f64; N], &[f64; N], &[f64; N], &[f64; 10]) -> SVector<f64, N>,
 ) {
     let p = box_payload();
     let merged = with_payload_in_description(model, &p);
@@ -81,6 +82,13 @@ fn check<A: ArmDynamics<Dof = nalgebra::Const<N>>, const N: usize>(
         let tau = payload::inverse_dynamics(arm, &p, &q, &qd, &qdd);
         let want = merged.inverse_dynamics(&qv, &qdv, &qddv);
         close(&format!("{name} tau"), tau.as_slice(), want.as_slice());
+        // The generated symbolic form: the payload's parameters as inputs of the recursion.
+        let symbolic = generated(&q.into(), &qd.into(), &qdd.into(), &p.parameters());
+        close(
+            &format!("{name} generated tau with payload"),
+            symbolic.as_slice(),
+            want.as_slice(),
+        );
         let d = payload::mass_matrix(arm, &p, &q);
         close(
             &format!("{name} D"),
@@ -140,9 +148,24 @@ fn generated_payload_equals_the_body_in_the_description() {
     let model = |f: &str| {
         RobotModel::from_toml_file(format!("{}/{f}", env!("CARGO_MANIFEST_DIR"))).unwrap()
     };
-    check::<_, 6>("puma560", &puma560::Robot, &model("robots/puma560.toml"));
-    check::<_, 7>("panda", &panda::Robot, &model("robots/panda.toml"));
-    check::<_, { odd::DOF }>("odd", &odd::Robot, &model("tests/fixtures/odd.toml"));
+    check::<_, 6>(
+        "puma560",
+        &puma560::Robot,
+        &model("robots/puma560.toml"),
+        puma560::inverse_dynamics_with_payload,
+    );
+    check::<_, 7>(
+        "panda",
+        &panda::Robot,
+        &model("robots/panda.toml"),
+        panda::inverse_dynamics_with_payload,
+    );
+    check::<_, { odd::DOF }>(
+        "odd",
+        &odd::Robot,
+        &model("tests/fixtures/odd.toml"),
+        odd::inverse_dynamics_with_payload,
+    );
 }
 
 #[test]

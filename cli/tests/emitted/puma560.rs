@@ -1420,6 +1420,19 @@ pub mod puma560 {
             let tau = self.inverse_dynamics_smooth(qd, qdd);
             tau
         }
+        ///Inverse dynamics with a payload held by the tool: `payload` is its ten inertial parameters about the tool frame's origin, in the tool frame (`m, m·cx, m·cy, m·cz, Ixx, Ixy, Iyy, Ixz, Iyz, Izz`, what `dhgen::payload::Payload::parameters` gives). The arm's τ and the payload's in one pass of the recursion: τ is linear in the payload's parameters, which stay inputs rather than constants.
+        #[must_use]
+        pub fn inverse_dynamics_with_payload(
+            &self,
+            qd: &impl ::dhgen::JointArray<T, DOF>,
+            qdd: &impl ::dhgen::JointArray<T, DOF>,
+            payload: &[T; 10],
+        ) -> na::SVector<T, DOF> {
+            let qd = &qd.to_array();
+            let qdd = &qdd.to_array();
+            let tau = self.inverse_dynamics_with_payload_smooth(qd, qdd, payload);
+            tau
+        }
         ///The torques at zero acceleration, C(q, q̇) q̇ + g(q) + friction: what a computed-torque law adds to D(q) v.
         #[doc(alias = "nonLinearEffects")]
         #[must_use]
@@ -4033,6 +4046,771 @@ pub mod puma560 {
             out
         }
         #[inline(never)]
+        fn inverse_dynamics_with_payload_smooth_part0(
+            &self,
+            qd: &[T; DOF],
+            qdd: &[T; DOF],
+            payload: &[T; 10],
+            w: &mut [T; 52],
+            out: &mut na::SVector<T, DOF>,
+        ) {
+            let qd1: T = qd[0];
+            let qd2: T = qd[1];
+            let qd3: T = qd[2];
+            let qd4: T = qd[3];
+            let qd5: T = qd[4];
+            let qd6: T = qd[5];
+            let qdd1: T = qdd[0];
+            let qdd2: T = qdd[1];
+            let qdd3: T = qdd[2];
+            let qdd4: T = qdd[3];
+            let qdd5: T = qdd[4];
+            let qdd6: T = qdd[5];
+            let pl1: T = payload[1];
+            let pl2: T = payload[2];
+            let pl3: T = payload[3];
+            let pl4: T = payload[4];
+            let pl5: T = payload[5];
+            let pl7: T = payload[7];
+            let pl6: T = payload[6];
+            let pl8: T = payload[8];
+            let pl9: T = payload[9];
+            let c2: T = self.c[1];
+            let s2: T = self.s[1];
+            let c3: T = self.c[2];
+            let s3: T = self.s[2];
+            let c4: T = self.c[3];
+            let s4: T = self.s[3];
+            let c5: T = self.c[4];
+            let s5: T = self.s[4];
+            let c6: T = self.c[5];
+            let s6: T = self.s[5];
+            let k47: T = ::dhgen::nalgebra::convert::<f64, T>(0.0028799999999999997f64);
+            let k49: T = ::dhgen::nalgebra::convert::<f64, T>(0.00024216f64);
+            let k52: T = ::dhgen::nalgebra::convert::<f64, T>(0.00004f64);
+            let k58: T = ::dhgen::nalgebra::convert::<f64, T>(9.81f64);
+            let k80: T = ::dhgen::nalgebra::convert::<f64, T>(0.15005f64);
+            let k82: T = ::dhgen::nalgebra::convert::<f64, T>(0.4318f64);
+            let k147: T = ::dhgen::nalgebra::convert::<f64, T>(0.0203f64);
+            let k262: T = ::dhgen::nalgebra::convert::<f64, T>(0.35f64);
+            let k268: T = ::dhgen::nalgebra::convert::<f64, T>(3.9585f64);
+            let k303: T = ::dhgen::nalgebra::convert::<f64, T>(1.0311851499999998f64);
+            let k306: T = ::dhgen::nalgebra::convert::<f64, T>(0.0070992f64);
+            let k311: T = ::dhgen::nalgebra::convert::<f64, T>(0.26917800000000003f64);
+            let k317: T = ::dhgen::nalgebra::convert::<f64, T>(1.50501635f64);
+            let k321: T = ::dhgen::nalgebra::convert::<f64, T>(0.023750999999999998f64);
+            let k328: T = ::dhgen::nalgebra::convert::<f64, T>(0.023751f64);
+            let k333: T = ::dhgen::nalgebra::convert::<f64, T>(0.620084f64);
+            let k383: T = ::dhgen::nalgebra::convert::<f64, T>(0.06767999999999999f64);
+            let k385: T = ::dhgen::nalgebra::convert::<f64, T>(0.336f64);
+            let k415: T = ::dhgen::nalgebra::convert::<f64, T>(0.090474288f64);
+            let k417: T = ::dhgen::nalgebra::convert::<f64, T>(0.013454287999999998f64);
+            let k420: T = ::dhgen::nalgebra::convert::<f64, T>(0.0047376f64);
+            let k426: T = ::dhgen::nalgebra::convert::<f64, T>(0.10951999999999999f64);
+            let k464: T = ::dhgen::nalgebra::convert::<f64, T>(0.015579999999999998f64);
+            let k489: T = ::dhgen::nalgebra::convert::<f64, T>(0.00209602f64);
+            let k493: T = ::dhgen::nalgebra::convert::<f64, T>(0.0013f64);
+            let k524: T = ::dhgen::nalgebra::convert::<f64, T>(0.0003f64);
+            let k527: T = ::dhgen::nalgebra::convert::<f64, T>(0.0004f64);
+            let t264: T = qdd1 * k262;
+            w[0] = t264;
+            let t56: T = qdd1 * s2;
+            let t55: T = qd1 * c2;
+            w[1] = t55;
+            let t61: T = qd2 * t55;
+            let t64: T = t56 + t61;
+            w[2] = t64;
+            let t336: T = t64 * k303;
+            let t57: T = qdd1 * c2;
+            let t54: T = qd1 * s2;
+            w[3] = t54;
+            let t62: T = qd2 * t54;
+            let t65: T = t57 - t62;
+            w[4] = t65;
+            let t337: T = t65 * k306;
+            let t339: T = t336 - t337;
+            let t340: T = qdd2 * k311;
+            let t342: T = t339 - t340;
+            let t334: T = qd2 * k333;
+            let t325: T = t54 * k311;
+            let t329: T = t55 * k328;
+            let t331: T = t325 + t329;
+            let t335: T = t334 - t331;
+            w[5] = t335;
+            let t358: T = t55 * t335;
+            let t318: T = t55 * k317;
+            let t315: T = t54 * k306;
+            let t319: T = t318 - t315;
+            let t322: T = qd2 * k321;
+            let t324: T = t319 - t322;
+            w[6] = t324;
+            let t359: T = qd2 * t324;
+            let t360: T = t358 - t359;
+            let t367: T = t342 + t360;
+            let t60: T = c2 * k58;
+            w[7] = t60;
+            let t370: T = t60 * k268;
+            let t376: T = t367 - t370;
+            w[8] = t376;
+            let t73: T = c3 * t64;
+            let t74: T = s3 * t65;
+            let t75: T = t73 + t74;
+            let t71: T = c3 * t55;
+            let t69: T = s3 * t54;
+            let t72: T = t71 - t69;
+            w[9] = t72;
+            let t120: T = qd3 * t72;
+            let t123: T = t75 + t120;
+            w[10] = t123;
+            let t429: T = t123 * k415;
+            let t118: T = qd2 + qd3;
+            w[11] = t118;
+            let t427: T = t118 * k426;
+            let t424: T = t72 * k420;
+            let t428: T = t427 - t424;
+            w[12] = t428;
+            let t438: T = t72 * t428;
+            let t418: T = t72 * k417;
+            let t421: T = t118 * k420;
+            let t423: T = t418 - t421;
+            w[13] = t423;
+            let t439: T = t118 * t423;
+            let t440: T = t438 - t439;
+            let t447: T = t429 + t440;
+            let t91: T = qd2 * k82;
+            let t92: T = t54 * k80;
+            let t93: T = t91 - t92;
+            let t105: T = t54 * t93;
+            let t90: T = t55 * k80;
+            let t106: T = t55 * t90;
+            let t107: T = t105 - t106;
+            let t86: T = t65 * k82;
+            let t110: T = t107 - t86;
+            w[14] = t110;
+            let t450: T = t110 * k385;
+            let t83: T = qdd2 * k82;
+            let t84: T = t64 * k80;
+            let t85: T = t83 - t84;
+            let t89: T = t60 + t85;
+            let t101: T = qd2 * t90;
+            let t94: T = t55 * k82;
+            let t102: T = t54 * t94;
+            let t104: T = t101 + t102;
+            let t109: T = t89 + t104;
+            let t116: T = c3 * t109;
+            let t59: T = s2 * k58;
+            w[15] = t59;
+            let t81: T = t65 * k80;
+            let t88: T = t59 + t81;
+            let t96: T = t55 * t94;
+            let t98: T = qd2 * t93;
+            let t99: T = t96 + t98;
+            let t108: T = t88 - t99;
+            let t114: T = s3 * t108;
+            let t117: T = t116 - t114;
+            w[16] = t117;
+            let t451: T = t117 * k383;
+            let t452: T = t450 - t451;
+            let t456: T = t447 + t452;
+            w[17] = t456;
+            let t135: T = c4 * t123;
+            let t119: T = qdd2 + qdd3;
+            w[18] = t119;
+            let t136: T = s4 * t119;
+            let t138: T = t135 - t136;
+            let t66: T = c3 * t54;
+            let t67: T = s3 * t55;
+            let t68: T = t66 + t67;
+            w[19] = t68;
+            let t129: T = s4 * t68;
+            let t131: T = c4 * t118;
+            let t133: T = t129 + t131;
+            w[20] = t133;
+            let t188: T = qd4 * t133;
+            let t192: T = t138 - t188;
+            w[21] = t192;
+            let t495: T = t192 * k489;
+            let t186: T = qd4 + t72;
+            w[22] = t186;
+            let t491: T = t133 * k489;
+            w[23] = t491;
+            let t501: T = t186 * t491;
+            let t494: T = t186 * k493;
+            let t499: T = t133 * t494;
+            let t503: T = t501 - t499;
+            let t512: T = t495 + t503;
+            let t111: T = c3 * t108;
+            let t112: T = s3 * t109;
+            let t113: T = t111 + t112;
+            w[24] = t113;
+            let t145: T = k82 * t119;
+            let t152: T = t113 - t145;
+            let t158: T = t68 * k82;
+            let t159: T = t72 * k147;
+            let t160: T = t158 - t159;
+            let t161: T = t72 * t160;
+            let t157: T = t118 * k147;
+            let t162: T = t118 * t157;
+            let t163: T = t161 - t162;
+            let t173: T = t152 + t163;
+            let t180: T = s4 * t173;
+            let t149: T = k82 * t123;
+            let t78: T = c3 * t65;
+            let t76: T = s3 * t64;
+            let t79: T = t78 - t76;
+            let t121: T = qd3 * t68;
+            let t124: T = t79 - t121;
+            w[25] = t124;
+            let t150: T = t124 * k147;
+            let t151: T = t149 - t150;
+            let t154: T = t110 + t151;
+            let t169: T = t68 * t157;
+            let t155: T = k82 * t118;
+            let t170: T = t72 * t155;
+            let t172: T = t169 + t170;
+            let t175: T = t154 + t172;
+            let t182: T = c4 * t175;
+            let t184: T = t180 + t182;
+            w[26] = t184;
+            let t515: T = t184 * k464;
+            let t518: T = t512 + t515;
+            let t202: T = c5 * t192;
+            let t187: T = qdd4 + t124;
+            w[27] = t187;
+            let t203: T = s5 * t187;
+            let t204: T = t202 + t203;
+            let t200: T = c5 * t186;
+            let t125: T = c4 * t68;
+            let t126: T = s4 * t118;
+            let t128: T = t125 - t126;
+            w[28] = t128;
+            let t198: T = s5 * t128;
+            let t201: T = t200 - t198;
+            let t218: T = qd5 * t201;
+            let t221: T = t204 + t218;
+            let t529: T = t221 * k524;
+            let t216: T = qd5 + t133;
+            let t528: T = t216 * k527;
+            let t532: T = t201 * t528;
+            let t526: T = t201 * k524;
+            let t533: T = t216 * t526;
+            let t534: T = t532 - t533;
+            let t541: T = t529 + t534;
+            let t50: T = pl4 + k49;
+            let t233: T = c6 * t221;
+            let t139: T = s4 * t123;
+            let t141: T = c4 * t119;
+            let t143: T = t139 + t141;
+            let t190: T = qd4 * t128;
+            let t193: T = t143 + t190;
+            w[29] = t193;
+            let t217: T = qdd5 + t193;
+            let t234: T = s6 * t217;
+            let t236: T = t233 - t234;
+            let t195: T = c5 * t128;
+            let t196: T = s5 * t186;
+            let t197: T = t195 + t196;
+            let t227: T = s6 * t197;
+            let t229: T = c6 * t216;
+            let t231: T = t227 + t229;
+            w[30] = t231;
+            let t255: T = qd6 * t231;
+            let t259: T = t236 - t255;
+            w[31] = t259;
+            let t609: T = t50 * t259;
+            let t237: T = s6 * t221;
+            let t239: T = c6 * t217;
+            let t241: T = t237 + t239;
+            let t223: T = c6 * t197;
+            let t224: T = s6 * t216;
+            let t226: T = t223 - t224;
+            w[32] = t226;
+            let t257: T = qd6 * t226;
+            let t260: T = t241 + t257;
+            w[33] = t260;
+            let t610: T = pl5 * t260;
+            let t612: T = t609 - t610;
+            let t207: T = c5 * t187;
+            let t205: T = s5 * t192;
+            let t208: T = t207 - t205;
+            let t219: T = qd5 * t197;
+            let t222: T = t208 - t219;
+            let t254: T = qdd6 + t222;
+            w[34] = t254;
+            let t613: T = pl7 * t254;
+            let t614: T = t612 + t613;
+            let t603: T = pl7 * t226;
+            let t604: T = pl8 * t231;
+            let t606: T = t603 - t604;
+            let t53: T = pl9 + k52;
+            let t253: T = qd6 + t201;
+            w[35] = t253;
+            let t607: T = t53 * t253;
+            let t608: T = t606 + t607;
+            let t627: T = t231 * t608;
+            let t597: T = pl5 * t226;
+            let t51: T = pl6 + k49;
+            let t598: T = t51 * t231;
+            let t600: T = t597 - t598;
+            let t601: T = pl8 * t253;
+            let t602: T = t600 + t601;
+            let t629: T = t253 * t602;
+            let t630: T = t627 + t629;
+            let t639: T = t614 - t630;
+            let t148: T = t119 * k147;
+            let t153: T = t117 + t148;
+            let t164: T = t118 * t155;
+            let t166: T = t68 * t160;
+            let t167: T = t164 + t166;
+            let t174: T = t153 - t167;
+            w[36] = t174;
+            let t214: T = c5 * t174;
+            let t176: T = c4 * t173;
+            let t177: T = s4 * t175;
+            let t179: T = t176 - t177;
+            w[37] = t179;
+            let t212: T = s5 * t179;
+            let t215: T = t214 - t212;
+            w[38] = t215;
+            let t642: T = pl2 * t215;
+            let t48: T = pl3 + k47;
+            w[39] = t48;
+            let t209: T = c5 * t179;
+            let t210: T = s5 * t174;
+            let t211: T = t209 + t210;
+            w[40] = t211;
+            let t247: T = s6 * t211;
+            let t249: T = c6 * t184;
+            let t251: T = t247 + t249;
+            w[41] = t251;
+            let t643: T = t48 * t251;
+            let t645: T = t642 + t643;
+            let t654: T = t639 + t645;
+            let t667: T = c6 * t654;
+            let t615: T = pl5 * t259;
+            let t616: T = t51 * t260;
+            let t618: T = t615 - t616;
+            let t619: T = pl8 * t254;
+            let t620: T = t618 + t619;
+            let t591: T = t50 * t226;
+            let t592: T = pl5 * t231;
+            let t594: T = t591 - t592;
+            let t595: T = pl7 * t253;
+            let t596: T = t594 + t595;
+            let t632: T = t253 * t596;
+            let t633: T = t226 * t608;
+            let t634: T = t632 - t633;
+            let t640: T = t620 + t634;
+            let t243: T = c6 * t211;
+            let t244: T = s6 * t184;
+            let t246: T = t243 - t244;
+            w[42] = t246;
+            let t646: T = t48 * t246;
+            let t647: T = pl1 * t215;
+            let t648: T = t646 - t647;
+            let t655: T = t640 + t648;
+            let t668: T = s6 * t655;
+            let t670: T = t667 - t668;
+            let t677: T = t541 + t670;
+            w[43] = t677;
+            let t691: T = c5 * t677;
+            let t530: T = t222 * k524;
+            let t525: T = t197 * k524;
+            let t535: T = t216 * t525;
+            let t536: T = t197 * t528;
+            let t537: T = t535 - t536;
+            let t542: T = t530 + t537;
+            let t621: T = pl7 * t259;
+            let t622: T = pl8 * t260;
+            let t624: T = t621 - t622;
+            let t625: T = t53 * t254;
+            let t626: T = t624 + t625;
+            let t635: T = t226 * t602;
+            let t636: T = t231 * t596;
+            let t638: T = t635 + t636;
+            let t641: T = t626 + t638;
+            let t649: T = pl1 * t251;
+            let t651: T = pl2 * t246;
+            let t652: T = t649 + t651;
+            let t656: T = t641 - t652;
+            out[5] = t656;
+            let t678: T = t542 + t656;
+            w[44] = t678;
+            let t692: T = s5 * t678;
+            let t694: T = t691 - t692;
+            let t699: T = t518 + t694;
+            w[45] = t699;
+            let t715: T = c4 * t699;
+            w[46] = t715;
+            let t490: T = t128 * k489;
+            w[47] = t490;
+            let t504: T = t186 * t490;
+            let t505: T = t128 * t494;
+            let t506: T = t504 - t505;
+            let t496: T = t193 * k489;
+            let t513: T = t506 - t496;
+            let t517: T = t179 * k464;
+            let t519: T = t513 + t517;
+            w[48] = t519;
+            let t671: T = s6 * t654;
+            let t673: T = c6 * t655;
+            let t675: T = t671 + t673;
+            w[49] = t675;
+            let t531: T = t217 * k527;
+            let t538: T = t197 * t526;
+            let t539: T = t201 * t525;
+            let t540: T = t538 - t539;
+            let t543: T = t531 + t540;
+            w[50] = t543;
+            let t695: T = t675 - t543;
+            w[51] = t695;
+        }
+        #[inline(never)]
+        fn inverse_dynamics_with_payload_smooth_part1(
+            &self,
+            qd: &[T; DOF],
+            qdd: &[T; DOF],
+            payload: &[T; 10],
+            w: &mut [T; 52],
+            out: &mut na::SVector<T, DOF>,
+        ) {
+            let qd2: T = qd[1];
+            let qdd2: T = qdd[1];
+            let pl0: T = payload[0];
+            let pl1: T = payload[1];
+            let pl2: T = payload[2];
+            let c2: T = self.c[1];
+            let s2: T = self.s[1];
+            let c3: T = self.c[2];
+            let s3: T = self.s[2];
+            let c4: T = self.c[3];
+            let s4: T = self.s[3];
+            let c5: T = self.c[4];
+            let s5: T = self.s[4];
+            let c6: T = self.c[5];
+            let s6: T = self.s[5];
+            let k45: T = ::dhgen::nalgebra::convert::<f64, T>(0.09f64);
+            let t48: T = w[39];
+            let t54: T = w[3];
+            let t55: T = w[1];
+            let t59: T = w[15];
+            let t60: T = w[7];
+            let t64: T = w[2];
+            let t65: T = w[4];
+            let t68: T = w[19];
+            let t72: T = w[9];
+            let k80: T = ::dhgen::nalgebra::convert::<f64, T>(0.15005f64);
+            let k82: T = ::dhgen::nalgebra::convert::<f64, T>(0.4318f64);
+            let t110: T = w[14];
+            let t113: T = w[24];
+            let t117: T = w[16];
+            let t118: T = w[11];
+            let t119: T = w[18];
+            let t123: T = w[10];
+            let t124: T = w[25];
+            let t128: T = w[28];
+            let t133: T = w[20];
+            let k147: T = ::dhgen::nalgebra::convert::<f64, T>(0.0203f64);
+            let t174: T = w[36];
+            let t179: T = w[37];
+            let t184: T = w[26];
+            let t186: T = w[22];
+            let t187: T = w[27];
+            let t192: T = w[21];
+            let t193: T = w[29];
+            let t211: T = w[40];
+            let t215: T = w[38];
+            let t226: T = w[32];
+            let t231: T = w[30];
+            let t246: T = w[42];
+            let t251: T = w[41];
+            let t253: T = w[35];
+            let t254: T = w[34];
+            let t259: T = w[31];
+            let t260: T = w[33];
+            let t264: T = w[0];
+            let k268: T = ::dhgen::nalgebra::convert::<f64, T>(3.9585f64);
+            let k270: T = ::dhgen::nalgebra::convert::<f64, T>(0.10439999999999999f64);
+            let k273: T = ::dhgen::nalgebra::convert::<f64, T>(1.1832f64);
+            let k303: T = ::dhgen::nalgebra::convert::<f64, T>(1.0311851499999998f64);
+            let k306: T = ::dhgen::nalgebra::convert::<f64, T>(0.0070992f64);
+            let k311: T = ::dhgen::nalgebra::convert::<f64, T>(0.26917800000000003f64);
+            let k317: T = ::dhgen::nalgebra::convert::<f64, T>(1.50501635f64);
+            let k321: T = ::dhgen::nalgebra::convert::<f64, T>(0.023750999999999998f64);
+            let t324: T = w[6];
+            let k328: T = ::dhgen::nalgebra::convert::<f64, T>(0.023751f64);
+            let k333: T = ::dhgen::nalgebra::convert::<f64, T>(0.620084f64);
+            let t335: T = w[5];
+            let t376: T = w[8];
+            let k379: T = ::dhgen::nalgebra::convert::<f64, T>(4.8f64);
+            let k383: T = ::dhgen::nalgebra::convert::<f64, T>(0.06767999999999999f64);
+            let k385: T = ::dhgen::nalgebra::convert::<f64, T>(0.336f64);
+            let k415: T = ::dhgen::nalgebra::convert::<f64, T>(0.090474288f64);
+            let k417: T = ::dhgen::nalgebra::convert::<f64, T>(0.013454287999999998f64);
+            let k420: T = ::dhgen::nalgebra::convert::<f64, T>(0.0047376f64);
+            let t423: T = w[13];
+            let k426: T = ::dhgen::nalgebra::convert::<f64, T>(0.10951999999999999f64);
+            let t428: T = w[12];
+            let t456: T = w[17];
+            let k459: T = ::dhgen::nalgebra::convert::<f64, T>(0.82f64);
+            let k464: T = ::dhgen::nalgebra::convert::<f64, T>(0.015579999999999998f64);
+            let t490: T = w[47];
+            let t491: T = w[23];
+            let k493: T = ::dhgen::nalgebra::convert::<f64, T>(0.0013f64);
+            let t519: T = w[48];
+            let k520: T = ::dhgen::nalgebra::convert::<f64, T>(0.34f64);
+            let t543: T = w[50];
+            let t675: T = w[49];
+            let t677: T = w[43];
+            let t678: T = w[44];
+            let t695: T = w[51];
+            let t699: T = w[45];
+            let t715: T = w[46];
+            let t700: T = t519 + t695;
+            let t716: T = s4 * t700;
+            let t718: T = t715 - t716;
+            let t725: T = t456 + t718;
+            let t460: T = t179 * k459;
+            let t465: T = t193 * k464;
+            let t469: T = t460 - t465;
+            let t474: T = t128 * k464;
+            let t476: T = t186 * t474;
+            let t485: T = t469 + t476;
+            let t521: T = t211 * k520;
+            let t46: T = pl0 + k45;
+            let t544: T = t46 * t246;
+            let t548: T = t48 * t260;
+            let t550: T = pl2 * t254;
+            let t551: T = t548 + t550;
+            let t560: T = t544 - t551;
+            let t571: T = pl2 * t226;
+            let t572: T = pl1 * t231;
+            let t574: T = t571 + t572;
+            let t575: T = t231 * t574;
+            let t568: T = pl1 * t253;
+            let t569: T = t48 * t226;
+            let t570: T = t568 - t569;
+            let t577: T = t253 * t570;
+            let t578: T = t575 + t577;
+            let t588: T = t560 - t578;
+            let t657: T = c6 * t588;
+            let t553: T = pl1 * t254;
+            let t554: T = t48 * t259;
+            let t555: T = t553 - t554;
+            let t545: T = t46 * t251;
+            let t561: T = t555 - t545;
+            let t563: T = t48 * t231;
+            let t565: T = pl2 * t253;
+            let t566: T = t563 + t565;
+            let t580: T = t253 * t566;
+            let t582: T = t226 * t574;
+            let t583: T = t580 + t582;
+            let t589: T = t561 - t583;
+            let t658: T = s6 * t589;
+            let t660: T = t657 - t658;
+            let t680: T = t521 + t660;
+            let t683: T = c5 * t680;
+            let t522: T = t215 * k520;
+            let t547: T = t46 * t215;
+            let t556: T = pl2 * t259;
+            let t557: T = pl1 * t260;
+            let t559: T = t556 + t557;
+            let t562: T = t547 + t559;
+            let t585: T = t226 * t570;
+            let t586: T = t231 * t566;
+            let t587: T = t585 - t586;
+            let t590: T = t562 + t587;
+            let t681: T = t522 + t590;
+            let t684: T = s5 * t681;
+            let t686: T = t683 - t684;
+            let t702: T = t485 + t686;
+            let t709: T = s4 * t702;
+            let t661: T = s6 * t588;
+            let t663: T = c6 * t589;
+            let t665: T = t661 + t663;
+            let t523: T = t184 * k520;
+            let t687: T = t665 - t523;
+            let t461: T = t184 * k459;
+            let t467: T = t192 * k464;
+            let t470: T = t461 + t467;
+            let t472: T = t133 * k464;
+            let t478: T = t186 * t472;
+            let t486: T = t470 + t478;
+            let t703: T = t687 - t486;
+            let t711: T = c4 * t703;
+            let t713: T = t709 + t711;
+            let t728: T = k82 * t713;
+            let t735: T = t725 - t728;
+            let t748: T = c3 * t735;
+            let t430: T = t124 * k417;
+            let t431: T = t119 * k420;
+            let t433: T = t430 - t431;
+            let t416: T = t68 * k415;
+            let t441: T = t118 * t416;
+            let t442: T = t68 * t428;
+            let t443: T = t441 - t442;
+            let t448: T = t433 + t443;
+            let t453: T = t113 * k383;
+            let t457: T = t448 + t453;
+            let t498: T = t187 * k493;
+            let t509: T = t133 * t490;
+            let t507: T = t128 * t491;
+            let t511: T = t509 - t507;
+            let t514: T = t498 + t511;
+            let t696: T = s5 * t677;
+            let t697: T = c5 * t678;
+            let t698: T = t696 + t697;
+            let t701: T = t514 + t698;
+            out[3] = t701;
+            let t726: T = t457 + t701;
+            let t730: T = k147 * t713;
+            let t736: T = t726 + t730;
+            let t749: T = s3 * t736;
+            let t751: T = t748 - t749;
+            let t755: T = t376 + t751;
+            let t380: T = t113 * k379;
+            let t384: T = t124 * k383;
+            let t386: T = t119 * k385;
+            let t387: T = t384 - t386;
+            let t391: T = t380 + t387;
+            let t399: T = t68 * k385;
+            let t400: T = t72 * t399;
+            let t397: T = t68 * k383;
+            let t401: T = t118 * t397;
+            let t403: T = t400 + t401;
+            let t412: T = t391 + t403;
+            let t705: T = c4 * t702;
+            let t706: T = s4 * t703;
+            let t708: T = t705 - t706;
+            let t738: T = t412 + t708;
+            let t745: T = s3 * t738;
+            let t381: T = t117 * k379;
+            let t388: T = t123 * k383;
+            let t392: T = t381 - t388;
+            let t394: T = t72 * k383;
+            let t395: T = t118 * k385;
+            let t396: T = t394 - t395;
+            let t404: T = t118 * t396;
+            let t405: T = t68 * t399;
+            let t406: T = t404 - t405;
+            let t413: T = t392 + t406;
+            let t463: T = t174 * k459;
+            let t480: T = t128 * t474;
+            let t482: T = t133 * t472;
+            let t483: T = t480 + t482;
+            let t488: T = t463 - t483;
+            let t688: T = s5 * t680;
+            let t689: T = c5 * t681;
+            let t690: T = t688 + t689;
+            let t704: T = t488 + t690;
+            let t739: T = t413 + t704;
+            let t746: T = c3 * t739;
+            let t747: T = t745 + t746;
+            let t758: T = k80 * t747;
+            let t764: T = t755 - t758;
+            let t783: T = s2 * t764;
+            let t345: T = t65 * k317;
+            let t343: T = t64 * k306;
+            let t346: T = t345 - t343;
+            let t347: T = qdd2 * k321;
+            let t349: T = t346 - t347;
+            let t304: T = t54 * k303;
+            let t307: T = t55 * k306;
+            let t309: T = t304 - t307;
+            let t312: T = qd2 * k311;
+            let t314: T = t309 - t312;
+            let t361: T = qd2 * t314;
+            let t362: T = t54 * t335;
+            let t363: T = t361 - t362;
+            let t368: T = t349 + t363;
+            let t372: T = t59 * k268;
+            let t377: T = t368 + t372;
+            let t752: T = s3 * t735;
+            let t753: T = c3 * t736;
+            let t754: T = t752 + t753;
+            let t756: T = t377 + t754;
+            let t741: T = c3 * t738;
+            let t742: T = s3 * t739;
+            let t744: T = t741 - t742;
+            let t760: T = k80 * t744;
+            let t382: T = t110 * k379;
+            let t390: T = t123 * k385;
+            let t393: T = t382 + t390;
+            let t407: T = t68 * t397;
+            let t409: T = t72 * t396;
+            let t410: T = t407 + t409;
+            let t414: T = t393 - t410;
+            let t740: T = t414 - t713;
+            let t761: T = k82 * t740;
+            let t762: T = t760 - t761;
+            let t765: T = t756 + t762;
+            let t784: T = c2 * t765;
+            let t785: T = t783 + t784;
+            let t786: T = t264 + t785;
+            out[0] = t786;
+            let t356: T = qdd2 * k333;
+            let t350: T = t64 * k311;
+            let t352: T = t65 * k328;
+            let t354: T = t350 + t352;
+            let t357: T = t356 - t354;
+            let t364: T = t54 * t324;
+            let t365: T = t55 * t314;
+            let t366: T = t364 - t365;
+            let t369: T = t357 + t366;
+            let t373: T = t60 * k273;
+            let t374: T = t59 * k270;
+            let t375: T = t373 - t374;
+            let t378: T = t369 + t375;
+            let t436: T = t119 * k426;
+            let t434: T = t124 * k420;
+            let t437: T = t436 - t434;
+            let t444: T = t68 * t423;
+            let t445: T = t72 * t416;
+            let t446: T = t444 - t445;
+            let t449: T = t437 + t446;
+            let t454: T = t113 * k385;
+            let t458: T = t449 - t454;
+            let t719: T = s4 * t699;
+            let t721: T = c4 * t700;
+            let t723: T = t719 + t721;
+            let t727: T = t458 - t723;
+            let t732: T = k147 * t704;
+            let t733: T = k82 * t708;
+            let t734: T = t732 - t733;
+            let t737: T = t727 + t734;
+            out[2] = t737;
+            let t757: T = t378 + t737;
+            let t763: T = k82 * t747;
+            let t766: T = t757 + t763;
+            out[1] = t766;
+            let t679: T = t543 - t675;
+            out[4] = t679;
+        }
+        fn inverse_dynamics_with_payload_smooth(
+            &self,
+            qd: &[T; DOF],
+            qdd: &[T; DOF],
+            payload: &[T; 10],
+        ) -> na::SVector<T, DOF> {
+            let mut out: na::SVector<T, DOF> = na::SVector::zeros();
+            let mut w = [T::zero(); 52];
+            self.inverse_dynamics_with_payload_smooth_part0(
+                qd,
+                qdd,
+                payload,
+                &mut w,
+                &mut out,
+            );
+            self.inverse_dynamics_with_payload_smooth_part1(
+                qd,
+                qdd,
+                payload,
+                &mut w,
+                &mut out,
+            );
+            out
+        }
+        #[inline(never)]
         fn bias_smooth_part0(
             &self,
             qd: &[T; DOF],
@@ -4920,6 +5698,31 @@ pub mod puma560 {
             State { c, s, d }
         }
         #[inline]
+        fn for_inverse_dynamics_with_payload(
+            q: &impl ::dhgen::JointArray<T, DOF>,
+        ) -> Self {
+            let q = q.to_array();
+            let mut c = [T::zero(); DOF];
+            let mut s = [T::zero(); DOF];
+            let d = [T::zero(); DOF];
+            let (sj, cj) = ::dhgen::Real::sincos(q[1]);
+            s[1] = sj;
+            c[1] = cj;
+            let (sj, cj) = ::dhgen::Real::sincos(q[2]);
+            s[2] = sj;
+            c[2] = cj;
+            let (sj, cj) = ::dhgen::Real::sincos(q[3]);
+            s[3] = sj;
+            c[3] = cj;
+            let (sj, cj) = ::dhgen::Real::sincos(q[4]);
+            s[4] = sj;
+            c[4] = cj;
+            let (sj, cj) = ::dhgen::Real::sincos(q[5]);
+            s[5] = sj;
+            c[5] = cj;
+            State { c, s, d }
+        }
+        #[inline]
         fn for_bias(q: &impl ::dhgen::JointArray<T, DOF>) -> Self {
             let q = q.to_array();
             let mut c = [T::zero(); DOF];
@@ -5122,6 +5925,17 @@ pub mod puma560 {
         qdd: &impl ::dhgen::JointArray<T, DOF>,
     ) -> na::SVector<T, DOF> {
         State::for_inverse_dynamics(q).inverse_dynamics(qd, qdd)
+    }
+    ///Inverse dynamics with a payload held by the tool: `payload` is its ten inertial parameters about the tool frame's origin, in the tool frame (`m, m·cx, m·cy, m·cz, Ixx, Ixy, Iyy, Ixz, Iyz, Izz`, what `dhgen::payload::Payload::parameters` gives). The arm's τ and the payload's in one pass of the recursion: τ is linear in the payload's parameters, which stay inputs rather than constants.
+    #[must_use]
+    pub fn inverse_dynamics_with_payload<T: ::dhgen::Real>(
+        q: &impl ::dhgen::JointArray<T, DOF>,
+        qd: &impl ::dhgen::JointArray<T, DOF>,
+        qdd: &impl ::dhgen::JointArray<T, DOF>,
+        payload: &[T; 10],
+    ) -> na::SVector<T, DOF> {
+        State::for_inverse_dynamics_with_payload(q)
+            .inverse_dynamics_with_payload(qd, qdd, payload)
     }
     ///The torques at zero acceleration, C(q, q̇) q̇ + g(q) + friction: what a computed-torque law adds to D(q) v.
     #[doc(alias = "nonLinearEffects")]

@@ -177,6 +177,16 @@ fn idents(inputs: &[Input]) -> Vec<Ident> {
         .collect()
 }
 
+/// The type of an input as the private methods and parts take it: a joint vector
+/// `&[T; DOF]`, or the payload's `&[T; 10]`.
+fn array_ty(name: &str) -> TokenStream {
+    if name == Input::Payload.name() {
+        quote!(&[T; 10])
+    } else {
+        quote!(&[T; DOF])
+    }
+}
+
 impl Items {
     /// Makes one quantity: its `State` method (and parts), preparer, free function and
     /// trait method.
@@ -207,8 +217,9 @@ impl Items {
                 body
             }
         };
+        let array_tys: Vec<TokenStream> = q.inputs.iter().map(|i| array_ty(i.name())).collect();
         if !q.public {
-            let params = quote!(#(#inputs: &[T; DOF],)*);
+            let params = quote!(#(#inputs: #array_tys,)*);
             self.private.push(quote! {
                 fn #name(&self, #params) -> #ty {
                     #body
@@ -219,13 +230,30 @@ impl Items {
         let doc = q.doc;
         let aliases = q.aliases.iter().map(|a| quote!(#[doc(alias = #a)]));
         let aliases = quote!(#(#aliases)*);
-        let params = quote!(#(#inputs: &impl ::dhgen::JointArray<T, DOF>,)*);
+        let public_tys: Vec<TokenStream> = q
+            .inputs
+            .iter()
+            .map(|i| {
+                if i.is_joint_vector() {
+                    quote!(&impl ::dhgen::JointArray<T, DOF>)
+                } else {
+                    array_ty(i.name())
+                }
+            })
+            .collect();
+        let params = quote!(#(#inputs: #public_tys,)*);
+        let joint_inputs: Vec<&Ident> = inputs
+            .iter()
+            .zip(q.inputs)
+            .filter(|(_, i)| i.is_joint_vector())
+            .map(|(n, _)| n)
+            .collect();
         self.methods.push(quote! {
             #[doc = #doc]
             #aliases
             #[must_use]
             pub fn #name(&self, #params) -> #ty {
-                #(let #inputs = &#inputs.to_array();)*
+                #(let #joint_inputs = &#joint_inputs.to_array();)*
                 #body
             }
         });
@@ -315,12 +343,17 @@ impl Items {
                     .filter(|n| emitted.part_inputs[i].contains(n))
                     .map(|n| format_ident!("{}", n))
                     .collect();
+                let used_tys: Vec<TokenStream> = names
+                    .iter()
+                    .filter(|n| emitted.part_inputs[i].contains(n))
+                    .map(|n| array_ty(n))
+                    .collect();
                 let u = emitted.part_uses[i];
                 let out = format_ident!("{}", if u.out { "out" } else { "_out" });
                 let scratch = format_ident!("{}", if u.scratch { "w" } else { "_w" });
                 self.private.push(quote! {
                     #[inline(never)]
-                    fn #part(&self, #(#used: &[T; DOF],)* #scratch: &mut [T; #w], #out: &mut #ty) {
+                    fn #part(&self, #(#used: #used_tys,)* #scratch: &mut [T; #w], #out: &mut #ty) {
                         #(#stmts)*
                     }
                 });

@@ -24,6 +24,8 @@ pub enum Input {
     Qdd,
     /// Joint torques `tau`.
     Tau,
+    /// A payload's ten inertial parameters `payload`.
+    Payload,
 }
 
 impl Input {
@@ -33,7 +35,13 @@ impl Input {
             Input::Qd => "qd",
             Input::Qdd => "qdd",
             Input::Tau => "tau",
+            Input::Payload => "payload",
         }
+    }
+
+    /// True for a joint vector (`[T; DOF]`); false for the payload's `[T; 10]`.
+    pub fn is_joint_vector(self) -> bool {
+        self != Input::Payload
     }
 }
 
@@ -395,6 +403,51 @@ pub const QUANTITIES: &[Quantity] = &[
             )
         },
         arm: Some(ArmMethod::Dynamics),
+    },
+    Quantity {
+        name: "inverse_dynamics_with_payload_smooth",
+        doc: "",
+        aliases: &[],
+        inputs: &[Input::Qd, Input::Qdd, Input::Payload],
+        shape: Shape::Vector,
+        available: Availability::Dynamics,
+        public: false,
+        make: |cx| {
+            let graph = SharedGraph::default();
+            let tau = newton_euler::rnea_with_payload(cx.chain, &graph);
+            derived(graph, tau)
+        },
+        arm: None,
+    },
+    Quantity {
+        name: "inverse_dynamics_with_payload",
+        doc: "Inverse dynamics with a payload held by the tool: `payload` is its ten inertial \
+              parameters about the tool frame's origin, in the tool frame (`m, m·cx, m·cy, m·cz, \
+              Ixx, Ixy, Iyy, Ixz, Iyz, Izz`, what `dhgen::payload::Payload::parameters` gives). \
+              The arm's τ and the payload's in one pass of the recursion: τ is linear in the \
+              payload's parameters, which stay inputs rather than constants.",
+        aliases: &[],
+        inputs: &[Input::Qd, Input::Qdd, Input::Payload],
+        shape: Shape::Vector,
+        available: Availability::Dynamics,
+        public: true,
+        make: |cx| {
+            let coulomb = cx.coulomb();
+            let binding = if coulomb.is_empty() {
+                quote!(let tau)
+            } else {
+                quote!(let mut tau)
+            };
+            composed(
+                quote! {
+                    #binding = self.inverse_dynamics_with_payload_smooth(qd, qdd, payload);
+                    #coulomb
+                    tau
+                },
+                &["inverse_dynamics_with_payload_smooth"],
+            )
+        },
+        arm: None,
     },
     Quantity {
         name: "bias_smooth",
