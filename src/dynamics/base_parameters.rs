@@ -22,7 +22,7 @@
 use crate::robot::Robot;
 use nalgebra::{DMatrix, DVector};
 
-/// The regrouping of a robot's parameters into base parameters (see the [module docs](self)).
+/// The regrouping of a robot's parameters into base parameters (see the [`dhgen::parameters`](crate::parameters)).
 #[derive(Clone, Debug, PartialEq)]
 pub struct BaseParameters {
     /// The independent parameters, by index into `π`, in pivot order: base parameter `k` is
@@ -105,7 +105,7 @@ fn trim(x: f64) -> String {
 }
 
 impl Robot {
-    /// The robot's base parameters (see the [module docs](self)), from its regressor stacked
+    /// The robot's base parameters (see the [`dhgen::parameters`](crate::parameters)), from its regressor stacked
     /// over `max(20, 4·p/n)` seeded random states (`p` parameters, `n` joints): positions in
     /// the joint limits (±π without), velocities and accelerations in ±2.
     ///

@@ -101,7 +101,7 @@ pub(crate) enum JointTerm {
 
 impl Robot {
     /// The number of parameters, `10·n` plus the joint-side ones (see the
-    /// [module docs](self)).
+    /// [`dhgen::parameters`](crate::parameters)).
     pub fn parameter_count(&self) -> usize {
         BODY_PARAMETERS * self.dof() + joint_columns(self).len()
     }
@@ -125,7 +125,7 @@ impl Robot {
         names
     }
 
-    /// The robot's own parameters `π` (see the [module docs](self) for the order and frames):
+    /// The robot's own parameters `π` (see the [`dhgen::parameters`](crate::parameters) for the order and frames):
     /// `regressor(q, q̇, q̈) · parameters() = inverse_dynamics(q, q̇, q̈)`.
     ///
     /// # Panics
