@@ -10,7 +10,8 @@
 //! qd, qdd, &payload.parameters())` runs the Newton–Euler recursion once with the payload's ten
 //! parameters as inputs of the last body (PUMA 560: 513 operations against 457 for τ alone;
 //! Panda 882 against 818), where `inverse_dynamics` here adds `Jᵀ W` from the Jacobian and
-//! `J̇ q̇` (about 3× the cost of τ).
+//! `J̇ q̇` (about 3× the cost of τ); likewise `m::bias_with_payload`, `m::mass_matrix_with_payload`
+//! and `m::gravity_with_payload`.
 //!
 //! ```
 //! dhgen::robot!(mod puma560 = "robots/puma560.toml");

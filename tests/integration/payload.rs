@@ -209,3 +209,47 @@ fn bad_payloads_are_refused_at_construction() {
     let e = Payload::new(1.0, [0.0; 3], skew).unwrap_err().to_string();
     assert!(e.contains("symmetric"), "{e}");
 }
+
+/// The generated D, g and bias with the payload's parameters as inputs equal the same body
+/// written into the description.
+macro_rules! generated_terms {
+    ($test:ident, $m:ident, $file:literal) => {
+        #[test]
+        fn $test() {
+            const N: usize = $m::DOF;
+            let model = RobotModel::from_toml_file(concat!(env!("CARGO_MANIFEST_DIR"), "/", $file))
+                .unwrap();
+            let p = box_payload();
+            let pp = p.parameters();
+            let merged = with_payload_in_description(&model, &p);
+            for s in 0..10 {
+                let t = s as f64;
+                let q: [f64; N] = core::array::from_fn(|i| (0.7 * t + 1.3 * i as f64).sin());
+                let qd: [f64; N] = core::array::from_fn(|i| (0.3 * t - 0.9 * i as f64).cos());
+                let (qv, qdv) = (DVector::from_row_slice(&q), DVector::from_row_slice(&qd));
+                let d = $m::mass_matrix_with_payload(&q, &pp);
+                close("D", d.as_slice(), merged.mass_matrix(&qv).as_slice());
+                let g = $m::gravity_with_payload(&q, &pp);
+                close("g", g.as_slice(), merged.gravity(&qv).as_slice());
+                let b = $m::bias_with_payload(&q, &qd, &pp);
+                close("bias", b.as_slice(), merged.bias(&qv, &qdv).as_slice());
+            }
+        }
+    };
+}
+
+generated_terms!(
+    puma560_generated_terms_with_payload,
+    puma560,
+    "robots/puma560.toml"
+);
+generated_terms!(
+    panda_generated_terms_with_payload,
+    panda,
+    "robots/panda.toml"
+);
+generated_terms!(
+    odd_generated_terms_with_payload,
+    odd,
+    "tests/fixtures/odd.toml"
+);

@@ -11,6 +11,7 @@ pub mod gravity;
 pub mod inertia;
 pub mod kinematics;
 pub mod newton_euler;
+pub mod payload;
 pub mod singularity;
 
 use crate::chain::{JointSymbols, RingChain};

@@ -5,13 +5,12 @@
 //! `D q̈ + Σ c_ijk q̇_i q̇_j + g` from the normal forms. The cheaper is kept.
 
 use super::Derivation;
-use crate::chain::MassMoments;
 use crate::graph::{E, SharedGraph, Sym};
 use dhgen_model::ChainRef;
 
 /// The armature and viscous friction torques of joint i (friction's Coulomb part is emitted
 /// separately, since `sign` is not arithmetic).
-fn joint_terms(chain: ChainRef<'_>, i: usize, qd: &E, qdd: &E) -> E {
+pub(crate) fn joint_terms(chain: ChainRef<'_>, i: usize, qd: &E, qdd: &E) -> E {
     let b = &chain.bodies[i];
     E::K(b.armature) * qdd.clone() + E::K(b.friction.viscous) * qd.clone()
 }
@@ -37,31 +36,6 @@ pub fn rnea_exprs(
         .collect();
     super::graph_chain(chain, graph)
         .rnea(&qd, &qdd, with_gravity)
-        .into_iter()
-        .enumerate()
-        .map(|(i, t)| t + joint_terms(chain, i, &qd[i], &qdd[i]))
-        .collect()
-}
-
-/// τ with a payload held by the tool, without Coulomb friction: the Newton-Euler recursion
-/// with the last body's mass moments plus the payload's, ten input symbols
-/// ([`Sym::Payload`]: m, m·c and the inertia about the tool origin, tool frame) carried into
-/// the last joint frame by the tool placement `P_n`. τ is linear in them, so the payload
-/// costs its own terms and no more.
-pub fn rnea_with_payload(chain: ChainRef<'_>, graph: &SharedGraph) -> Vec<E> {
-    let n = chain.dof();
-    let qd: Vec<E> = (0..n).map(|i| E::sym(graph, Sym::Qd(i))).collect();
-    let qdd: Vec<E> = (0..n).map(|i| E::sym(graph, Sym::Qdd(i))).collect();
-    let p = |k: usize| E::sym(graph, Sym::Payload(k));
-    let payload = MassMoments {
-        m: p(0),
-        h: [p(1), p(2), p(3)],
-        i: [[p(4), p(5), p(7)], [p(5), p(6), p(8)], [p(7), p(8), p(9)]],
-    };
-    let tool = chain.placements[n].to_ring::<E>();
-    let mut rc = super::graph_chain(chain, graph);
-    rc.bodies[n - 1] = rc.bodies[n - 1].plus(&payload.transformed(&tool));
-    rc.rnea(&qd, &qdd, true)
         .into_iter()
         .enumerate()
         .map(|(i, t)| t + joint_terms(chain, i, &qd[i], &qdd[i]))

@@ -9,7 +9,9 @@
 
 use super::shape::Shape;
 use super::{Context, cholesky};
-use crate::derive::{derivatives, energy, gravity, inertia, kinematics, newton_euler, singularity};
+use crate::derive::{
+    derivatives, energy, gravity, inertia, kinematics, newton_euler, payload, singularity,
+};
 use crate::graph::{E, SharedGraph};
 use crate::poly::Poly;
 use proc_macro2::TokenStream;
@@ -414,7 +416,7 @@ pub const QUANTITIES: &[Quantity] = &[
         public: false,
         make: |cx| {
             let graph = SharedGraph::default();
-            let tau = newton_euler::rnea_with_payload(cx.chain, &graph);
+            let tau = payload::rnea(cx.chain, &graph, false);
             derived(graph, tau)
         },
         arm: None,
@@ -446,6 +448,80 @@ pub const QUANTITIES: &[Quantity] = &[
                 },
                 &["inverse_dynamics_with_payload_smooth"],
             )
+        },
+        arm: None,
+    },
+    Quantity {
+        name: "bias_with_payload_smooth",
+        doc: "",
+        aliases: &[],
+        inputs: &[Input::Qd, Input::Payload],
+        shape: Shape::Vector,
+        available: Availability::Dynamics,
+        public: false,
+        make: |cx| {
+            let graph = SharedGraph::default();
+            let bias = payload::rnea(cx.chain, &graph, true);
+            derived(graph, bias)
+        },
+        arm: None,
+    },
+    Quantity {
+        name: "bias_with_payload",
+        doc: "The torques at zero acceleration with a payload held by the tool (`payload`: its \
+              ten parameters, as for `inverse_dynamics_with_payload`).",
+        aliases: &[],
+        inputs: &[Input::Qd, Input::Payload],
+        shape: Shape::Vector,
+        available: Availability::Dynamics,
+        public: true,
+        make: |cx| {
+            let coulomb = cx.coulomb();
+            let binding = if coulomb.is_empty() {
+                quote!(let tau)
+            } else {
+                quote!(let mut tau)
+            };
+            composed(
+                quote! {
+                    #binding = self.bias_with_payload_smooth(qd, payload);
+                    #coulomb
+                    tau
+                },
+                &["bias_with_payload_smooth"],
+            )
+        },
+        arm: None,
+    },
+    Quantity {
+        name: "mass_matrix_with_payload",
+        doc: "D(q) with a payload held by the tool (`payload`: its ten parameters, as for \
+              `inverse_dynamics_with_payload`).",
+        aliases: &[],
+        inputs: &[Input::Payload],
+        shape: Shape::Square,
+        available: Availability::Dynamics,
+        public: true,
+        make: |cx| {
+            let graph = SharedGraph::default();
+            let d = payload::mass_matrix(cx.chain, &graph);
+            derived(graph, d)
+        },
+        arm: None,
+    },
+    Quantity {
+        name: "gravity_with_payload",
+        doc: "g(q) with a payload held by the tool (`payload`: its ten parameters, as for \
+              `inverse_dynamics_with_payload`).",
+        aliases: &[],
+        inputs: &[Input::Payload],
+        shape: Shape::Vector,
+        available: Availability::Dynamics,
+        public: true,
+        make: |cx| {
+            let graph = SharedGraph::default();
+            let g = payload::gravity(cx.chain, &graph);
+            derived(graph, g)
         },
         arm: None,
     },
