@@ -73,27 +73,14 @@ fn perturbed(nominal: &RobotModel, rng: &mut Rng) -> RobotModel {
 /// 2.5 kg, 8 cm beyond the flange on z, a 10 cm cube, by the parallel-axis theorem.
 fn with_payload(arm: &RobotModel) -> RobotModel {
     let mut m = arm.clone();
-    let last = m.links.last_mut().unwrap().inertial.as_mut().unwrap();
-    let (m1, m2) = (last.mass, 2.5);
-    let (c1, c2) = (last.com, [0.0, 0.0, 0.08]);
-    let mass = m1 + m2;
-    let com: [f64; 3] = core::array::from_fn(|k| (c1[k] * m1 + c2[k] * m2) / mass);
-    let steiner = |c: [f64; 3], m: f64| -> [[f64; 3]; 3] {
-        let d: [f64; 3] = core::array::from_fn(|k| c[k] - com[k]);
-        let d2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
-        core::array::from_fn(|a| {
-            core::array::from_fn(|b| m * (if a == b { d2 } else { 0.0 } - d[a] * d[b]))
-        })
-    };
-    let (s1, s2) = (steiner(c1, m1), steiner(c2, m2));
     let cube = 2.5 * 0.1 * 0.1 / 6.0;
-    last.inertia = core::array::from_fn(|a| {
-        core::array::from_fn(|b| {
-            last.inertia[a][b] + s1[a][b] + s2[a][b] + if a == b { cube } else { 0.0 }
-        })
-    });
-    last.mass = mass;
-    last.com = com;
+    let payload = dhgen::model::Inertial {
+        mass: 2.5,
+        com: [0.0, 0.0, 0.08],
+        inertia: [[cube, 0.0, 0.0], [0.0, cube, 0.0], [0.0, 0.0, cube]],
+    };
+    let last = m.links.last_mut().unwrap();
+    last.inertial = Some(last.inertial.unwrap().combined(&payload));
     m
 }
 

@@ -111,15 +111,11 @@ where
     DefaultAllocator: ArmAllocator<A::Dof>,
 {
     let r = arm.fk(q).rotation.to_rotation_matrix().into_inner();
-    let pi = p.parameters();
-    let h_tool = Vector3::new(pi[1], pi[2], pi[3]);
-    let i_tool = Matrix3::new(
-        pi[4], pi[5], pi[7], pi[5], pi[6], pi[8], pi[7], pi[8], pi[9],
-    );
+    let tool = crate::dynamics::regressor::inertia_of(&p.parameters());
     World {
-        mass: pi[0],
-        h: r * h_tool,
-        i: r * i_tool * r.transpose(),
+        mass: tool.mass,
+        h: r * tool.h,
+        i: r * tool.k * r.transpose(),
     }
 }
 

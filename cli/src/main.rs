@@ -226,6 +226,19 @@ fn read(source: &Source) -> Result<(Robot, Option<dhgen_model::urdf::UrdfRobot>)
     }
 }
 
+/// The command's text, written to `output` (then nothing is printed) or returned for
+/// standard output.
+fn deliver(output: Option<PathBuf>, text: String) -> Result<String, String> {
+    match output {
+        Some(path) => {
+            std::fs::write(&path, text)
+                .map_err(|e| format!("{}: cannot write: {e}", path.display()))?;
+            Ok(String::new())
+        }
+        None => Ok(text),
+    }
+}
+
 fn run(command: Command) -> Result<String, String> {
     match command {
         Command::Info { robot } => {
@@ -263,14 +276,7 @@ fn run(command: Command) -> Result<String, String> {
             let r = load(&robot)?;
             let options = dhgen_codegen::Options { derivatives };
             let code = emit::emit(r.model(), &robot.robot, name.as_deref(), options)?;
-            match output {
-                Some(path) => {
-                    std::fs::write(&path, code)
-                        .map_err(|e| format!("{}: cannot write: {e}", path.display()))?;
-                    Ok(String::new())
-                }
-                None => Ok(code),
-            }
+            deliver(output, code)
         }
         Command::Latex {
             robot,
@@ -305,14 +311,7 @@ fn run(command: Command) -> Result<String, String> {
                 ConvertTo::Toml => model.to_toml(),
                 ConvertTo::Urdf => to_urdf(model),
             };
-            match output {
-                Some(path) => {
-                    std::fs::write(&path, text)
-                        .map_err(|e| format!("{}: cannot write: {e}", path.display()))?;
-                    Ok(String::new())
-                }
-                None => Ok(text),
-            }
+            deliver(output, text)
         }
         Command::Params { robot, latex } => {
             let r = load(&robot)?;
@@ -336,14 +335,7 @@ fn run(command: Command) -> Result<String, String> {
                 RandomStyle::Industrial => ArmStyle::Industrial,
             };
             let text = random_arm(usize::from(dof), style, seed).to_toml();
-            match output {
-                Some(path) => {
-                    std::fs::write(&path, text)
-                        .map_err(|e| format!("{}: cannot write: {e}", path.display()))?;
-                    Ok(String::new())
-                }
-                None => Ok(text),
-            }
+            deliver(output, text)
         }
     }
 }

@@ -391,7 +391,7 @@ pub use owned::JointChain;
 #[cfg(feature = "std")]
 mod owned {
     use super::{Body, ChainRef};
-    use crate::{Angle, Convention, Frame, Inertial, JointKind, JointValue, RobotModel};
+    use crate::{Angle, Convention, Frame, JointKind, JointValue, RobotModel};
 
     /// A robot's kinematic structure, owned: what [`RobotModel::chain`] builds, once, and
     /// every consumer reads through [`view`](JointChain::view).
@@ -490,7 +490,7 @@ mod owned {
                     limits: l.limits,
                     armature: l.motor.map_or(0.0, |m| m.armature()),
                     friction: l.friction.unwrap_or_default(),
-                    inertial: l.inertial.map(|i| in_frame(&i, &link)),
+                    inertial: l.inertial.map(|i| i.in_frame(&link)),
                     capsule: l.collision.map(|c| c.radius),
                     link,
                 })
@@ -537,24 +537,5 @@ mod owned {
         };
         // −0 and 0 alike: no turn.
         theta + 0.0
-    }
-
-    /// Mass properties given in frame `f` (centre of mass in it, inertia in its axes),
-    /// re-expressed in the outer frame.
-    fn in_frame(i: &Inertial, f: &Frame<f64>) -> Inertial {
-        let com = f.point(&i.com);
-        let r = &f.r;
-        // R I Rᵀ
-        let ri: [[f64; 3]; 3] = core::array::from_fn(|a| {
-            core::array::from_fn(|b| (0..3).map(|k| r[a][k] * i.inertia[k][b]).sum())
-        });
-        let inertia = core::array::from_fn(|a| {
-            core::array::from_fn(|b| (0..3).map(|k| ri[a][k] * r[b][k]).sum())
-        });
-        Inertial {
-            mass: i.mass,
-            com,
-            inertia,
-        }
     }
 }

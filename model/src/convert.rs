@@ -355,8 +355,7 @@ fn clean(x: f64) -> f64 {
 
 /// Roll, pitch and yaw of a rotation, exact quarter turns for entries in {−1, 0, 1}.
 fn rpy(r: &[[f64; 3]; 3]) -> [Angle; 3] {
-    let m = nalgebra::Matrix3::from_fn(|i, j| r[i][j]);
-    crate::urdf::rpy_of(&m).map(exact)
+    crate::model::rpy_of(r).map(exact)
 }
 
 /// A frame as a pose; translations within `tol` of zero are zero.
@@ -375,16 +374,11 @@ fn non_identity(p: Pose) -> Option<Pose> {
 /// Mass properties given in frame `f`, re-expressed in the outer frame; small entries
 /// snapped to zero.
 fn in_frame(i: &Inertial, f: &Frame<f64>, tol: f64) -> Inertial {
-    let r = &f.r;
-    let t = &i.inertia;
-    // R I Rᵀ, each product once and mirrored: exactly symmetric.
-    let entry = |a: usize, b: usize| -> f64 {
-        (0..3)
-            .map(|k| r[a][k] * (0..3).map(|l| t[k][l] * r[b][l]).sum::<f64>())
-            .sum()
-    };
+    let moved = i.in_frame(f);
+    // The upper triangle mirrored: exactly symmetric.
+    let t = &moved.inertia;
     let inertia: [[f64; 3]; 3] =
-        core::array::from_fn(|a| core::array::from_fn(|b| entry(a.min(b), a.max(b))));
+        core::array::from_fn(|a| core::array::from_fn(|b| t[a.min(b)][a.max(b)]));
     let big = inertia.iter().flatten().fold(0.0f64, |m, x| m.max(x.abs()));
     let inertia = inertia.map(|row| {
         row.map(|x| {
@@ -397,8 +391,8 @@ fn in_frame(i: &Inertial, f: &Frame<f64>, tol: f64) -> Inertial {
     });
     Inertial {
         mass: i.mass,
-        com: f
-            .point(&i.com)
+        com: moved
+            .com
             .map(|x| if x.abs() <= tol { 0.0 } else { clean(x) }),
         inertia,
     }

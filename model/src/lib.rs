@@ -152,18 +152,13 @@ mod load {
             match core::str::from_utf8(bytes) {
                 Ok(text) => Self::from_toml_named(text, origin),
                 // TOML is UTF-8: say where the text stops being that.
-                Err(e) => {
-                    let valid = core::str::from_utf8(&bytes[..e.valid_up_to()]).unwrap_or("");
-                    let line = valid.matches('\n').count() + 1;
-                    let column = valid.rsplit('\n').next().unwrap_or("").chars().count() + 1;
-                    Err(LoadError::Syntax {
-                        origin: origin.to_string(),
-                        error: raw::SyntaxError {
-                            loc: raw::Position { line, column },
-                            message: "the file is not UTF-8 text (TOML is UTF-8)".into(),
-                        },
-                    })
-                }
+                Err(e) => Err(LoadError::Syntax {
+                    origin: origin.to_string(),
+                    error: raw::SyntaxError {
+                        loc: raw::utf8_error_position(bytes, &e),
+                        message: "the file is not UTF-8 text (TOML is UTF-8)".into(),
+                    },
+                }),
             }
         }
 

@@ -16,6 +16,9 @@ mod imp {
     pub fn atan2(y: f64, x: f64) -> f64 {
         y.atan2(x)
     }
+    pub fn hypot(x: f64, y: f64) -> f64 {
+        x.hypot(y)
+    }
 }
 
 #[cfg(not(feature = "std"))]
@@ -35,6 +38,9 @@ mod imp {
 }
 
 pub(crate) use imp::{atan2, round, sin_cos, sqrt};
+// Only the readers (std) write poses back from rotations.
+#[cfg(feature = "std")]
+pub(crate) use imp::hypot;
 
 /// `|x|` (in `core` on every supported toolchain, written out to stay independent of it).
 pub(crate) fn abs(x: f64) -> f64 {

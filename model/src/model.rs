@@ -118,6 +118,28 @@ impl Placement {
     }
 }
 
+/// Roll, pitch and yaw of a rotation `Rz(yaw) Ry(pitch) Rx(roll)` (the inverse of
+/// [`Pose::rotation`]), in radians: exact multiples of π/2 for rotations whose entries are in
+/// {−1, 0, 1}, and never −0.
+#[cfg(feature = "std")]
+pub(crate) fn rpy_of(r: &[[f64; 3]; 3]) -> [f64; 3] {
+    let cp = crate::math::hypot(r[0][0], r[1][0]);
+    let pitch = crate::math::atan2(-r[2][0], cp);
+    let rpy = if cp > 1e-12 {
+        [
+            crate::math::atan2(r[2][1], r[2][2]),
+            pitch,
+            crate::math::atan2(r[1][0], r[0][0]),
+        ]
+    } else {
+        // Pitch ±π/2: only roll − yaw (or roll + yaw) is defined; take yaw = 0.
+        let sp = -r[2][0];
+        [crate::math::atan2(sp * r[0][1], r[1][1]), pitch, 0.0]
+    };
+    // `+ 0.0` writes −0 (atan2 of a −0 entry) as 0.
+    rpy.map(|a| a + 0.0)
+}
+
 /// Mass properties of one link, in that link's frame.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Inertial {
@@ -128,6 +150,61 @@ pub struct Inertial {
     /// Inertia tensor about the centre of mass, link-frame axes, kg·m²
     /// (`[[xx, xy, xz], [xy, yy, yz], [xz, yz, zz]]`, products as tensor entries).
     pub inertia: [[f64; 3]; 3],
+}
+
+impl Inertial {
+    /// The same body described in an outer frame, `f` placing this body's frame in it: the
+    /// centre of mass moved by `f`, the inertia turned, `R I Rᵀ`.
+    pub fn in_frame(&self, f: &Frame<f64>) -> Inertial {
+        let r = &f.r;
+        // R I Rᵀ
+        let ri: [[f64; 3]; 3] = core::array::from_fn(|a| {
+            core::array::from_fn(|b| (0..3).map(|k| r[a][k] * self.inertia[k][b]).sum())
+        });
+        Inertial {
+            mass: self.mass,
+            com: f.point(&self.com),
+            inertia: core::array::from_fn(|a| {
+                core::array::from_fn(|b| (0..3).map(|k| ri[a][k] * r[b][k]).sum())
+            }),
+        }
+    }
+
+    /// Two bodies given in the same frame, rigidly joined: the masses add, the centre of mass
+    /// is their weighted mean, each inertia moves to it by the parallel-axis theorem. Two
+    /// massless bodies give a massless one at the origin with the inertias' sum.
+    pub fn combined(&self, other: &Inertial) -> Inertial {
+        let mass = self.mass + other.mass;
+        if mass == 0.0 {
+            return Inertial {
+                mass,
+                com: [0.0; 3],
+                inertia: core::array::from_fn(|a| {
+                    core::array::from_fn(|b| self.inertia[a][b] + other.inertia[a][b])
+                }),
+            };
+        }
+        let com: [f64; 3] =
+            core::array::from_fn(|k| (self.com[k] * self.mass + other.com[k] * other.mass) / mass);
+        // m (|d|² 1 − d dᵀ), d from the common centre of mass to the body's own.
+        let shift = |b: &Inertial, i: usize, j: usize| {
+            let d: [f64; 3] = core::array::from_fn(|k| b.com[k] - com[k]);
+            let dd = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+            b.mass * (if i == j { dd } else { 0.0 } - d[i] * d[j])
+        };
+        Inertial {
+            mass,
+            com,
+            inertia: core::array::from_fn(|i| {
+                core::array::from_fn(|j| {
+                    self.inertia[i][j]
+                        + shift(self, i, j)
+                        + other.inertia[i][j]
+                        + shift(other, i, j)
+                })
+            }),
+        }
+    }
 }
 
 /// Rotor inertia and gear ratio of a joint's motor.

@@ -33,10 +33,12 @@ pub enum ArmStyle {
     Industrial,
 }
 
-/// SplitMix64: a fixed stream of uniform numbers.
-pub(crate) struct Stream(pub(crate) u64);
+/// SplitMix64: a fixed stream of uniform numbers, the same on every platform (the random arms
+/// here, and the states the runtime's base-parameter reduction samples).
+pub struct Stream(pub u64);
 
 impl Stream {
+    /// The next number, uniform in `[0, 1)`.
     pub(crate) fn next(&mut self) -> f64 {
         self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
         let mut z = self.0;
@@ -46,7 +48,8 @@ impl Stream {
         (z >> 11) as f64 / (1u64 << 53) as f64
     }
 
-    fn uniform(&mut self, lo: f64, hi: f64) -> f64 {
+    /// The next number, uniform in `[lo, hi)`.
+    pub fn uniform(&mut self, lo: f64, hi: f64) -> f64 {
         lo + (hi - lo) * self.next()
     }
 

@@ -109,6 +109,16 @@ impl<'t> LineIndex<'t> {
     }
 }
 
+/// Where the first byte that is not UTF-8 stands (`e` from `str::from_utf8(bytes)`): line and
+/// column of the text before it, for the readers' "not UTF-8" errors.
+pub fn utf8_error_position(bytes: &[u8], e: &core::str::Utf8Error) -> Position {
+    let valid = core::str::from_utf8(&bytes[..e.valid_up_to()]).unwrap_or("");
+    Position {
+        line: valid.matches('\n').count() + 1,
+        column: valid.rsplit('\n').next().unwrap_or("").chars().count() + 1,
+    }
+}
+
 /// Text that is not a TOML document (or holds a number TOML does not allow): where, and
 /// what is wrong, on one line.
 #[derive(Clone, Debug, PartialEq, Eq)]

@@ -38,9 +38,9 @@
 //! choice of the user.
 
 use crate::raw::{Position, Table, Value};
-use crate::{LoadError, RobotModel, validate};
+use crate::{Angle, Frame, Inertial, LoadError, Pose, RobotModel, validate};
 use core::f64::consts::FRAC_PI_2;
-use nalgebra::{Matrix3, Vector3};
+use nalgebra::Vector3;
 use std::collections::HashMap;
 
 /// How to read a URDF file.
@@ -171,17 +171,11 @@ pub fn read_bytes(
 ) -> Result<UrdfRobot, LoadError> {
     match core::str::from_utf8(bytes) {
         Ok(text) => read(text, origin, options),
-        Err(e) => {
-            let valid = core::str::from_utf8(&bytes[..e.valid_up_to()]).unwrap_or("");
-            Err(LoadError::Urdf {
-                origin: origin.to_string(),
-                loc: Position {
-                    line: valid.matches('\n').count() + 1,
-                    column: valid.rsplit('\n').next().unwrap_or("").chars().count() + 1,
-                },
-                message: "the file is not UTF-8 text".into(),
-            })
-        }
+        Err(e) => Err(LoadError::Urdf {
+            origin: origin.to_string(),
+            loc: crate::raw::utf8_error_position(bytes, &e),
+            message: "the file is not UTF-8 text".into(),
+        }),
     }
 }
 
@@ -191,54 +185,6 @@ pub fn is_urdf_path(path: &std::path::Path) -> bool {
     path.extension()
         .and_then(|e| e.to_str())
         .is_some_and(|e| e.eq_ignore_ascii_case("urdf"))
-}
-
-/// A mass, centre of mass and inertia about it, in some frame.
-#[derive(Clone, Copy, Debug)]
-struct Mass {
-    mass: f64,
-    com: Vector3<f64>,
-    inertia: Matrix3<f64>,
-}
-
-impl Mass {
-    const ZERO: Mass = Mass {
-        mass: 0.0,
-        com: Vector3::new(0.0, 0.0, 0.0),
-        inertia: Matrix3::new(0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0),
-    };
-
-    /// The same body seen from an outer frame in which its frame sits at `(r, p)`.
-    fn moved(&self, r: &Matrix3<f64>, p: &Vector3<f64>) -> Mass {
-        Mass {
-            mass: self.mass,
-            com: r * self.com + p,
-            inertia: r * self.inertia * r.transpose(),
-        }
-    }
-
-    /// Two bodies rigidly joined: masses add, the centre of mass is their weighted mean, the
-    /// inertias move to it by the parallel-axis theorem.
-    fn add(&self, other: &Mass) -> Mass {
-        let mass = self.mass + other.mass;
-        if mass == 0.0 {
-            return Mass {
-                mass,
-                com: Vector3::zeros(),
-                inertia: self.inertia + other.inertia,
-            };
-        }
-        let com = (self.com * self.mass + other.com * other.mass) / mass;
-        let shift = |m: &Mass| {
-            let d = m.com - com;
-            (Matrix3::identity() * d.norm_squared() - d * d.transpose()) * m.mass
-        };
-        Mass {
-            mass,
-            com,
-            inertia: self.inertia + shift(self) + other.inertia + shift(other),
-        }
-    }
 }
 
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -257,31 +203,10 @@ impl Kind {
     }
 }
 
-/// A rigid transform as rotation and translation.
-#[derive(Clone, Copy, Debug)]
-struct Tf {
-    r: Matrix3<f64>,
-    p: Vector3<f64>,
-}
-
-impl Tf {
-    const IDENTITY: Tf = Tf {
-        r: Matrix3::new(1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0),
-        p: Vector3::new(0.0, 0.0, 0.0),
-    };
-
-    fn compose(&self, o: &Tf) -> Tf {
-        Tf {
-            r: self.r * o.r,
-            p: self.r * o.p + self.p,
-        }
-    }
-}
-
 struct Link {
     name: String,
     loc: Position,
-    inertial: Option<(Mass, Position)>,
+    inertial: Option<(Inertial, Position)>,
 }
 
 struct Joint {
@@ -290,8 +215,7 @@ struct Joint {
     kind: Kind,
     parent: usize,
     child: usize,
-    origin: Tf,
-    /// The origin's rpy after snapping, with the xyz (for the description).
+    origin: Frame<f64>,
     axis: (Vector3<f64>, Position),
     limits: Option<([f64; 2], Position)>,
     velocity: Option<f64>,
@@ -397,9 +321,13 @@ impl<'a> Reader<'a> {
     }
 
     /// `<origin xyz rpy>` of an element (identity when absent), rpy snapped.
-    fn origin(&mut self, parent: roxmltree::Node<'_, '_>, what: &str) -> Result<Tf, LoadError> {
+    fn origin(
+        &mut self,
+        parent: roxmltree::Node<'_, '_>,
+        what: &str,
+    ) -> Result<Frame<f64>, LoadError> {
         let Some(o) = parent.children().find(|c| c.has_tag_name("origin")) else {
-            return Ok(Tf::IDENTITY);
+            return Ok(Frame::identity());
         };
         let xyz = match self.attr(o, "xyz") {
             Some((v, loc)) => self.numbers::<3>(&format!("{what} <origin xyz>"), &v, loc)?,
@@ -418,10 +346,11 @@ impl<'a> Reader<'a> {
             }
             None => [0.0; 3],
         };
-        Ok(Tf {
-            r: rpy_matrix(rpy),
-            p: Vector3::from(xyz),
-        })
+        Ok(Pose {
+            xyz,
+            rpy: rpy.map(Angle::from_radians),
+        }
+        .frame())
     }
 
     fn robot(mut self) -> Result<UrdfRobot, LoadError> {
@@ -484,7 +413,7 @@ impl<'a> Reader<'a> {
 
     /// One `<inertial>`, checked (mass ≥ 0, inertia positive semi-definite) and expressed in
     /// its link's frame.
-    fn inertial(&mut self, n: roxmltree::Node<'_, '_>, what: &str) -> Result<Mass, LoadError> {
+    fn inertial(&mut self, n: roxmltree::Node<'_, '_>, what: &str) -> Result<Inertial, LoadError> {
         let here = self.node_pos(n);
         let at = format!("{what} <inertial>");
         let origin = self.origin(n, &at)?;
@@ -521,12 +450,12 @@ impl<'a> Reader<'a> {
                 format!("{at} <inertia>: {message}"),
             ));
         }
-        Ok(Mass {
+        Ok(Inertial {
             mass,
-            com: Vector3::zeros(),
-            inertia: Matrix3::from_fn(|i, j| tensor[i][j]),
+            com: [0.0; 3],
+            inertia: tensor,
         }
-        .moved(&origin.r, &origin.p))
+        .in_frame(&origin))
     }
 
     fn joints(
@@ -868,13 +797,17 @@ impl<'a> Reader<'a> {
         // to it (fixed joints, movable joints off the chain at q = 0), in its frame.
         let has_dynamics = links.iter().any(|l| l.inertial.is_some());
         let mut locked = Vec::new();
-        let body = |start: usize, locked: &mut Vec<String>| -> (Mass, bool) {
-            let mut total = Mass::ZERO;
+        let body = |start: usize, locked: &mut Vec<String>| -> (Inertial, bool) {
+            let mut total = Inertial {
+                mass: 0.0,
+                com: [0.0; 3],
+                inertia: [[0.0; 3]; 3],
+            };
             let mut any = false;
-            let mut stack = vec![(start, Tf::IDENTITY)];
+            let mut stack = vec![(start, Frame::identity())];
             while let Some((l, tf)) = stack.pop() {
                 if let Some((m, _)) = &links[l].inertial {
-                    total = total.add(&m.moved(&tf.r, &tf.p));
+                    total = total.combined(&m.in_frame(&tf));
                     any = true;
                 }
                 for &j in &children[l] {
@@ -912,7 +845,7 @@ impl<'a> Reader<'a> {
         locked.dedup();
         // The description tree: placements accumulate fixed joints up to each moving joint.
         let mut rows = Vec::new();
-        let mut pending = Tf::IDENTITY;
+        let mut pending = Frame::identity();
         let mut k = 0;
         let mut out_joints = Vec::new();
         for &j in &path {
@@ -935,7 +868,7 @@ impl<'a> Reader<'a> {
                 velocity: joint.velocity,
                 effort: joint.effort,
             });
-            pending = Tf::IDENTITY;
+            pending = Frame::identity();
             k += 1;
         }
         let loc = first;
@@ -952,7 +885,7 @@ impl<'a> Reader<'a> {
                 Value::Bool(true, loc),
             ),
         ];
-        if !is_identity(&pending) {
+        if !(pending.rotation_is_identity() && pending.p == [0.0; 3]) {
             top.push(("tool".to_string(), loc, pose_value(&pending, loc)));
         }
         top.push(("links".to_string(), loc, Value::Array(rows, loc)));
@@ -1000,9 +933,9 @@ impl<'a> Reader<'a> {
     fn row(
         &self,
         joint: &Joint,
-        origin: &Tf,
+        origin: &Frame<f64>,
         axis: [f64; 3],
-        mass: Option<&Mass>,
+        mass: Option<&Inertial>,
         links: &[Link],
     ) -> Value<Position> {
         let loc = joint.loc;
@@ -1025,15 +958,15 @@ impl<'a> Reader<'a> {
                 .inertial
                 .map_or(links[joint.child].loc, |i| i.1);
             e.push(("mass".to_string(), mloc, num(m.mass, mloc)));
-            e.push(("com".to_string(), mloc, vec(m.com.as_slice(), mloc)));
+            e.push(("com".to_string(), mloc, vec(&m.com, mloc)));
             let t = &m.inertia;
             let entries = [
-                ("xx", t[(0, 0)]),
-                ("yy", t[(1, 1)]),
-                ("zz", t[(2, 2)]),
-                ("xy", t[(0, 1)]),
-                ("yz", t[(1, 2)]),
-                ("xz", t[(0, 2)]),
+                ("xx", t[0][0]),
+                ("yy", t[1][1]),
+                ("zz", t[2][2]),
+                ("xy", t[0][1]),
+                ("yz", t[1][2]),
+                ("xz", t[0][2]),
             ];
             e.push((
                 "inertia".to_string(),
@@ -1066,52 +999,12 @@ impl<'a> Reader<'a> {
     }
 }
 
-fn is_identity(t: &Tf) -> bool {
-    t.r == Matrix3::identity() && t.p == Vector3::zeros()
-}
-
-/// `Rz(yaw) Ry(pitch) Rx(roll)`, exact for quarter turns.
-fn rpy_matrix(rpy: [f64; 3]) -> Matrix3<f64> {
-    let r = crate::Pose {
-        xyz: [0.0; 3],
-        rpy: rpy.map(crate::Angle::from_radians),
-    }
-    .rotation();
-    Matrix3::from_fn(|i, j| r[i][j])
-}
-
 /// A transform as the description's `{ xyz, rpy }` table.
-fn pose_value(t: &Tf, loc: Position) -> Value<Position> {
-    let rpy = rpy_of(&t.r);
+fn pose_value(t: &Frame<f64>, loc: Position) -> Value<Position> {
+    let rpy = crate::model::rpy_of(&t.r);
     let v = |x: &[f64]| Value::Array(x.iter().map(|x| Value::Number(*x, loc)).collect(), loc);
     Value::Table(Table {
-        entries: vec![
-            ("xyz".into(), loc, v(t.p.as_slice())),
-            ("rpy".into(), loc, v(&rpy)),
-        ],
+        entries: vec![("xyz".into(), loc, v(&t.p)), ("rpy".into(), loc, v(&rpy))],
         loc,
     })
-}
-
-/// Roll, pitch, yaw of a rotation `Rz(yaw) Ry(pitch) Rx(roll)`; exact multiples of π/2 for
-/// rotations whose entries are in {−1, 0, 1}.
-pub(crate) fn rpy_of(r: &Matrix3<f64>) -> [f64; 3] {
-    // `+ 0.0` writes −0 (atan2 of a −0 entry) as 0.
-    rpy_signed(r).map(|a| a + 0.0)
-}
-
-fn rpy_signed(r: &Matrix3<f64>) -> [f64; 3] {
-    let cp = r[(0, 0)].hypot(r[(1, 0)]);
-    let pitch = (-r[(2, 0)]).atan2(cp);
-    if cp > 1e-12 {
-        [
-            r[(2, 1)].atan2(r[(2, 2)]),
-            pitch,
-            r[(1, 0)].atan2(r[(0, 0)]),
-        ]
-    } else {
-        // Pitch ±π/2: only roll − yaw (or roll + yaw) is defined; take yaw = 0.
-        let sp = -r[(2, 0)];
-        [(sp * r[(0, 1)]).atan2(r[(1, 1)]), pitch, 0.0]
-    }
 }

@@ -69,25 +69,11 @@ const TOP_FIELDS: &[&str] = &[
     "links",
     "allow_nonphysical_inertia",
 ];
-const LINK_FIELDS: &[&str] = &[
-    "joint",
-    "a",
-    "alpha",
-    "d",
-    "theta",
-    "limits",
-    "mass",
-    "com",
-    "inertia",
-    "motor",
-    "friction",
-    "collision",
-];
-/// The fields of a `urdf` row: the DH fields' place is taken by `origin` and `axis`.
-const URDF_LINK_FIELDS: &[&str] = &[
-    "joint",
-    "origin",
-    "axis",
+/// A link's fields: `joint`, then those placing it (the DH four, or a `urdf` row's two),
+/// then what every row may have.
+const DH_FIELDS: &[&str] = &["joint", "a", "alpha", "d", "theta"];
+const URDF_ROW_FIELDS: &[&str] = &["joint", "origin", "axis"];
+const LINK_COMMON_FIELDS: &[&str] = &[
     "limits",
     "mass",
     "com",
@@ -569,12 +555,9 @@ fn link<L: Clone>(
     };
     let t = table(at, v)?;
     let urdf = convention == Convention::Urdf;
-    let f = Fields::new(
-        t,
-        Some(index),
-        "",
-        if urdf { URDF_LINK_FIELDS } else { LINK_FIELDS },
-    )?;
+    let placing = if urdf { URDF_ROW_FIELDS } else { DH_FIELDS };
+    let allowed: Vec<&str> = placing.iter().chain(LINK_COMMON_FIELDS).copied().collect();
+    let f = Fields::new(t, Some(index), "", &allowed)?;
     let joint = f.with_required("joint", |at, v| {
         let kinds = [JointKind::Revolute, JointKind::Prismatic];
         keyword(at, v, "joint type", &["revolute", "prismatic"]).map(|i| kinds[i])

@@ -13,7 +13,7 @@
 //! of `Y` stacked over random states: it finds the regrouping of any robot, where a symbolic
 //! rule set (Khalil and Bennis's) covers the parallel and perpendicular axes of DH tables
 //! only. It is made exact enough to be reproducible: the states come from a fixed seed
-//! (`splitmix64`), the columns are scaled to unit norm before pivoting so the choice does not
+//! (`dhgen_model::random::Stream`, splitmix64), the columns are scaled to unit norm before pivoting so the choice does not
 //! depend on units, a column counts as independent when its pivot is above `1e-9` of the
 //! largest, and coefficients of `β` below `1e-10` in magnitude are exactly zero. The test
 //! `base_parameter_count_is_the_rank` checks the count against the rank of `Y` stacked over
@@ -32,25 +32,6 @@ pub struct BaseParameters {
     pub dependent: Vec<usize>,
     /// `β`, `independent.len() × dependent.len()`.
     pub beta: DMatrix<f64>,
-}
-
-/// A small, fixed pseudo-random stream (splitmix64): the same states on every platform.
-struct SplitMix(u64);
-
-impl SplitMix {
-    fn next(&mut self) -> f64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^= z >> 31;
-        (z >> 11) as f64 / (1u64 << 53) as f64
-    }
-
-    /// Uniform in `[-a, a]`.
-    fn within(&mut self, a: f64) -> f64 {
-        (2.0 * self.next() - 1.0) * a
-    }
 }
 
 impl BaseParameters {
@@ -116,7 +97,7 @@ impl Robot {
         let n = self.dof();
         let p = self.parameter_count();
         let states = (4 * p).div_ceil(n).max(20);
-        let mut rng = SplitMix(0x00D1_6E11);
+        let mut rng = dhgen_model::random::Stream(0x00D1_6E11);
         let mut stacked = DMatrix::zeros(states * n, p);
         for s in 0..states {
             let q: Vec<f64> = self
@@ -124,12 +105,12 @@ impl Robot {
                 .bodies
                 .iter()
                 .map(|b| match b.limits {
-                    Some([lo, hi]) => lo + (hi - lo) * rng.next(),
-                    None => rng.within(core::f64::consts::PI),
+                    Some([lo, hi]) => rng.uniform(lo, hi),
+                    None => rng.uniform(-core::f64::consts::PI, core::f64::consts::PI),
                 })
                 .collect();
-            let qd: Vec<f64> = (0..n).map(|_| rng.within(2.0)).collect();
-            let qdd: Vec<f64> = (0..n).map(|_| rng.within(2.0)).collect();
+            let qd: Vec<f64> = (0..n).map(|_| rng.uniform(-2.0, 2.0)).collect();
+            let qdd: Vec<f64> = (0..n).map(|_| rng.uniform(-2.0, 2.0)).collect();
             let y = self.regressor(&q[..], &qd[..], &qdd[..]);
             stacked.rows_mut(s * n, n).copy_from(&y);
         }

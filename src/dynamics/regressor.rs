@@ -31,26 +31,28 @@ pub const BODY_PARAMETER_NAMES: [&str; BODY_PARAMETERS] = [
 /// The ten parameters of a body of mass `mass`, centre of mass `com` and inertia `i_com` about
 /// it, all in one frame: `[m, m·c, I about the origin]` in the order of [`BODY_PARAMETER_NAMES`].
 pub fn body_parameters(mass: f64, com: &[f64; 3], i_com: &[[f64; 3]; 3]) -> [f64; BODY_PARAMETERS] {
-    let c = Vector3::from(*com);
-    let i = Matrix3::from_fn(|a, b| i_com[a][b])
-        + (Matrix3::from_diagonal_element(c.norm_squared()) - c * c.transpose()) * mass;
-    let h = c * mass;
-    [
+    let i = Inertia::from_com(
         mass,
+        &Vector3::from(*com),
+        &Matrix3::from_fn(|a, b| i_com[a][b]),
+    );
+    let (h, k) = (i.h, i.k);
+    [
+        i.mass,
         h.x,
         h.y,
         h.z,
-        i[(0, 0)],
-        i[(0, 1)],
-        i[(1, 1)],
-        i[(0, 2)],
-        i[(1, 2)],
-        i[(2, 2)],
+        k[(0, 0)],
+        k[(0, 1)],
+        k[(1, 1)],
+        k[(0, 2)],
+        k[(1, 2)],
+        k[(2, 2)],
     ]
 }
 
 /// The spatial inertia whose parameters are `p` (about the frame's origin).
-fn inertia_of(p: &[f64; BODY_PARAMETERS]) -> Inertia {
+pub(crate) fn inertia_of(p: &[f64; BODY_PARAMETERS]) -> Inertia {
     Inertia {
         mass: p[0],
         h: Vector3::new(p[1], p[2], p[3]),

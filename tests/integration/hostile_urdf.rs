@@ -6,12 +6,13 @@
 //! starts with `file:line:column:`; every accepted variant evaluates to finite values.
 //! `DHGEN_HOSTILE_URDF_CASES` sets the number of variants (default 5,000).
 
+use crate::hostile_descriptions::{accepted_evaluates, caught, one_located_line};
 use dhgen::Robot;
 use dhgen::model::urdf::{UrdfOptions, read_bytes};
-use std::panic::{AssertUnwindSafe, catch_unwind};
 
 const ORIGIN: &str = "hostile.urdf";
 
+/// Reads one variant and checks the laws (those of the TOML test); `Ok(true)`: accepted.
 fn check(bytes: &[u8], tip: Option<&str>) -> Result<bool, String> {
     let options = UrdfOptions {
         tip: tip.map(str::to_string),
@@ -19,50 +20,11 @@ fn check(bytes: &[u8], tip: Option<&str>) -> Result<bool, String> {
     };
     match read_bytes(bytes, ORIGIN, &options) {
         Ok(urdf) => {
-            let robot = Robot::from_model(urdf.model);
-            let q = vec![0.1; robot.dof()];
-            let pose = robot.fk(&q);
-            let j = robot.jacobian(&q);
-            if !pose
-                .translation
-                .vector
-                .iter()
-                .chain(j.iter())
-                .all(|x| x.is_finite())
-            {
-                return Err("an accepted file gives a non-finite pose or Jacobian".into());
-            }
-            if robot.has_dynamics() && robot.dof() <= dhgen_codegen::limits::MAX_DYNAMICS_DOF {
-                let d = robot.mass_matrix(&q);
-                let g = robot.gravity(&q);
-                if !d.iter().chain(g.iter()).all(|x| x.is_finite()) {
-                    return Err("an accepted file gives a non-finite D or g".into());
-                }
-                let _ = robot.forward_dynamics(&q, &q, &g);
-            }
-            let _ = dhgen_codegen::limits::check(robot.chain());
+            accepted_evaluates(&Robot::from_model(urdf.model))?;
             Ok(true)
         }
         Err(e) => {
-            let shown = e.to_string();
-            if shown.contains('\n') {
-                return Err(format!("the error is not one line: {shown:?}"));
-            }
-            let located = shown
-                .strip_prefix(ORIGIN)
-                .and_then(|rest| rest.strip_prefix(':'))
-                .and_then(|rest| {
-                    let mut parts = rest.splitn(3, ':');
-                    let line = parts.next()?.parse::<usize>().ok()?;
-                    let column = parts.next()?.parse::<usize>().ok()?;
-                    (line > 0 && column > 0 && parts.next()?.starts_with(' ')).then_some(())
-                })
-                .is_some();
-            if !located {
-                return Err(format!(
-                    "the error does not start with file:line:column: {shown:?}"
-                ));
-            }
+            one_located_line(&e.to_string(), ORIGIN)?;
             Ok(false)
         }
     }
@@ -91,14 +53,7 @@ fn hostile_urdf_files_load_or_fail_with_one_located_line() {
     for seed in 0..cases {
         let (text, tip) = &seeds[(seed % seeds.len() as u64) as usize];
         let bytes = dhgen::model::hostile::mutate(text, seed);
-        let outcome = catch_unwind(AssertUnwindSafe(|| check(&bytes, *tip))).unwrap_or_else(|p| {
-            let why = p
-                .downcast_ref::<String>()
-                .cloned()
-                .or_else(|| p.downcast_ref::<&str>().map(|s| s.to_string()))
-                .unwrap_or_default();
-            Err(format!("panicked: {why}"))
-        });
+        let outcome = caught(|| check(&bytes, *tip));
         match outcome {
             Ok(true) => accepted += 1,
             Ok(false) => rejected += 1,

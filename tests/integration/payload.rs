@@ -5,7 +5,7 @@
 use crate::catalogue::{odd, panda, puma560};
 use dhgen::payload::{self, Payload};
 use dhgen::{ArmDynamics, Robot, RobotModel};
-use nalgebra::{DVector, Matrix3, SVector, Vector3};
+use nalgebra::{DVector, SVector};
 
 fn box_payload() -> Payload {
     // 1.7 kg, off-centre, with products of inertia (a tilted box).
@@ -28,26 +28,14 @@ fn with_payload_in_description(model: &RobotModel, p: &Payload) -> Robot {
     let tool = m
         .tool
         .map_or_else(dhgen::model::Frame::identity, |t| t.frame::<f64>());
-    let r = Matrix3::from_fn(|i, j| tool.r[i][j]);
-    let com_p = r * Vector3::from(p.com()) + Vector3::from(tool.p);
-    let i_p = r * Matrix3::from_fn(|i, j| p.inertia()[i][j]) * r.transpose();
+    let held = dhgen::model::Inertial {
+        mass: p.mass(),
+        com: p.com(),
+        inertia: p.inertia(),
+    }
+    .in_frame(&tool);
     let last = m.links.last_mut().unwrap();
-    let own = last.inertial.unwrap();
-    let (m1, m2) = (own.mass, p.mass());
-    let c1 = Vector3::from(own.com);
-    let mass = m1 + m2;
-    let com = (c1 * m1 + com_p * m2) / mass;
-    let steiner =
-        |d: Vector3<f64>, m: f64| (Matrix3::identity() * d.norm_squared() - d * d.transpose()) * m;
-    let inertia = Matrix3::from_fn(|i, j| own.inertia[i][j])
-        + steiner(c1 - com, m1)
-        + i_p
-        + steiner(com_p - com, m2);
-    last.inertial = Some(dhgen::model::Inertial {
-        mass,
-        com: com.into(),
-        inertia: core::array::from_fn(|i| core::array::from_fn(|j| inertia[(i, j)])),
-    });
+    last.inertial = Some(last.inertial.unwrap().combined(&held));
     Robot::from_toml_str(&m.to_toml()).unwrap()
 }
 

@@ -9,19 +9,11 @@ use nalgebra::{DMatrix, DVector};
 fn robots() -> Vec<(String, Robot)> {
     let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
     let mut out = Vec::new();
-    for dir in ["robots", "tests/fixtures"] {
-        let mut paths: Vec<_> = std::fs::read_dir(root.join(dir))
-            .unwrap()
-            .map(|e| e.unwrap().path())
-            .filter(|p| p.extension().is_some_and(|e| e == "toml"))
-            .collect();
-        paths.sort();
-        for p in paths {
-            let r = Robot::from_toml_file(&p).unwrap();
-            // The 17-joint snake is covered by the generator tests; here it would only be slow.
-            if r.has_dynamics() && r.dof() <= 12 {
-                out.push((p.file_stem().unwrap().to_string_lossy().into_owned(), r));
-            }
+    for p in crate::support::description_paths() {
+        let r = Robot::from_toml_file(&p).unwrap();
+        // The 17-joint snake is covered by the generator tests; here it would only be slow.
+        if r.has_dynamics() && r.dof() <= 12 {
+            out.push((p.file_stem().unwrap().to_string_lossy().into_owned(), r));
         }
     }
     for (file, tip) in [

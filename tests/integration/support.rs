@@ -24,6 +24,23 @@ pub fn fixture(name: &str) -> Robot {
     Robot::from_toml_file(fixture_path(name)).unwrap()
 }
 
+/// Every TOML description of the repository: the catalogue (`robots/`), then the fixtures
+/// (`tests/fixtures/`), each directory in name order.
+pub fn description_paths() -> Vec<PathBuf> {
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    let mut all = Vec::new();
+    for dir in ["robots", "tests/fixtures"] {
+        let mut paths: Vec<_> = std::fs::read_dir(root.join(dir))
+            .unwrap()
+            .map(|e| e.unwrap().path())
+            .filter(|p| p.extension().is_some_and(|e| e == "toml"))
+            .collect();
+        paths.sort();
+        all.extend(paths);
+    }
+    all
+}
+
 /// The largest magnitude among `values` (0 for none).
 pub fn max_abs(values: impl IntoIterator<Item = f64>) -> f64 {
     values.into_iter().map(f64::abs).fold(0.0, f64::max)

@@ -5,12 +5,13 @@
 //! `D q̈ + Σ c_ijk q̇_i q̇_j + g` from the normal forms. The cheaper is kept.
 
 use super::Derivation;
+use crate::chain::RingChain;
 use crate::graph::{E, SharedGraph, Sym};
 use dhgen_model::ChainRef;
 
 /// The armature and viscous friction torques of joint i (friction's Coulomb part is emitted
 /// separately, since `sign` is not arithmetic).
-pub(crate) fn joint_terms(chain: ChainRef<'_>, i: usize, qd: &E, qdd: &E) -> E {
+fn joint_terms(chain: ChainRef<'_>, i: usize, qd: &E, qdd: &E) -> E {
     let b = &chain.bodies[i];
     E::K(b.armature) * qdd.clone() + E::K(b.friction.viscous) * qd.clone()
 }
@@ -23,6 +24,19 @@ pub fn rnea_exprs(
     qdd_zero: bool,
     with_gravity: bool,
 ) -> Vec<E> {
+    rnea_with(chain, graph, qdd_zero, with_gravity, super::graph_chain)
+}
+
+/// [`rnea_exprs`] on the chain `build` makes in graph arithmetic (the payload's derivations add
+/// a body's worth of input symbols to its last link). The joint symbols are made first, so
+/// the generated statements come in the same order whatever the chain.
+pub(crate) fn rnea_with<'c>(
+    chain: ChainRef<'c>,
+    graph: &SharedGraph,
+    qdd_zero: bool,
+    with_gravity: bool,
+    build: impl FnOnce(ChainRef<'c>, &SharedGraph) -> RingChain<'c, E>,
+) -> Vec<E> {
     let n = chain.dof();
     let qd: Vec<E> = (0..n).map(|i| E::sym(graph, Sym::Qd(i))).collect();
     let qdd: Vec<E> = (0..n)
@@ -34,7 +48,7 @@ pub fn rnea_exprs(
             }
         })
         .collect();
-    super::graph_chain(chain, graph)
+    build(chain, graph)
         .rnea(&qd, &qdd, with_gravity)
         .into_iter()
         .enumerate()

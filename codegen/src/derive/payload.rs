@@ -28,23 +28,7 @@ fn chain_with_payload<'c>(chain: ChainRef<'c>, graph: &SharedGraph) -> RingChain
 
 /// τ with the payload, without Coulomb friction; `qdd_zero`: the bias `C q̇ + g`.
 pub fn rnea(chain: ChainRef<'_>, graph: &SharedGraph, qdd_zero: bool) -> Vec<E> {
-    let n = chain.dof();
-    let qd: Vec<E> = (0..n).map(|i| E::sym(graph, Sym::Qd(i))).collect();
-    let qdd: Vec<E> = (0..n)
-        .map(|i| {
-            if qdd_zero {
-                E::K(0.0)
-            } else {
-                E::sym(graph, Sym::Qdd(i))
-            }
-        })
-        .collect();
-    chain_with_payload(chain, graph)
-        .rnea(&qd, &qdd, true)
-        .into_iter()
-        .enumerate()
-        .map(|(i, t)| t + super::newton_euler::joint_terms(chain, i, &qd[i], &qdd[i]))
-        .collect()
+    super::newton_euler::rnea_with(chain, graph, qdd_zero, true, chain_with_payload)
 }
 
 /// D(q) with the payload (row-major), armature included.

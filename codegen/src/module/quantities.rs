@@ -121,6 +121,25 @@ fn composed(body: TokenStream, reads: &'static [&'static str]) -> Made {
     }
 }
 
+/// A smooth torque (`call`, reading `reads`) plus the joints' Coulomb friction, which is not
+/// arithmetic (`sign`) and so is added after the straight-line part.
+fn with_coulomb(cx: &Context<'_>, call: TokenStream, reads: &'static [&'static str]) -> Made {
+    let coulomb = cx.coulomb();
+    let binding = if coulomb.is_empty() {
+        quote!(let tau)
+    } else {
+        quote!(let mut tau)
+    };
+    composed(
+        quote! {
+            #binding = #call;
+            #coulomb
+            tau
+        },
+        reads,
+    )
+}
+
 fn frame_entries(f: &dhgen_model::Frame<E>) -> Vec<E> {
     (0..3)
         .flat_map(|r| {
@@ -389,18 +408,9 @@ pub const QUANTITIES: &[Quantity] = &[
         available: Availability::Dynamics,
         public: true,
         make: |cx| {
-            let coulomb = cx.coulomb();
-            let binding = if coulomb.is_empty() {
-                quote!(let tau)
-            } else {
-                quote!(let mut tau)
-            };
-            composed(
-                quote! {
-                    #binding = self.inverse_dynamics_smooth(qd, qdd);
-                    #coulomb
-                    tau
-                },
+            with_coulomb(
+                cx,
+                quote!(self.inverse_dynamics_smooth(qd, qdd)),
                 &["inverse_dynamics_smooth"],
             )
         },
@@ -434,18 +444,9 @@ pub const QUANTITIES: &[Quantity] = &[
         available: Availability::Dynamics,
         public: true,
         make: |cx| {
-            let coulomb = cx.coulomb();
-            let binding = if coulomb.is_empty() {
-                quote!(let tau)
-            } else {
-                quote!(let mut tau)
-            };
-            composed(
-                quote! {
-                    #binding = self.inverse_dynamics_with_payload_smooth(qd, qdd, payload);
-                    #coulomb
-                    tau
-                },
+            with_coulomb(
+                cx,
+                quote!(self.inverse_dynamics_with_payload_smooth(qd, qdd, payload)),
                 &["inverse_dynamics_with_payload_smooth"],
             )
         },
@@ -476,18 +477,9 @@ pub const QUANTITIES: &[Quantity] = &[
         available: Availability::Dynamics,
         public: true,
         make: |cx| {
-            let coulomb = cx.coulomb();
-            let binding = if coulomb.is_empty() {
-                quote!(let tau)
-            } else {
-                quote!(let mut tau)
-            };
-            composed(
-                quote! {
-                    #binding = self.bias_with_payload_smooth(qd, payload);
-                    #coulomb
-                    tau
-                },
+            with_coulomb(
+                cx,
+                quote!(self.bias_with_payload_smooth(qd, payload)),
                 &["bias_with_payload_smooth"],
             )
         },
@@ -549,22 +541,7 @@ pub const QUANTITIES: &[Quantity] = &[
         shape: Shape::Vector,
         available: Availability::Dynamics,
         public: true,
-        make: |cx| {
-            let coulomb = cx.coulomb();
-            let binding = if coulomb.is_empty() {
-                quote!(let tau)
-            } else {
-                quote!(let mut tau)
-            };
-            composed(
-                quote! {
-                    #binding = self.bias_smooth(qd);
-                    #coulomb
-                    tau
-                },
-                &["bias_smooth"],
-            )
-        },
+        make: |cx| with_coulomb(cx, quote!(self.bias_smooth(qd)), &["bias_smooth"]),
         arm: Some(ArmMethod::Dynamics),
     },
     Quantity {
