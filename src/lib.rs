@@ -118,32 +118,20 @@ pub use dynamics::{Christoffel, ChristoffelPlane};
 #[cfg(feature = "std")]
 pub mod payload;
 /// Inertial parameters: the regressor `Y` with `τ = Y π` ([`Robot::regressor`],
-/// [`Robot::parameters`]) and the base parameters ([`Robot::base_parameters`],
-/// [`BaseParameters`](parameters::BaseParameters)).
+/// [`Robot::parameters`], and `regressor` in generated modules) and the base parameters
+/// ([`Robot::base_parameters`], [`BaseParameters`](parameters::BaseParameters), and
+/// `base_regressor` in generated modules).
 ///
-/// # The parameters
-/// Ten per link, in Pinocchio's order (`Inertia::toDynamicParameters`), in that link's frame
-/// (the frame the description gives its `com` and `inertia` in: DH frame i, or the URDF link
-/// frame), about the frame's origin, as identification practice writes them:
-/// `m, m·cx, m·cy, m·cz, Ixx, Ixy, Iyy, Ixz, Iyz, Izz`, with `c` the centre of mass and
-/// `I = I_c + m (|c|² 1 − c cᵀ)` (`Ixy` the tensor entry, `−∫xy dm`). After the 10·n link
-/// columns come the joint-side terms where the description has them, joint by joint: the
-/// armature `Jm·G²` (a joint with a `motor`; column `q̈_i`), then the viscous and Coulomb
-/// coefficients (a joint with `friction`; columns `q̇_i` and `sign(q̇_i)`).
-/// [`Robot::parameter_names`] names every column.
-///
-/// # Base parameters
-/// Columns of `Y` that are zero at every state, or combinations of others, leave
-/// `τ = Y_b π_b` with `π_b = π_i + β π_d`: what identification can recover. dhgen finds them
-/// numerically, by Gautier's rank-revealing QR with column pivoting of `Y` stacked over seeded
-/// random states (unit-norm columns, pivots above 1e-9 of the largest, `|β| < 1e-10` set to 0):
-/// it regroups any chain, where symbolic rules cover DH tables with parallel and perpendicular
-/// axes only. The count equals the rank of `Y` over 1,000 states computed independently (a
-/// test).
+/// The order of the parameters (ten per link, `m, m·cx, m·cy, m·cz, Ixx, Ixy, Iyy, Ixz, Iyz,
+/// Izz` in the link's frame about its origin, then armature and friction), the frames they are
+/// expressed in, and the base-parameter method (Gautier's pivoted QR over seeded states) are
+/// defined once, in [`dhgen_model::parameters`], re-exported here.
 #[cfg(feature = "std")]
 pub mod parameters {
-    pub use crate::dynamics::base_parameters::BaseParameters;
-    pub use crate::dynamics::regressor::{BODY_PARAMETER_NAMES, BODY_PARAMETERS, body_parameters};
+    pub use dhgen_model::parameters::{
+        BODY_PARAMETER_NAMES, BODY_PARAMETERS, BaseParameters, Column, body_parameters, columns,
+        names, reduce, sample_states, values,
+    };
 }
 #[cfg(feature = "std")]
 pub use error::Error;

@@ -3,7 +3,7 @@
 //! - `dhgen info ROBOT.toml`: the DH table, joints, limits, masses, spherical wrist;
 //! - `dhgen eval ROBOT.toml --q ... [--qd ...] [--qdd ...] [--json]`: T, J, D, C, g, τ on
 //!   the runtime path;
-//! - `dhgen emit ROBOT.toml [-o FILE] [--name MOD] [--derivatives]`: the module `robot!`
+//! - `dhgen emit ROBOT.toml [-o FILE] [--name MOD] [--derivatives] [--regressor]`: the module `robot!`
 //!   generates, formatted;
 //! - `dhgen latex ROBOT.toml`: D(q), c_ijk and g(q) as LaTeX equations;
 //! - `dhgen ops ROBOT.toml`: operation counts of the generated functions;
@@ -78,6 +78,10 @@ enum Command {
         /// `robot!(..., derivatives)` does.
         #[arg(long)]
         derivatives: bool,
+        /// Also generate the regressor, base regressor and base parameters, as
+        /// `robot!(..., regressor)` does.
+        #[arg(long)]
+        regressor: bool,
     },
     /// Print D(q), the Christoffel symbols c_ijk and g(q) as LaTeX equations, from the
     /// symbolic engine.
@@ -99,6 +103,9 @@ enum Command {
         /// Include the derivatives of the dynamics (`robot!(..., derivatives)`).
         #[arg(long)]
         derivatives: bool,
+        /// Include the regressor and base parameters (`robot!(..., regressor)`).
+        #[arg(long)]
+        regressor: bool,
     },
     /// Convert a description: a URDF file to a DH table (`dh`, `mdh`) or to the description
     /// format's `urdf` convention (`toml`), a TOML description to URDF (`urdf`) or to the
@@ -272,9 +279,13 @@ fn run(command: Command) -> Result<String, String> {
             output,
             name,
             derivatives,
+            regressor,
         } => {
             let r = load(&robot)?;
-            let options = dhgen_codegen::Options { derivatives };
+            let options = dhgen_codegen::Options {
+                derivatives,
+                regressor,
+            };
             let code = emit::emit(r.model(), &robot.robot, name.as_deref(), options)?;
             deliver(output, code)
         }
@@ -292,9 +303,16 @@ fn run(command: Command) -> Result<String, String> {
             dynamics_equations(r.model(), &style)
                 .map_err(|why| format!("{}: {why}", robot.display()))
         }
-        Command::Ops { robot, derivatives } => emit::ops_report(
+        Command::Ops {
+            robot,
+            derivatives,
+            regressor,
+        } => emit::ops_report(
             load(&robot)?.model(),
-            dhgen_codegen::Options { derivatives },
+            dhgen_codegen::Options {
+                derivatives,
+                regressor,
+            },
         )
         .map_err(|e| format!("{}: {e}", robot.display())),
         Command::Convert { robot, to, output } => {

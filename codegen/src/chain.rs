@@ -119,6 +119,55 @@ impl<R: Ring> MassMoments<R> {
         }
     }
 
+    /// The body whose parameters (in the order of `dhgen_model::parameters`) are all zero
+    /// but parameter `p`, which is one.
+    pub fn unit(p: usize) -> MassMoments<R> {
+        let v = |k: usize| -> R {
+            if k == p {
+                R::from_f64(1.0)
+            } else {
+                R::from_f64(0.0)
+            }
+        };
+        MassMoments {
+            m: v(0),
+            h: [v(1), v(2), v(3)],
+            i: [[v(4), v(5), v(7)], [v(5), v(6), v(8)], [v(7), v(8), v(9)]],
+        }
+    }
+
+    /// The ten parameters (`m, h, Ixx, Ixy, Iyy, Ixz, Iyz, Izz`).
+    pub fn parameters(&self) -> [R; 10] {
+        [
+            self.m.clone(),
+            self.h[0].clone(),
+            self.h[1].clone(),
+            self.h[2].clone(),
+            self.i[0][0].clone(),
+            self.i[0][1].clone(),
+            self.i[1][1].clone(),
+            self.i[0][2].clone(),
+            self.i[1][2].clone(),
+            self.i[2][2].clone(),
+        ]
+    }
+
+    /// The wrench `(f, n)` (moment about the frame origin) that gives the body the motion
+    /// `(ω, ω̇, a)` of its frame (`a` the origin's acceleration, gravity included):
+    /// `f = m a + ω̇ × h + ω × (ω × h)`, `n = Ī ω̇ + ω × Ī ω + h × a`.
+    pub fn wrench(&self, (w, wd, a): &(V3<R>, V3<R>, V3<R>)) -> (V3<R>, V3<R>) {
+        let f = add3(
+            &add3(&scale3(&self.m, a), &cross(wd, &self.h)),
+            &cross(w, &cross(w, &self.h)),
+        );
+        let iw = mat_vec(&self.i, w);
+        let nn = add3(
+            &add3(&mat_vec(&self.i, wd), &cross(w, &iw)),
+            &cross(&self.h, a),
+        );
+        (f, nn)
+    }
+
     /// Two bodies' moments about the same origin, combined.
     pub fn plus(&self, o: &MassMoments<R>) -> MassMoments<R> {
         MassMoments {
@@ -402,30 +451,84 @@ impl<'c, R: Ring> RingChain<'c, R> {
 
     /// Recursive Newton-Euler: `τ = D q̈ + C q̇ + g` (gravity included when `with_gravity`).
     pub fn rnea(&self, qd: &[R], qdd: &[R], with_gravity: bool) -> Vec<R> {
-        let n = self.dof();
-        let z = || k::<R>(0.0);
-        // The base accelerates upwards instead of gravity pulling down.
-        let a0: V3<R> = if with_gravity {
+        let forces = self
+            .outward(qd, qdd, self.base_acceleration(with_gravity))
+            .iter()
+            .zip(&self.bodies)
+            .map(|(motion, b)| b.wrench(motion))
+            .collect();
+        self.inward(forces)
+    }
+
+    /// The acceleration the outward pass starts from: the base accelerates upwards instead of
+    /// gravity pulling down.
+    fn base_acceleration(&self, with_gravity: bool) -> V3<R> {
+        if with_gravity {
             self.gravity.clone().map(|x| -x)
         } else {
-            [z(), z(), z()]
-        };
-        let motion = self.outward(qd, qdd, a0);
-        let mut forces = Vec::with_capacity(n);
-        for (j, (w, wd, a)) in motion.into_iter().enumerate() {
-            let b = &self.bodies[j];
-            let f = add3(
-                &add3(&scale3(&b.m, &a), &cross(&wd, &b.h)),
-                &cross(&w, &cross(&w, &b.h)),
-            );
-            let iw = mat_vec(&b.i, &w);
-            let nn = add3(
-                &add3(&mat_vec(&b.i, &wd), &cross(&w, &iw)),
-                &cross(&b.h, &a),
-            );
-            forces.push((f, nn));
+            [k(0.0), k(0.0), k(0.0)]
         }
-        self.inward(forces)
+    }
+
+    /// The joint torque regressor's link columns, row by row: `out[i][10·k + p]` is the torque
+    /// of joint i per unit of parameter p of link k (`dhgen_model::parameters`: `m, m·c, I`
+    /// about link frame k's origin, in its axes), gravity included.
+    ///
+    /// Linear in each body's parameters: the outward pass once, then per link the ten unit
+    /// wrenches in its joint frame (constants fold the unused terms away), turned from the
+    /// joint frame's parameters to the link frame's by the constant map `MassMoments::
+    /// transformed` is, and per joint i ≤ k the dot product with joint i's axis carried out
+    /// to frame k as a motion vector (`ang·n + lin·f`): O(n²) 6-vectors, where transporting
+    /// each of the 10·k wrenches back would cost ten times as much.
+    pub fn regressor(&self, qd: &[R], qdd: &[R]) -> Vec<Vec<R>> {
+        const P: usize = dhgen_model::parameters::BODY_PARAMETERS;
+        let n = self.dof();
+        let z = || k::<R>(0.0);
+        let motion = self.outward(qd, qdd, self.base_acceleration(true));
+        // Per link, the wrench (f, n) of each link-frame parameter, in the joint frame.
+        let wrenches: Vec<Vec<(V3<R>, V3<R>)>> = (0..n)
+            .map(|j| {
+                let joint_frame: Vec<(V3<R>, V3<R>)> = (0..P)
+                    .map(|l| MassMoments::<R>::unit(l).wrench(&motion[j]))
+                    .collect();
+                let link = &self.chain.bodies[j].link;
+                (0..P)
+                    .map(|p| {
+                        let map = MassMoments::<f64>::unit(p).transformed(link).parameters();
+                        let mut f = [z(), z(), z()];
+                        let mut nn = [z(), z(), z()];
+                        for (l, &c) in map.iter().enumerate() {
+                            if c != 0.0 {
+                                let (fl, nl) = &joint_frame[l];
+                                f = add3(&f, &scale3(&k(c), fl));
+                                nn = add3(&nn, &scale3(&k(c), nl));
+                            }
+                        }
+                        (f, nn)
+                    })
+                    .collect()
+            })
+            .collect();
+        let mut out = vec![vec![z(); P * n]; n];
+        for (i, row) in out.iter_mut().enumerate() {
+            // Joint i's axis as a motion vector (direction, and its moment arm), in frame k.
+            let axis = [z(), z(), k(1.0)];
+            let (mut ang, mut lin) = match self.kinds[i] {
+                JointKind::Revolute => (axis, [z(), z(), z()]),
+                JointKind::Prismatic => ([z(), z(), z()], axis),
+            };
+            for kk in i..n {
+                if kk > i {
+                    let t = &self.t[kk];
+                    lin = rot_t(t, &add3(&lin, &cross(&ang, &t.p)));
+                    ang = rot_t(t, &ang);
+                }
+                for (p, (f, nn)) in wrenches[kk].iter().enumerate() {
+                    row[P * kk + p] = dot(&ang, nn) + dot(&lin, f);
+                }
+            }
+        }
+        out
     }
 
     /// The inward pass: wrenches (force, moment about the frame origin) given per joint frame,

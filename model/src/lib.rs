@@ -37,6 +37,8 @@ pub mod hostile;
 mod math;
 mod model;
 #[cfg(feature = "std")]
+pub mod parameters;
+#[cfg(feature = "std")]
 pub mod random;
 #[cfg(feature = "std")]
 pub mod raw;

@@ -1,55 +1,14 @@
 //! The inverse dynamics are linear in the inertial parameters: `τ = Y(q, q̇, q̈) π`, the joint
-//! torque regressor `Y`, and the robot's own parameters `π`.
-//!
-//! # The parameters
-//! Ten per link, in Pinocchio's order (`Inertia::toDynamicParameters`), expressed in that
-//! link's frame (the frame the description gives its `com` and `inertia` in: DH frame i, or
-//! the URDF link frame), about the frame's origin, as identification practice writes them:
-//!
-//! `m, m·cx, m·cy, m·cz, Ixx, Ixy, Iyy, Ixz, Iyz, Izz`
-//!
-//! with `c` the centre of mass and `I = I_c + m (|c|² 1 − c cᵀ)` the inertia tensor about the
-//! link frame's origin (`Ixy` the tensor entry, `−∫xy dm`). After the 10·n link columns come the
-//! joint-side terms where the description has them, joint by joint: the armature `Jm·G²` (a
-//! joint with a `motor`; column `q̈_i`), then the viscous and Coulomb coefficients (a joint
-//! with `friction`; columns `q̇_i` and `sign(q̇_i)`). [`Robot::parameter_names`] names every
-//! column.
+//! torque regressor `Y`, and the robot's own parameters `π`, in the order and frames of
+//! [`dhgen_model::parameters`] (the generated regressor's too).
 
 use super::spatial::{Force, Inertia, Motion};
 use crate::Joints;
 use crate::robot::{Rigid, Robot};
 use nalgebra::{DMatrix, DVector, Matrix3, Vector3};
 
-/// The number of inertial parameters of one body.
-pub const BODY_PARAMETERS: usize = 10;
-
-/// The names of a body's ten parameters, in order (`m`, `mx` for `m·cx`, ..., `Izz`).
-pub const BODY_PARAMETER_NAMES: [&str; BODY_PARAMETERS] = [
-    "m", "mx", "my", "mz", "Ixx", "Ixy", "Iyy", "Ixz", "Iyz", "Izz",
-];
-
-/// The ten parameters of a body of mass `mass`, centre of mass `com` and inertia `i_com` about
-/// it, all in one frame: `[m, m·c, I about the origin]` in the order of [`BODY_PARAMETER_NAMES`].
-pub fn body_parameters(mass: f64, com: &[f64; 3], i_com: &[[f64; 3]; 3]) -> [f64; BODY_PARAMETERS] {
-    let i = Inertia::from_com(
-        mass,
-        &Vector3::from(*com),
-        &Matrix3::from_fn(|a, b| i_com[a][b]),
-    );
-    let (h, k) = (i.h, i.k);
-    [
-        i.mass,
-        h.x,
-        h.y,
-        h.z,
-        k[(0, 0)],
-        k[(0, 1)],
-        k[(1, 1)],
-        k[(0, 2)],
-        k[(1, 2)],
-        k[(2, 2)],
-    ]
-}
+use dhgen_model::parameters::BODY_PARAMETERS;
+use dhgen_model::parameters::{self as layout, Column};
 
 /// The spatial inertia whose parameters are `p` (about the frame's origin).
 pub(crate) fn inertia_of(p: &[f64; BODY_PARAMETERS]) -> Inertia {
@@ -78,53 +37,18 @@ fn force_from(pose: &Rigid, f: &Force) -> Force {
     }
 }
 
-/// Which joint-side columns the robot has: per joint, armature and friction.
-pub(crate) fn joint_columns(robot: &Robot) -> Vec<(usize, JointTerm)> {
-    let mut out = Vec::new();
-    for (i, l) in robot.model.links.iter().enumerate() {
-        if l.motor.is_some() {
-            out.push((i, JointTerm::Armature));
-        }
-        if l.friction.is_some() {
-            out.push((i, JointTerm::Viscous));
-            out.push((i, JointTerm::Coulomb));
-        }
-    }
-    out
-}
-
-/// A joint-side parameter.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(crate) enum JointTerm {
-    Armature,
-    Viscous,
-    Coulomb,
-}
-
 impl Robot {
     /// The number of parameters, `10·n` plus the joint-side ones (see the
     /// [`dhgen::parameters`](crate::parameters)).
     pub fn parameter_count(&self) -> usize {
-        BODY_PARAMETERS * self.dof() + joint_columns(self).len()
+        layout::columns(&self.model).len()
     }
 
     /// The names of the parameters, in order: `m1, mx1, my1, mz1, Ixx1, Ixy1, Iyy1, Ixz1,
     /// Iyz1, Izz1, m2, ...`, then `Ia3` (armature of joint 3), `fv3`, `fc3` (viscous and
     /// Coulomb friction of joint 3) where the description has them.
     pub fn parameter_names(&self) -> Vec<String> {
-        let mut names = Vec::with_capacity(self.parameter_count());
-        for j in 1..=self.dof() {
-            names.extend(BODY_PARAMETER_NAMES.iter().map(|n| format!("{n}{j}")));
-        }
-        for (i, term) in joint_columns(self) {
-            let prefix = match term {
-                JointTerm::Armature => "Ia",
-                JointTerm::Viscous => "fv",
-                JointTerm::Coulomb => "fc",
-            };
-            names.push(format!("{prefix}{}", i + 1));
-        }
-        names
+        layout::names(&self.model)
     }
 
     /// The robot's own parameters `π` (see the [`dhgen::parameters`](crate::parameters) for the order and frames):
@@ -135,20 +59,9 @@ impl Robot {
     #[doc(alias = "toDynamicParameters")]
     pub fn parameters(&self) -> DVector<f64> {
         self.check_dynamics("parameters");
-        let mut pi = Vec::with_capacity(self.parameter_count());
-        for l in &self.model.links {
-            let i = l.inertial.expect("checked: every link has mass properties");
-            pi.extend(body_parameters(i.mass, &i.com, &i.inertia));
-        }
-        for (i, term) in joint_columns(self) {
-            let l = &self.model.links[i];
-            pi.push(match term {
-                JointTerm::Armature => l.motor.map_or(0.0, |m| m.armature()),
-                JointTerm::Viscous => l.friction.map_or(0.0, |f| f.viscous),
-                JointTerm::Coulomb => l.friction.map_or(0.0, |f| f.coulomb),
-            });
-        }
-        DVector::from_vec(pi)
+        DVector::from_vec(
+            layout::values(&self.model).expect("checked: every link has mass properties"),
+        )
     }
 
     /// The joint torque regressor `Y(q, q̇, q̈)`, `n × parameter_count()`, with
@@ -195,12 +108,13 @@ impl Robot {
                 }
             }
         }
-        for (c, (i, term)) in joint_columns(self).into_iter().enumerate() {
-            y[(i, BODY_PARAMETERS * n + c)] = match term {
-                JointTerm::Armature => qdd[i],
-                JointTerm::Viscous => qd[i],
-                JointTerm::Coulomb => super::sign(qd[i]),
-            };
+        for (c, column) in layout::columns(&self.model).into_iter().enumerate() {
+            match column {
+                Column::Body { .. } => {}
+                Column::Armature(i) => y[(i, c)] = qdd[i],
+                Column::Viscous(i) => y[(i, c)] = qd[i],
+                Column::Coulomb(i) => y[(i, c)] = super::sign(qd[i]),
+            }
         }
         y
     }

@@ -24,11 +24,15 @@ dhgen::robot!(pub mod stiff_wrist = "tests/fixtures/stiff_wrist.toml");
 dhgen::robot!(pub mod weightless_wrist = "tests/fixtures/weightless_wrist.toml");
 dhgen::robot!(pub mod snake17 = "tests/fixtures/snake17.toml");
 
-// With the derivatives of the dynamics (`robot!(..., derivatives)`), for
-// tests/integration/derivatives.rs: a 6-joint arm, motors and friction, and everything at once.
-dhgen::robot!(pub mod puma560_derivatives = "robots/puma560.toml", derivatives);
-dhgen::robot!(pub mod scara_derivatives = "robots/scara.toml", derivatives);
-dhgen::robot!(pub mod odd_derivatives = "tests/fixtures/odd.toml", derivatives);
+// With the derivatives of the dynamics and the regressor (`robot!(..., derivatives,
+// regressor)`), for tests/integration/derivatives.rs and regressor.rs: a 6-joint arm, motors
+// and friction, and everything at once; and the regressor alone for a 7-joint arm and
+// prismatic joints.
+dhgen::robot!(pub mod puma560_derivatives = "robots/puma560.toml", derivatives, regressor);
+dhgen::robot!(pub mod scara_derivatives = "robots/scara.toml", derivatives, regressor);
+dhgen::robot!(pub mod odd_derivatives = "tests/fixtures/odd.toml", derivatives, regressor);
+dhgen::robot!(pub mod panda_regressor = "robots/panda.toml", regressor);
+dhgen::robot!(pub mod stanford_regressor = "robots/stanford.toml", regressor);
 
 // URDF files (tests/data/urdf/, from example-robot-data), read as `robot!` reads them.
 dhgen::robot!(pub mod panda_urdf = "tests/data/urdf/panda.urdf", tip = "panda_hand");

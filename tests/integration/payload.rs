@@ -198,8 +198,8 @@ fn bad_payloads_are_refused_at_construction() {
     assert!(e.contains("symmetric"), "{e}");
 }
 
-/// The generated D, g and bias with the payload's parameters as inputs equal the same body
-/// written into the description.
+/// The generated D, C, g, bias and q̈ with the payload's parameters as inputs equal the same
+/// body written into the description.
 macro_rules! generated_terms {
     ($test:ident, $m:ident, $file:literal) => {
         #[test]
@@ -221,6 +221,14 @@ macro_rules! generated_terms {
                 close("g", g.as_slice(), merged.gravity(&qv).as_slice());
                 let b = $m::bias_with_payload(&q, &qd, &pp);
                 close("bias", b.as_slice(), merged.bias(&qv, &qdv).as_slice());
+                let c = $m::coriolis_with_payload(&q, &qd, &pp);
+                close("C", c.as_slice(), merged.coriolis(&qv, &qdv).as_slice());
+                let tau: [f64; N] = core::array::from_fn(|i| 5.0 * (0.4 * t + i as f64).cos());
+                let qdd = $m::forward_dynamics_with_payload(&q, &qd, &tau, &pp).unwrap();
+                let want = merged
+                    .forward_dynamics(&qv, &qdv, &DVector::from_row_slice(&tau))
+                    .unwrap();
+                close("q̈", qdd.as_slice(), want.as_slice());
             }
         }
     };

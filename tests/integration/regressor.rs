@@ -221,3 +221,100 @@ fn planar_elbow_base_parameters_are_the_textbooks() {
         "four non-zero base parameters (θ1, θ3, θ4 and θ5 = θ2 / l1): {rules:?} = {pi_b}"
     );
 }
+
+/// The generated regressor equals the runtime one entry by entry; `Y π = τ` with the generated
+/// τ; the generated module's parameters, base columns and regrouping are the runtime's; and
+/// `Y_b base_parameters(π) = τ` for the robot's own π and for a perturbed one.
+macro_rules! generated_regressor {
+    ($test:ident, $m:ident, $robot:expr) => {
+        #[test]
+        fn $test() {
+            use $m as m;
+            const N: usize = m::DOF;
+            let robot: Robot = $robot;
+            assert_eq!(m::PARAMETERS, robot.parameter_count());
+            assert_eq!(
+                m::PARAMETER_NAMES.to_vec(),
+                robot.parameter_names(),
+                "names"
+            );
+            let pi = robot.parameters();
+            assert_eq!(m::PARAMETER_VALUES.as_slice(), pi.as_slice(), "π");
+            let base = robot.base_parameters();
+            assert_eq!(m::BASE_COLUMNS.to_vec(), base.independent, "base columns");
+            // A π that is not the robot's, so no term cancels by accident.
+            let perturbed: [f64; m::PARAMETERS] =
+                core::array::from_fn(|k| pi[k] * (1.0 + 0.2 * (k as f64).sin()) + 0.01);
+            let pv = DVector::from_row_slice(&perturbed);
+            let pi_b = m::base_parameters(&perturbed);
+            close(
+                "π_b",
+                &DVector::from_row_slice(&pi_b),
+                &base.reduce(&pv),
+                1e-12,
+            );
+            let (mut worst, mut worst_b) = (0.0f64, 0.0f64);
+            for seed in 0..20 {
+                let (q, qd, qdd) = state(&robot, seed);
+                let (q, qd, qdd): ([f64; N], [f64; N], [f64; N]) = (
+                    q.try_into().unwrap(),
+                    qd.try_into().unwrap(),
+                    qdd.try_into().unwrap(),
+                );
+                let y = m::regressor(&q, &qd, &qdd);
+                let yr = robot.regressor(&q[..], &qd[..], &qdd[..]);
+                let scale = yr.amax().max(1.0);
+                let err = (0..N)
+                    .flat_map(|r| (0..m::PARAMETERS).map(move |c| (r, c)))
+                    .map(|(r, c)| (y[(r, c)] - yr[(r, c)]).abs())
+                    .fold(0.0, f64::max)
+                    / scale;
+                assert!(err <= 1e-12, "{}: Y generated vs runtime {err:e}", m::NAME);
+                let y_own = DVector::from_iterator(
+                    N,
+                    (0..N).map(|r| (0..m::PARAMETERS).map(|c| y[(r, c)] * pi[c]).sum::<f64>()),
+                );
+                let tau = DVector::from_row_slice(m::inverse_dynamics(&q, &qd, &qdd).as_slice());
+                worst = worst.max(close("Y π", &y_own, &tau, 1e-12));
+                let yb = m::base_regressor(&q, &qd, &qdd);
+                let tau_p = &yr * &pv;
+                let yb_pb = DVector::from_iterator(
+                    N,
+                    (0..N).map(|r| {
+                        (0..m::BASE_PARAMETERS)
+                            .map(|c| yb[(r, c)] * pi_b[c])
+                            .sum::<f64>()
+                    }),
+                );
+                worst_b = worst_b.max(close("Y_b π_b", &yb_pb, &tau_p, 1e-12));
+            }
+            println!(
+                "{}: generated Y π = τ to {worst:.1e}, Y_b π_b = Y π to {worst_b:.1e}",
+                m::NAME
+            );
+        }
+    };
+}
+
+use crate::catalogue::{
+    odd_derivatives, panda_regressor, puma560_derivatives, scara_derivatives, stanford_regressor,
+};
+use crate::support::{fixture, runtime};
+
+generated_regressor!(
+    puma560_generated_regressor,
+    puma560_derivatives,
+    runtime("puma560")
+);
+generated_regressor!(panda_generated_regressor, panda_regressor, runtime("panda"));
+generated_regressor!(
+    stanford_generated_regressor,
+    stanford_regressor,
+    runtime("stanford")
+);
+generated_regressor!(
+    scara_generated_regressor,
+    scara_derivatives,
+    runtime("scara")
+);
+generated_regressor!(odd_generated_regressor, odd_derivatives, fixture("odd"));

@@ -91,18 +91,31 @@ pub fn coriolis_from(n: usize, graph: &SharedGraph, c: &[E]) -> Vec<E> {
 /// recursion, `M` by n lanes over the momentum recursion `D q̇`, both O(n²), instead of the n³
 /// symbols.
 pub fn coriolis_recursive(chain: ChainRef<'_>) -> (SharedGraph, Vec<E>) {
+    coriolis_recursive_with(chain, |_, _| {})
+}
+
+/// [`coriolis_recursive`] on the chain changed by `adjust` (the payload's derivation adds a
+/// body's worth of input symbols to its last link).
+pub(crate) fn coriolis_recursive_with<'c>(
+    chain: ChainRef<'c>,
+    adjust: impl Fn(&mut crate::chain::RingChain<'c, crate::dual::Dual>, &SharedGraph),
+) -> (SharedGraph, Vec<E>) {
     use crate::chain::RingChain;
     use crate::dual::{Dual, DualSymbols, RateSymbols};
     let n = chain.dof();
     let graph = SharedGraph::default();
-    let d_dot = RingChain::new(chain, &RateSymbols { graph: &graph }).mass_matrix();
+    let mut rate = RingChain::new(chain, &RateSymbols { graph: &graph });
+    adjust(&mut rate, &graph);
+    let d_dot = rate.mass_matrix();
     let qd: Vec<Dual> = (0..n)
         .map(|i| Dual {
             v: E::sym(&graph, crate::graph::Sym::Qd(i)),
             d: std::rc::Rc::from(Vec::new()),
         })
         .collect();
-    let momentum = RingChain::new(chain, &DualSymbols { graph: &graph, n }).momentum(&qd);
+    let mut duals = RingChain::new(chain, &DualSymbols { graph: &graph, n });
+    adjust(&mut duals, &graph);
+    let momentum = duals.momentum(&qd);
     let c = (0..n * n)
         .map(|idx| {
             let (k, j) = (idx / n, idx % n);

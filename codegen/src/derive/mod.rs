@@ -12,6 +12,7 @@ pub mod inertia;
 pub mod kinematics;
 pub mod newton_euler;
 pub mod payload;
+pub mod regressor;
 pub mod singularity;
 
 use crate::chain::{JointSymbols, RingChain};

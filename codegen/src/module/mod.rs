@@ -15,10 +15,11 @@ pub mod state;
 pub mod structure;
 pub mod tidy;
 
-use crate::derive::{Derivation, christoffel};
+use crate::derive::{Derivation, christoffel, regressor};
 use crate::emit::{self, Output};
 use crate::graph::{E, OpCount, SharedGraph};
 use crate::limits::Unsupported;
+use dhgen_model::parameters::{BaseParameters, Column};
 use dhgen_model::{ChainRef, JointKind, RobotModel};
 use proc_macro2::{Ident, Span, TokenStream};
 use quantities::{ArmMethod, Availability, Input, Made, QUANTITIES, Quantity};
@@ -44,19 +45,30 @@ pub struct Options {
     /// `coriolis_transpose_qd`): about 2.5× the generated code of a 7-joint arm, so only on
     /// request.
     pub derivatives: bool,
+    /// The joint torque regressor and the base parameters (`regressor`, `base_regressor`,
+    /// `base_parameters` and the `PARAMETERS` and `BASE_*` constants): for identification,
+    /// about the generated code of τ ten times over, so only on request.
+    pub regressor: bool,
 }
 
 impl Options {
     /// The option words `robot!` accepts after the description, with what each adds.
-    pub const WORDS: &'static [(&'static str, &'static str)] = &[(
-        "derivatives",
-        "∂τ/∂q, ∂τ/∂q̇, ∂q̈/∂q, ∂q̈/∂q̇, D⁻¹, Ḋ(q, q̇) and Cᵀ(q, q̇) q̇",
-    )];
+    pub const WORDS: &'static [(&'static str, &'static str)] = &[
+        (
+            "derivatives",
+            "∂τ/∂q, ∂τ/∂q̇, ∂q̈/∂q, ∂q̈/∂q̇, D⁻¹, Ḋ(q, q̇) and Cᵀ(q, q̇) q̇",
+        ),
+        (
+            "regressor",
+            "the regressor Y(q, q̇, q̈), the base regressor and the base parameters",
+        ),
+    ];
 
     /// Turns on the option named `word`; `false` when there is none of that name.
     pub fn set(&mut self, word: &str) -> bool {
         match word {
             "derivatives" => self.derivatives = true,
+            "regressor" => self.regressor = true,
             _ => return false,
         }
         true
@@ -66,25 +78,51 @@ impl Options {
 /// What every quantity's derivation may read: the structure and the derivations shared
 /// between quantities (the normal forms, the Christoffel symbols), each built once.
 pub struct Context<'c> {
+    /// The robot's description.
+    pub model: &'c RobotModel,
     /// The robot's structure.
     pub chain: ChainRef<'c>,
+    /// The inertial parameters' columns (`dhgen_model::parameters`).
+    pub columns: Vec<Column>,
     /// What the module holds beyond the default.
     pub options: Options,
     /// Its symbolic derivations.
     pub derivation: Derivation<'c>,
     christoffel: OnceCell<(SharedGraph, Vec<E>)>,
     coriolis: OnceCell<Vec<(SharedGraph, Vec<E>)>>,
+    regressor: OnceCell<(SharedGraph, Vec<E>)>,
+    base: OnceCell<BaseParameters>,
 }
 
 impl<'c> Context<'c> {
-    fn new(chain: ChainRef<'c>, options: Options) -> Self {
+    fn new(model: &'c RobotModel, chain: ChainRef<'c>, options: Options) -> Self {
         Context {
+            model,
             chain,
+            columns: dhgen_model::parameters::columns(model),
             options,
             derivation: Derivation::new(chain),
             christoffel: OnceCell::new(),
             coriolis: OnceCell::new(),
+            regressor: OnceCell::new(),
+            base: OnceCell::new(),
         }
+    }
+
+    /// The regressor `Y` without its Coulomb columns, row-major, built once for `regressor`
+    /// and `base_regressor`.
+    pub fn regressor(&self) -> &(SharedGraph, Vec<E>) {
+        self.regressor.get_or_init(|| {
+            let graph = SharedGraph::default();
+            let y = regressor::regressor(self.chain, &self.columns, &graph);
+            (graph, y)
+        })
+    }
+
+    /// The base parameters, found once.
+    pub fn base_parameters(&self) -> &BaseParameters {
+        self.base
+            .get_or_init(|| regressor::base_parameters(self.model))
     }
 
     /// The cheapest derivation of the Christoffel symbols, `(i·n + j)·n + k`.
@@ -117,6 +155,7 @@ impl<'c> Context<'c> {
             Availability::Always => true,
             Availability::Dynamics => self.chain.has_dynamics(),
             Availability::Derivatives => self.options.derivatives && self.chain.has_dynamics(),
+            Availability::Regressor => self.options.regressor && self.chain.has_dynamics(),
             Availability::DecoupledWrist => {
                 crate::derive::singularity::decoupled_determinants(self.chain).is_some()
             }
@@ -313,7 +352,7 @@ impl Items {
                 .collect()
         };
         let mut ty = q.shape.ty(&t);
-        let mut emitted = emit::emit(graph, outputs(q.shape.targets(cx.chain.dof())));
+        let mut emitted = emit::emit(graph, outputs(q.shape.targets(cx.chain.dof(), exprs.len())));
         // A scalar split into parts is passed between them as a one-element array.
         let scalar_in_parts = q.shape == Shape::Scalar && emitted.parts.len() > 1;
         if scalar_in_parts {
@@ -400,7 +439,7 @@ pub fn generate_with(
 ) -> Result<Generated, Unsupported> {
     let structure = model.chain();
     crate::limits::check(structure.view())?;
-    let cx = Context::new(structure.view(), options);
+    let cx = Context::new(model, structure.view(), options);
     let chain = cx.chain;
     let n = chain.dof();
     let mut items = Items::default();
@@ -465,7 +504,9 @@ pub fn generate_with(
         }
     });
     // `sign` (Coulomb friction, with sign(0) = 0) only where some joint has Coulomb friction.
-    let sign_fn = (has_dynamics && !cx.coulomb().is_empty()).then(|| {
+    let coulomb_columns = cx.available(Availability::Regressor)
+        && cx.columns.iter().any(|c| matches!(c, Column::Coulomb(_)));
+    let sign_fn = (has_dynamics && (!cx.coulomb().is_empty() || coulomb_columns)).then(|| {
         quote! {
             fn sign<T: ::dhgen::Real>(x: T) -> T {
                 if x > T::zero() {
@@ -478,6 +519,9 @@ pub fn generate_with(
             }
         }
     });
+    let parameters = cx
+        .available(Availability::Regressor)
+        .then(|| parameters(&cx));
     let tokens = quote! {
         #[doc = #doc]
         #[allow(clippy::all, clippy::pedantic, clippy::nursery)]
@@ -509,6 +553,7 @@ pub fn generate_with(
             }
 
             #(#free)*
+            #parameters
             #terms
             #ik
 
@@ -548,4 +593,61 @@ pub fn generate_with(
         tokens: tidy::unsuffix_indices(tokens),
         ops,
     })
+}
+
+/// The inertial parameters' constants and `base_parameters(π)`.
+fn parameters(cx: &Context<'_>) -> TokenStream {
+    use crate::emit::{constant, float};
+    let p = cx.columns.len();
+    let names = dhgen_model::parameters::names(cx.model);
+    let values = dhgen_model::parameters::values(cx.model)
+        .expect("a model with dynamics has every link's mass properties")
+        .into_iter()
+        .map(float);
+    let base = cx.base_parameters();
+    let b = base.count();
+    let columns = &base.independent;
+    let rules = base.rules(&names);
+    let sums = (0..b).map(|k| {
+        let i = base.independent[k];
+        let terms = base.dependent.iter().enumerate().filter_map(|(m, &d)| {
+            let beta = base.beta[(k, m)];
+            if beta == 0.0 {
+                None
+            } else if beta == 1.0 {
+                Some(quote!(+ pi[#d]))
+            } else if beta == -1.0 {
+                Some(quote!(- pi[#d]))
+            } else {
+                let c = constant(beta);
+                Some(quote!(+ #c * pi[#d]))
+            }
+        });
+        quote!(pi[#i] #(#terms)*)
+    });
+    quote! {
+        /// The number of inertial parameters: ten per link, then the armature and friction
+        /// coefficients the description has (order and frames: `dhgen::parameters`).
+        pub const PARAMETERS: usize = #p;
+        /// The parameters' names, in order (`m1, mx1, ..., Izz1, m2, ...`, `Ia3`, `fv3`, `fc3`).
+        pub const PARAMETER_NAMES: [&str; PARAMETERS] = [#(#names),*];
+        /// The robot's own parameters π, as described: `regressor(..) · π` is
+        /// `inverse_dynamics(..)`.
+        pub const PARAMETER_VALUES: [f64; PARAMETERS] = [#(#values),*];
+        /// The number of base parameters: combinations of the parameters that the dynamics
+        /// determine (`dhgen::parameters` for the method).
+        pub const BASE_PARAMETERS: usize = #b;
+        /// The columns of `regressor` that `base_regressor` keeps (the independent parameters).
+        pub const BASE_COLUMNS: [usize; BASE_PARAMETERS] = [#(#columns),*];
+        /// Each base parameter as the regrouping of the parameters it stands for, by name.
+        pub const BASE_PARAMETER_RULES: [&str; BASE_PARAMETERS] = [#(#rules),*];
+
+        /// The base parameters π_b = π_i + β π_d of parameters `pi` (in the order of
+        /// `PARAMETER_NAMES`): `base_regressor(..) · base_parameters(π)` is
+        /// `regressor(..) · π`.
+        #[must_use]
+        pub fn base_parameters<T: ::dhgen::Real>(pi: &[T; PARAMETERS]) -> [T; BASE_PARAMETERS] {
+            [#(#sums),*]
+        }
+    }
 }

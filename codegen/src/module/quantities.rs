@@ -58,6 +58,8 @@ pub enum Availability {
     DecoupledWrist,
     /// For robots with mass properties, when [`Options::derivatives`](super::Options) asks.
     Derivatives,
+    /// For robots with mass properties, when [`Options::regressor`](super::Options) asks.
+    Regressor,
 }
 
 /// How a quantity is made.
@@ -518,6 +520,119 @@ pub const QUANTITIES: &[Quantity] = &[
         arm: None,
     },
     Quantity {
+        name: "coriolis_with_payload",
+        doc: "C(q, q̇) with a payload held by the tool (`payload`: its ten parameters, as for \
+              `inverse_dynamics_with_payload`).",
+        aliases: &[],
+        inputs: &[Input::Qd, Input::Payload],
+        shape: Shape::Square,
+        available: Availability::Dynamics,
+        public: true,
+        make: |cx| {
+            let (graph, c) = payload::coriolis(cx.chain);
+            derived(graph, c)
+        },
+        arm: None,
+    },
+    Quantity {
+        name: "regressor_smooth",
+        doc: "",
+        aliases: &[],
+        inputs: &[Input::Qd, Input::Qdd],
+        shape: Shape::Regressor,
+        available: Availability::Regressor,
+        public: false,
+        make: |cx| {
+            let (graph, y) = cx.regressor();
+            derived(graph.clone(), y.clone())
+        },
+        arm: None,
+    },
+    Quantity {
+        name: "regressor",
+        doc: "The joint torque regressor Y(q, q̇, q̈), `DOF × PARAMETERS`, with τ = Y π for \
+              every parameter vector π (`PARAMETER_VALUES` is the robot's own; order and frames \
+              in `dhgen::parameters`): what identification stacks over a trajectory.",
+        aliases: &["computeJointTorqueRegressor"],
+        inputs: &[Input::Qd, Input::Qdd],
+        shape: Shape::Regressor,
+        available: Availability::Regressor,
+        public: true,
+        make: |cx| {
+            let signs = cx
+                .columns
+                .iter()
+                .enumerate()
+                .filter_map(|(c, col)| match col {
+                    dhgen_model::parameters::Column::Coulomb(i) => {
+                        Some(quote!(y[(#i, #c)] = sign(qd[#i]);))
+                    }
+                    _ => None,
+                });
+            composed(
+                quote! {
+                    let mut y = self.regressor_smooth(qd, qdd);
+                    #(#signs)*
+                    y
+                },
+                &["regressor_smooth"],
+            )
+        },
+        arm: None,
+    },
+    Quantity {
+        name: "base_regressor_smooth",
+        doc: "",
+        aliases: &[],
+        inputs: &[Input::Qd, Input::Qdd],
+        shape: Shape::BaseRegressor,
+        available: Availability::Regressor,
+        public: false,
+        make: |cx| {
+            let (graph, y) = cx.regressor();
+            let p = cx.columns.len();
+            let base = cx.base_parameters();
+            let yb = (0..cx.chain.dof())
+                .flat_map(|r| base.independent.iter().map(move |&c| y[r * p + c].clone()))
+                .collect();
+            derived(graph.clone(), yb)
+        },
+        arm: None,
+    },
+    Quantity {
+        name: "base_regressor",
+        doc: "The base regressor Y_b(q, q̇, q̈), `DOF × BASE_PARAMETERS`: the independent \
+              columns of `regressor` (`BASE_COLUMNS`), with τ = Y_b π_b for π_b = \
+              `base_parameters(π)`.",
+        aliases: &[],
+        inputs: &[Input::Qd, Input::Qdd],
+        shape: Shape::BaseRegressor,
+        available: Availability::Regressor,
+        public: true,
+        make: |cx| {
+            let signs = cx
+                .base_parameters()
+                .independent
+                .iter()
+                .enumerate()
+                .filter_map(|(b, &c)| match cx.columns[c] {
+                    dhgen_model::parameters::Column::Coulomb(i) => {
+                        Some(quote!(y[(#i, #b)] = sign(qd[#i]);))
+                    }
+                    _ => None,
+                });
+            composed(
+                quote! {
+                    let mut y = self.base_regressor_smooth(qd, qdd);
+                    #(#signs)*
+                    y
+                },
+                &["base_regressor_smooth"],
+            )
+        },
+        arm: None,
+    },
+    Quantity {
         name: "bias_smooth",
         doc: "",
         aliases: &[],
@@ -569,6 +684,33 @@ pub const QUANTITIES: &[Quantity] = &[
             }
         },
         arm: Some(ArmMethod::Dynamics),
+    },
+    Quantity {
+        name: "forward_dynamics_with_payload",
+        doc: "Forward dynamics with a payload held by the tool (`payload`: its ten parameters, \
+              as for `inverse_dynamics_with_payload`), by the unrolled Cholesky solve of \
+              `forward_dynamics` on `mass_matrix_with_payload` and `bias_with_payload`; `None` \
+              as for `forward_dynamics`.",
+        aliases: &[],
+        inputs: &[Input::Qd, Input::Tau, Input::Payload],
+        shape: Shape::OptionVector,
+        available: Availability::Dynamics,
+        public: true,
+        make: |cx| {
+            let (solve, _) = cholesky::solve(cx.chain.dof());
+            Made::Composed {
+                body: quote! {
+                    let dm = self.mass_matrix_with_payload(payload);
+                    let h = self.bias_with_payload(qd, payload);
+                    let rhs: [T; DOF] = ::core::array::from_fn(|i| tau[i] - h[i]);
+                    #solve
+                },
+                reads: &["mass_matrix_with_payload", "bias_with_payload"],
+                // The same solve as `forward_dynamics`', reported there.
+                ops: None,
+            }
+        },
+        arm: None,
     },
     Quantity {
         name: "kinetic_energy",

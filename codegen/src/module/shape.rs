@@ -36,6 +36,10 @@ pub enum Shape {
     Cube,
     /// The `Terms` struct.
     Terms,
+    /// The regressor, n × `PARAMETERS`, row by row.
+    Regressor,
+    /// The base regressor, n × `BASE_PARAMETERS`, row by row.
+    BaseRegressor,
 }
 
 impl Shape {
@@ -63,6 +67,8 @@ impl Shape {
             ),
             Shape::Cube => quote!([[[#t; DOF]; DOF]; DOF]),
             Shape::Terms => quote!(Terms<#t>),
+            Shape::Regressor => quote!(na::SMatrix<#t, DOF, PARAMETERS>),
+            Shape::BaseRegressor => quote!(na::SMatrix<#t, DOF, BASE_PARAMETERS>),
         }
     }
 
@@ -74,7 +80,9 @@ impl Shape {
             Shape::Homogeneous => Some(quote!(na::Matrix4::identity())),
             Shape::HomogeneousPerJoint => Some(quote!([na::Matrix4::identity(); DOF])),
             Shape::Vector6 => Some(quote!(na::SVector::zeros())),
-            Shape::Jacobian | Shape::Square => Some(quote!(na::SMatrix::zeros())),
+            Shape::Jacobian | Shape::Square | Shape::Regressor | Shape::BaseRegressor => {
+                Some(quote!(na::SMatrix::zeros()))
+            }
             Shape::SquarePair => Some(quote!((na::SMatrix::zeros(), na::SMatrix::zeros()))),
             Shape::Vector => Some(quote!(na::SVector::zeros())),
             Shape::Cube => Some(quote!([[[T::zero(); DOF]; DOF]; DOF])),
@@ -89,8 +97,9 @@ impl Shape {
         }
     }
 
-    /// Where the scalars of a derivation go, in the order the derivation lists them.
-    pub fn targets(self, n: usize) -> Vec<TokenStream> {
+    /// Where the `entries` scalars of a derivation go, in the order the derivation lists them
+    /// (`n` joints).
+    pub fn targets(self, n: usize, entries: usize) -> Vec<TokenStream> {
         let homogeneous = |out: TokenStream| -> Vec<TokenStream> {
             let mut v = Vec::with_capacity(12);
             for r in 0..3usize {
@@ -117,6 +126,15 @@ impl Shape {
                     quote!(out[(#r, #c)])
                 })
                 .collect(),
+            Shape::Regressor | Shape::BaseRegressor => {
+                let width = entries / n;
+                (0..entries)
+                    .map(|idx| {
+                        let (r, c) = (idx / width, idx % width);
+                        quote!(out[(#r, #c)])
+                    })
+                    .collect()
+            }
             Shape::SquarePair => (0..2 * n * n)
                 .map(|idx| {
                     let (m, r, c) = (idx / (n * n), (idx / n) % n, idx % n);

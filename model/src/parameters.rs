@@ -1,0 +1,365 @@
+//! The inertial parameters of a robot: their order, names and values, and the reduction of a
+//! regressor to base parameters. One definition, read by the runtime regressor
+//! (`dhgen::Robot::regressor`) and by the generated one (`robot!`'s `regressor`), so both
+//! number the columns alike and regroup them by the same rule.
+//!
+//! # The parameters
+//! Ten per link, in Pinocchio's order (`Inertia::toDynamicParameters`), in that link's frame
+//! (the frame the description gives its `com` and `inertia` in: DH frame i, or the URDF link
+//! frame), about the frame's origin, as identification practice writes them:
+//! `m, m·cx, m·cy, m·cz, Ixx, Ixy, Iyy, Ixz, Iyz, Izz`, with `c` the centre of mass and
+//! `I = I_c + m (|c|² 1 − c cᵀ)` (`Ixy` the tensor entry, `−∫xy dm`). After the 10·n link
+//! columns come the joint-side terms where the description has them, joint by joint: the
+//! armature `Jm·G²` (a joint with a `motor`; column `q̈_i`), then the viscous and Coulomb
+//! coefficients (a joint with `friction`; columns `q̇_i` and `sign(q̇_i)`).
+//!
+//! # Base parameters
+//! Columns of `Y` that are zero at every state, or combinations of others, leave
+//! `τ = Y_b π_b` with `π_b = π_i + β π_d`: what identification can recover.
+//! [`base_parameters`] finds them numerically, by Gautier's rank-revealing QR with column
+//! pivoting of `Y` stacked over seeded random states: it regroups any chain (URDF frames,
+//! oblique axes), where Khalil and Bennis's symbolic rules cover the parallel and perpendicular
+//! axes of DH tables only. It is made exact enough to be reproducible: the states come from a
+//! fixed seed ([`crate::random::Stream`]), the columns are scaled to unit norm before pivoting
+//! so the choice does not depend on units, a column counts as independent when its pivot is
+//! above `1e-9` of the largest, and coefficients of `β` below `1e-10` in magnitude are exactly
+//! zero.
+//!
+//! ```
+//! use dhgen_model::parameters::{self, Column};
+//! let model = dhgen_model::RobotModel::from_toml_str(r#"
+//!     name = "pendulum"
+//!     convention = "standard"
+//!     [[links]]
+//!     joint = "revolute"
+//!     a = 1.0
+//!     alpha = 0.0
+//!     d = 0.0
+//!     theta = 0.0
+//!     mass = 2.0
+//!     com = [-0.5, 0.0, 0.0]
+//!     inertia = { xx = 0.0, yy = 0.1, zz = 0.1 }
+//!     friction = { viscous = 0.1, coulomb = 0.2 }
+//! "#).unwrap();
+//! let columns = parameters::columns(&model);
+//! assert_eq!(columns.len(), 12);
+//! assert_eq!(columns[10], Column::Viscous(0));
+//! assert_eq!(parameters::names(&model)[1], "mx1");
+//! let pi = parameters::values(&model).unwrap();
+//! assert_eq!(pi[1], -1.0); // m·cx
+//! assert_eq!(pi[9], 0.1 + 2.0 * 0.25); // Izz about the frame's origin
+//! ```
+
+use crate::random::Stream;
+use crate::{ChainRef, RobotModel};
+use nalgebra::{DMatrix, DVector};
+
+/// The number of inertial parameters of one body.
+pub const BODY_PARAMETERS: usize = 10;
+
+/// The names of a body's ten parameters, in order (`m`, `mx` for `m·cx`, ..., `Izz`).
+pub const BODY_PARAMETER_NAMES: [&str; BODY_PARAMETERS] = [
+    "m", "mx", "my", "mz", "Ixx", "Ixy", "Iyy", "Ixz", "Iyz", "Izz",
+];
+
+/// The ten parameters of a body of mass `mass`, centre of mass `com` and inertia `i_com` about
+/// it, all in one frame: `[m, m·c, I about the origin]` in the order of [`BODY_PARAMETER_NAMES`].
+pub fn body_parameters(mass: f64, com: &[f64; 3], i_com: &[[f64; 3]; 3]) -> [f64; BODY_PARAMETERS] {
+    let cc = com[0] * com[0] + com[1] * com[1] + com[2] * com[2];
+    // I = I_c + m (|c|² 1 − c cᵀ)
+    let i =
+        |a: usize, b: usize| i_com[a][b] + mass * (if a == b { cc } else { 0.0 } - com[a] * com[b]);
+    [
+        mass,
+        mass * com[0],
+        mass * com[1],
+        mass * com[2],
+        i(0, 0),
+        i(0, 1),
+        i(1, 1),
+        i(0, 2),
+        i(1, 2),
+        i(2, 2),
+    ]
+}
+
+/// The inertia tensor `[[Ixx, Ixy, Ixz], ...]` of a body's parameters `p`.
+pub fn inertia_of(p: &[f64; BODY_PARAMETERS]) -> [[f64; 3]; 3] {
+    [[p[4], p[5], p[7]], [p[5], p[6], p[8]], [p[7], p[8], p[9]]]
+}
+
+/// What one column of the regressor (one parameter) is.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Column {
+    /// Parameter `k` (of [`BODY_PARAMETER_NAMES`]) of link `link` (from 0).
+    Body {
+        /// The link, from 0.
+        link: usize,
+        /// The parameter, an index into [`BODY_PARAMETER_NAMES`].
+        k: usize,
+    },
+    /// The armature `Jm·G²` of joint i (column `q̈_i`).
+    Armature(usize),
+    /// The viscous friction coefficient of joint i (column `q̇_i`).
+    Viscous(usize),
+    /// The Coulomb friction of joint i (column `sign(q̇_i)`).
+    Coulomb(usize),
+}
+
+/// The regressor's columns, in order: ten per link, then the joint-side terms the description
+/// has.
+pub fn columns(model: &RobotModel) -> Vec<Column> {
+    let mut out: Vec<Column> = (0..model.dof())
+        .flat_map(|link| (0..BODY_PARAMETERS).map(move |k| Column::Body { link, k }))
+        .collect();
+    for (i, l) in model.links.iter().enumerate() {
+        if l.motor.is_some() {
+            out.push(Column::Armature(i));
+        }
+        if l.friction.is_some() {
+            out.push(Column::Viscous(i));
+            out.push(Column::Coulomb(i));
+        }
+    }
+    out
+}
+
+/// The parameters' names, in order: `m1, mx1, ..., Izz1, m2, ...`, then `Ia3` (armature of
+/// joint 3), `fv3`, `fc3` (viscous and Coulomb friction of joint 3).
+pub fn names(model: &RobotModel) -> Vec<String> {
+    columns(model)
+        .into_iter()
+        .map(|c| match c {
+            Column::Body { link, k } => format!("{}{}", BODY_PARAMETER_NAMES[k], link + 1),
+            Column::Armature(i) => format!("Ia{}", i + 1),
+            Column::Viscous(i) => format!("fv{}", i + 1),
+            Column::Coulomb(i) => format!("fc{}", i + 1),
+        })
+        .collect()
+}
+
+/// The robot's own parameters `π`, in the order of [`columns`]; `None` when a link has no
+/// mass properties.
+pub fn values(model: &RobotModel) -> Option<Vec<f64>> {
+    let body: Vec<[f64; BODY_PARAMETERS]> = model
+        .links
+        .iter()
+        .map(|l| {
+            l.inertial
+                .map(|i| body_parameters(i.mass, &i.com, &i.inertia))
+        })
+        .collect::<Option<_>>()?;
+    Some(
+        columns(model)
+            .into_iter()
+            .map(|c| {
+                let link = |i: usize| &model.links[i];
+                match c {
+                    Column::Body { link, k } => body[link][k],
+                    Column::Armature(i) => link(i).motor.map_or(0.0, |m| m.armature()),
+                    Column::Viscous(i) => link(i).friction.map_or(0.0, |f| f.viscous),
+                    Column::Coulomb(i) => link(i).friction.map_or(0.0, |f| f.coulomb),
+                }
+            })
+            .collect(),
+    )
+}
+
+/// The regrouping of a robot's parameters into base parameters (see the
+/// [module](self)).
+#[derive(Clone, Debug, PartialEq)]
+pub struct BaseParameters {
+    /// The independent parameters, by index into `π`, in pivot order: base parameter `k` is
+    /// `π[independent[k]] + Σ_m β[k][m] π[dependent[m]]`.
+    pub independent: Vec<usize>,
+    /// The parameters regrouped into the independent ones (or identically without effect).
+    pub dependent: Vec<usize>,
+    /// `β`, `independent.len() × dependent.len()`.
+    pub beta: DMatrix<f64>,
+}
+
+impl BaseParameters {
+    /// The number of base parameters.
+    pub fn count(&self) -> usize {
+        self.independent.len()
+    }
+
+    /// `π_b = π_i + β π_d` for parameters `pi` in the order of [`columns`].
+    pub fn reduce(&self, pi: &DVector<f64>) -> DVector<f64> {
+        let dependent =
+            DVector::from_iterator(self.dependent.len(), self.dependent.iter().map(|&d| pi[d]));
+        DVector::from_iterator(self.count(), self.independent.iter().map(|&i| pi[i]))
+            + &self.beta * dependent
+    }
+
+    /// The base regressor: the independent columns of a regressor `y`, so that
+    /// `base_regressor(y) · reduce(π) = y · π`.
+    pub fn base_regressor(&self, y: &DMatrix<f64>) -> DMatrix<f64> {
+        DMatrix::from_fn(y.nrows(), self.count(), |r, c| y[(r, self.independent[c])])
+    }
+
+    /// The regrouping rules as text, one per base parameter, e.g. `Izz2 + 0.25·m3 + Iyy3`
+    /// (names from [`names`]).
+    pub fn rules(&self, names: &[String]) -> Vec<String> {
+        (0..self.count())
+            .map(|k| {
+                let mut s = names[self.independent[k]].clone();
+                for (m, &d) in self.dependent.iter().enumerate() {
+                    let b = self.beta[(k, m)];
+                    if b == 0.0 {
+                        continue;
+                    }
+                    let sign = if b < 0.0 { " − " } else { " + " };
+                    if (b.abs() - 1.0).abs() < 1e-12 {
+                        s += &format!("{sign}{}", names[d]);
+                    } else {
+                        s += &format!("{sign}{}·{}", trim(b.abs()), names[d]);
+                    }
+                }
+                s
+            })
+            .collect()
+    }
+}
+
+/// A coefficient to 10 significant digits, without trailing zeros.
+fn trim(x: f64) -> String {
+    let s = format!("{x:.10}");
+    let s = s.trim_end_matches('0').trim_end_matches('.');
+    s.to_string()
+}
+
+/// A state `(q, q̇, q̈)`.
+pub type State = (Vec<f64>, Vec<f64>, Vec<f64>);
+
+/// The states the reduction samples for a chain with `parameters` columns: `max(20, 4·p/n)`
+/// of them from a fixed seed, positions in the joint limits (±π without), velocities and
+/// accelerations in ±2.
+pub fn sample_states(chain: ChainRef<'_>, parameters: usize) -> Vec<State> {
+    let n = chain.dof();
+    let count = (4 * parameters).div_ceil(n).max(20);
+    let mut rng = Stream(0x00D1_6E11);
+    (0..count)
+        .map(|_| {
+            let q: Vec<f64> = chain
+                .bodies
+                .iter()
+                .map(|b| match b.limits {
+                    Some([lo, hi]) => rng.uniform(lo, hi),
+                    None => rng.uniform(-core::f64::consts::PI, core::f64::consts::PI),
+                })
+                .collect();
+            let qd: Vec<f64> = (0..n).map(|_| rng.uniform(-2.0, 2.0)).collect();
+            let qdd: Vec<f64> = (0..n).map(|_| rng.uniform(-2.0, 2.0)).collect();
+            (q, qd, qdd)
+        })
+        .collect()
+}
+
+/// The base parameters of the robot `model`, from its regressor `regressor(q, q̇, q̈)` (`n ×
+/// columns(model).len()`) stacked over [`sample_states`] and reduced by [`reduce`].
+pub fn base_parameters(
+    model: &RobotModel,
+    mut regressor: impl FnMut(&[f64], &[f64], &[f64]) -> DMatrix<f64>,
+) -> BaseParameters {
+    let structure = model.chain();
+    let chain = structure.view();
+    let (n, p) = (model.dof(), columns(model).len());
+    let states = sample_states(chain, p);
+    let mut stacked = DMatrix::zeros(states.len() * n, p);
+    for (s, (q, qd, qdd)) in states.iter().enumerate() {
+        stacked.rows_mut(s * n, n).copy_from(&regressor(q, qd, qdd));
+    }
+    reduce(&stacked)
+}
+
+/// Householder QR with column pivoting, `A P = Q R`: the column order `P` and `R` (its first
+/// `min(rows, columns)` rows).
+///
+/// At each step the column with the largest remaining norm is brought forward; columns whose
+/// remaining norms agree with the largest to a relative 1e-8 are ties, resolved to the lowest
+/// original index. Rounding (two derivations of the same regressor differ in the last bits)
+/// cannot then change the choice, so the runtime and generated regressors regroup alike, and
+/// the earliest parameters (the links nearer the base, masses before inertias) are kept.
+fn pivoted_qr(mut a: DMatrix<f64>) -> (Vec<usize>, DMatrix<f64>) {
+    let (rows, p) = a.shape();
+    let mut order: Vec<usize> = (0..p).collect();
+    let steps = rows.min(p);
+    for k in 0..steps {
+        let norms: Vec<f64> = (k..p)
+            .map(|j| a.column(j).rows(k, rows - k).norm())
+            .collect();
+        let top = norms.iter().copied().fold(0.0, f64::max);
+        if top == 0.0 {
+            break;
+        }
+        let pick = (k..p)
+            .filter(|&j| norms[j - k] >= top * (1.0 - 1e-8))
+            .min_by_key(|&j| order[j])
+            .expect("the largest is a candidate");
+        a.swap_columns(k, pick);
+        order.swap(k, pick);
+        // The reflection taking column k's remaining part to (α, 0, ..., 0).
+        let mut v = a.column(k).rows(k, rows - k).into_owned();
+        let alpha = if v[0] > 0.0 { -v.norm() } else { v.norm() };
+        v[0] -= alpha;
+        let vv = v.norm_squared();
+        if vv > 0.0 {
+            for j in k..p {
+                let mut col = a.column_mut(j);
+                let mut col = col.rows_mut(k, rows - k);
+                let s = 2.0 * v.dot(&col) / vv;
+                col.axpy(-s, &v, 1.0);
+            }
+        }
+        a[(k, k)] = alpha;
+        a.column_mut(k).rows_mut(k + 1, rows - k - 1).fill(0.0);
+    }
+    (order, a.rows(0, steps).upper_triangle())
+}
+
+/// Gautier's reduction of a stacked regressor: column-pivoted QR of the unit-norm columns.
+pub fn reduce(stacked: &DMatrix<f64>) -> BaseParameters {
+    let p = stacked.ncols();
+    let norms: Vec<f64> = (0..p).map(|c| stacked.column(c).norm()).collect();
+    let largest = norms.iter().copied().fold(0.0, f64::max);
+    let mut scaled = stacked.clone();
+    for (c, &norm) in norms.iter().enumerate() {
+        if norm > 1e-12 * largest {
+            scaled.column_mut(c).scale_mut(1.0 / norm);
+        } else {
+            scaled.column_mut(c).fill(0.0);
+        }
+    }
+    let (order, r) = pivoted_qr(scaled);
+    let diag = r.diagonal();
+    let top = diag.iter().map(|d| d.abs()).fold(0.0, f64::max);
+    let rank = diag.iter().take_while(|d| d.abs() > 1e-9 * top).count();
+    let independent = order[..rank].to_vec();
+    let dependent = order[rank..].to_vec();
+    // β in the scaled columns: R1 β_s = R2, then back to the parameters' units.
+    let r1 = r.view((0, 0), (rank, rank)).into_owned();
+    let r2 = r.view((0, rank), (rank, p - rank)).into_owned();
+    let beta_scaled = r1
+        .solve_upper_triangular(&r2)
+        .unwrap_or_else(|| DMatrix::zeros(rank, p - rank));
+    let mut beta = DMatrix::zeros(rank, p - rank);
+    for k in 0..rank {
+        for m in 0..p - rank {
+            let (i, d) = (independent[k], dependent[m]);
+            // Column d = Σ_k β_s[k][m] column i (scaled): in units, β = β_s · |Y_i| / |Y_d|
+            // for the parameters (π_i absorbs β π_d).
+            let b = if norms[d] > 1e-12 * largest {
+                beta_scaled[(k, m)] * norms[d] / norms[i]
+            } else {
+                0.0
+            };
+            beta[(k, m)] = if b.abs() < 1e-10 { 0.0 } else { b };
+        }
+    }
+    BaseParameters {
+        independent,
+        dependent,
+        beta,
+    }
+}
