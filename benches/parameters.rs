@@ -1,5 +1,6 @@
 //! Inertial parameters: the payload's cost over plain inverse dynamics (generated and
-//! runtime), and the runtime regressor `Y` and base regressor, for the PUMA 560 and the Panda:
+//! runtime), the payload's C and q̈ against the plain ones, and the regressor `Y` and base
+//! regressor (generated and runtime), for the PUMA 560 and the Panda:
 //! `{robot}/{quantity}/{variant}`. Every call takes the next of 64 fixed random states.
 //!
 //! `cargo bench --bench parameters`.
@@ -15,8 +16,8 @@ use std::time::Duration;
 
 const STATES: usize = 64;
 
-dhgen::robot!(mod puma560 = "robots/puma560.toml");
-dhgen::robot!(mod panda = "robots/panda.toml");
+dhgen::robot!(mod puma560 = "robots/puma560.toml", regressor);
+dhgen::robot!(mod panda = "robots/panda.toml", regressor);
 
 fn states<const N: usize>(seed: u64) -> Vec<[SVector<f64, N>; 3]> {
     let mut rng = StdRng::seed_from_u64(seed);
@@ -80,6 +81,34 @@ macro_rules! bench_robot {
         run($c, name, "tau_payload", "generated", &s, |[q, qd, qdd]| {
             $m::inverse_dynamics_with_payload(q, qd, qdd, &pp)
         });
+        run($c, name, "coriolis", "generated", &s, |[q, qd, _]| {
+            $m::coriolis(q, qd)
+        });
+        run(
+            $c,
+            name,
+            "coriolis_payload",
+            "generated",
+            &s,
+            |[q, qd, _]| $m::coriolis_with_payload(q, qd, &pp),
+        );
+        run($c, name, "qdd", "generated", &s, |[q, qd, tau]| {
+            $m::forward_dynamics(q, qd, tau)
+        });
+        run($c, name, "qdd_payload", "generated", &s, |[q, qd, tau]| {
+            $m::forward_dynamics_with_payload(q, qd, tau, &pp)
+        });
+        run($c, name, "regressor", "generated", &s, |[q, qd, qdd]| {
+            $m::regressor(q, qd, qdd)
+        });
+        run(
+            $c,
+            name,
+            "base_regressor",
+            "generated",
+            &s,
+            |[q, qd, qdd]| $m::base_regressor(q, qd, qdd),
+        );
         let robot = Robot::from_toml_file(concat!(env!("CARGO_MANIFEST_DIR"), "/", $file)).unwrap();
         let d: Vec<[DVector<f64>; 3]> = s
             .iter()

@@ -2,17 +2,20 @@
 //!
 //! ```sh
 //! cargo run --release --example identify [plot.svg]
+//! cargo run --release --example identify -- --write-plant   # rewrite the plant's description
 //! ```
 //!
 //! The "real" robot (the plant) is the PUMA 560 of `robots/puma560.toml` with every mass,
-//! centre of mass and inertia changed by up to ±20 % and a 2.5 kg payload in its hand, none of
-//! which the controller knows. A computed-torque controller on the *nominal* generated model
-//! drives the plant along an exciting trajectory (a sum of sines per joint) for 20 s at 1 kHz,
-//! the plant integrated by RK4 on its forward dynamics; the example records (q, q̇, q̈, τ), as
-//! a robot's joint encoders and motor currents would give.
+//! centre of mass and inertia changed by up to ±20 % (`examples/puma560_identify_plant.toml`,
+//! written from a fixed seed by `--write-plant`; the example checks that it is current) and a
+//! 2.5 kg payload in its hand, none of which the controller knows. A computed-torque
+//! controller on the *nominal* generated model drives the plant along an exciting trajectory
+//! (a sum of sines per joint) for 20 s at 1 kHz, the plant integrated by RK4 on its generated
+//! forward dynamics with the payload (`forward_dynamics_with_payload`); the example records
+//! (q, q̇, q̈, τ), as a robot's joint encoders and motor currents would give.
 //!
-//! Identification: the base regressor `Y_b(q, q̇, q̈)` of the nominal structure
-//! (`Robot::base_parameters`: the geometry is known, the inertial parameters are not), stacked
+//! Identification: the generated base regressor `Y_b(q, q̇, q̈)` of the nominal structure
+//! (`robot!(..., regressor)`: the geometry is known, the inertial parameters are not), stacked
 //! over the recording, and least squares by SVD. Reported: the condition number of the stacked
 //! base regressor; the recovered base parameters against the plant's (without noise: exact up
 //! to rounding); with noise on the torques, the error against the standard deviation least
@@ -21,13 +24,20 @@
 //! (`target/identify.svg` unless a path is given) shows measured and predicted torques on the
 //! validation trajectory.
 
-use dhgen::nalgebra::{DMatrix, DVector};
+use dhgen::nalgebra::{DMatrix, DVector, SMatrix, SVector};
+use dhgen::payload::Payload;
 use dhgen::{Robot, RobotModel};
 use plotters::prelude::*;
 use std::error::Error;
 use std::path::PathBuf;
 
-dhgen::robot!(mod puma560 = "robots/puma560.toml");
+dhgen::robot!(mod puma560 = "robots/puma560.toml", regressor);
+dhgen::robot!(mod plant = "examples/puma560_identify_plant.toml");
+
+/// Where the plant's description is checked in.
+const PLANT: &str = "examples/puma560_identify_plant.toml";
+
+type V6 = SVector<f64, 6>;
 
 const DT: f64 = 1e-3;
 
@@ -68,20 +78,32 @@ fn perturbed(nominal: &RobotModel, rng: &mut Rng) -> RobotModel {
     m
 }
 
-/// The arm with a payload merged into its last link (what `dhgen::payload` adds at run time;
-/// the description form is used here so that the plant's parameters are known exactly):
-/// 2.5 kg, 8 cm beyond the flange on z, a 10 cm cube, by the parallel-axis theorem.
-fn with_payload(arm: &RobotModel) -> RobotModel {
-    let mut m = arm.clone();
+/// The payload: 2.5 kg, 8 cm beyond the flange on z, a 10 cm cube.
+fn payload() -> dhgen::model::Inertial {
     let cube = 2.5 * 0.1 * 0.1 / 6.0;
-    let payload = dhgen::model::Inertial {
+    dhgen::model::Inertial {
         mass: 2.5,
         com: [0.0, 0.0, 0.08],
         inertia: [[cube, 0.0, 0.0], [0.0, cube, 0.0], [0.0, 0.0, cube]],
-    };
+    }
+}
+
+/// The arm with the payload merged into its last link by the parallel-axis theorem, the
+/// description form of what the plant's `forward_dynamics_with_payload` takes at run time: the
+/// truth the identified parameters are compared with, computed independently of it.
+fn with_payload(arm: &RobotModel) -> RobotModel {
+    let mut m = arm.clone();
     let last = m.links.last_mut().unwrap();
-    last.inertial = Some(last.inertial.unwrap().combined(&payload));
+    last.inertial = Some(last.inertial.unwrap().combined(&payload()));
     m
+}
+
+/// Whether the checked-in plant is the arm `expected` (its mass properties and structure).
+fn plant_is_current(expected: &RobotModel) -> Result<bool, Box<dyn Error>> {
+    let mut checked_in = RobotModel::from_toml_file(PLANT)?;
+    checked_in.name.clone_from(&expected.name);
+    checked_in.description.clone_from(&expected.description);
+    Ok(&checked_in == expected)
 }
 
 /// The exciting trajectory: per joint, a sum of three sines about a mid pose.
@@ -105,16 +127,20 @@ fn desired(t: f64, seed: f64) -> [[f64; 6]; 3] {
 /// One recorded sample.
 struct Record {
     t: f64,
-    q: DVector<f64>,
-    qd: DVector<f64>,
-    qdd: DVector<f64>,
-    tau: DVector<f64>,
+    q: V6,
+    qd: V6,
+    qdd: V6,
+    tau: V6,
 }
 
-/// Computed torque on the nominal generated model drives the plant; RK4 at 1 kHz.
-fn record(plant: &Robot, seconds: f64, seed: f64) -> Vec<Record> {
+/// Computed torque on the nominal generated model drives the generated plant holding the
+/// payload; RK4 at 1 kHz.
+fn record(seconds: f64, seed: f64) -> Vec<Record> {
+    let held = Payload::new(payload().mass, payload().com, payload().inertia)
+        .expect("a physical payload")
+        .parameters();
     let [q0, qd0, _] = desired(0.0, seed);
-    let (mut q, mut qd) = (DVector::from_row_slice(&q0), DVector::from_row_slice(&qd0));
+    let (mut q, mut qd) = (V6::from_row_slice(&q0), V6::from_row_slice(&qd0));
     let mut out = Vec::new();
     let steps = (seconds / DT) as usize;
     for i in 0..steps {
@@ -125,77 +151,89 @@ fn record(plant: &Robot, seconds: f64, seed: f64) -> Vec<Record> {
         let v: [f64; 6] =
             core::array::from_fn(|j| qddr[j] + 400.0 * (qr[j] - qa[j]) + 40.0 * (qdr[j] - qda[j]));
         let tau = puma560::inverse_dynamics(&qa, &qda, &v);
-        let tau = DVector::from_column_slice(tau.as_slice());
-        let f = |q: &DVector<f64>, qd: &DVector<f64>| {
-            plant
-                .forward_dynamics(q, qd, &tau)
+        let f = |q: &V6, qd: &V6| {
+            plant::forward_dynamics_with_payload(q, qd, &tau, &held)
                 .expect("the plant's D is positive definite")
         };
         let qdd = f(&q, &qd);
-        out.push(Record {
-            t,
-            q: q.clone(),
-            qd: qd.clone(),
-            qdd: qdd.clone(),
-            tau: tau.clone(),
-        });
-        let k1 = (qd.clone(), qdd);
+        out.push(Record { t, q, qd, qdd, tau });
+        let k1 = (qd, qdd);
         let k2 = (
-            &qd + &k1.1 * (DT / 2.0),
-            f(&(&q + &k1.0 * (DT / 2.0)), &(&qd + &k1.1 * (DT / 2.0))),
+            qd + k1.1 * (DT / 2.0),
+            f(&(q + k1.0 * (DT / 2.0)), &(qd + k1.1 * (DT / 2.0))),
         );
         let k3 = (
-            &qd + &k2.1 * (DT / 2.0),
-            f(&(&q + &k2.0 * (DT / 2.0)), &(&qd + &k2.1 * (DT / 2.0))),
+            qd + k2.1 * (DT / 2.0),
+            f(&(q + k2.0 * (DT / 2.0)), &(qd + k2.1 * (DT / 2.0))),
         );
-        let k4 = (&qd + &k3.1 * DT, f(&(&q + &k3.0 * DT), &(&qd + &k3.1 * DT)));
+        let k4 = (qd + k3.1 * DT, f(&(q + k3.0 * DT), &(qd + k3.1 * DT)));
         q += (k1.0 + k2.0 * 2.0 + k3.0 * 2.0 + k4.0) * (DT / 6.0);
         qd += (k1.1 + k2.1 * 2.0 + k3.1 * 2.0 + k4.1) * (DT / 6.0);
     }
     out
 }
 
-/// Every `every`-th sample's regressor (through `columns`) and torques, stacked.
-fn stack(
-    nominal: &Robot,
+/// Every `every`-th sample's regressor rows (`rows(q, q̇, q̈)`, `6 × C`) and torques,
+/// stacked.
+fn stack<const C: usize>(
     records: &[Record],
     every: usize,
-    columns: impl Fn(&DMatrix<f64>) -> DMatrix<f64>,
+    rows: impl Fn(&V6, &V6, &V6) -> SMatrix<f64, 6, C>,
 ) -> (DMatrix<f64>, DVector<f64>) {
     let picked: Vec<&Record> = records.iter().step_by(every).collect();
-    let n = nominal.dof();
-    let first = columns(&nominal.regressor(&picked[0].q, &picked[0].qd, &picked[0].qdd));
-    let mut y = DMatrix::zeros(n * picked.len(), first.ncols());
+    let n = 6;
+    let mut y = DMatrix::zeros(n * picked.len(), C);
     let mut tau = DVector::zeros(n * picked.len());
     for (s, r) in picked.iter().enumerate() {
-        y.rows_mut(s * n, n)
-            .copy_from(&columns(&nominal.regressor(&r.q, &r.qd, &r.qdd)));
+        y.rows_mut(s * n, n).copy_from(&rows(&r.q, &r.qd, &r.qdd));
         tau.rows_mut(s * n, n).copy_from(&r.tau);
     }
     (y, tau)
 }
 
 fn main() -> Result<(), Box<dyn Error>> {
-    let svg = std::env::args()
-        .nth(1)
-        .map_or_else(|| PathBuf::from("target/identify.svg"), PathBuf::from);
+    let arg = std::env::args().nth(1);
     let nominal_model = RobotModel::from_toml_file("robots/puma560.toml")?;
-    let nominal = Robot::from_model(nominal_model.clone());
     let mut rng = Rng(0x1D_E471_F1ED);
-    let arm_model = perturbed(&nominal_model, &mut rng);
-    let arm = Robot::from_model(arm_model.clone());
-    let plant = Robot::from_model(with_payload(&arm_model));
+    let mut arm_model = perturbed(&nominal_model, &mut rng);
+    arm_model.name = "puma560_identify_plant".into();
+    arm_model.description = Some(
+        "Unimation PUMA 560, every mass, centre of mass and inertia scaled by a factor in \
+         [0.8, 1.2] (examples/identify.rs)"
+            .into(),
+    );
+    if arg.as_deref() == Some("--write-plant") {
+        let header = "# The plant of examples/identify.rs: robots/puma560.toml with every mass, centre of\n\
+                      # mass and inertia scaled by factors in [0.8, 1.2] from a fixed seed. Written by\n\
+                      # `cargo run --release --example identify -- --write-plant`.\n";
+        std::fs::write(PLANT, format!("{header}{}", arm_model.to_toml()))?;
+        println!("wrote {PLANT}");
+        return Ok(());
+    }
+    if !plant_is_current(&arm_model)? {
+        return Err(format!(
+            "{PLANT} is not the perturbation of robots/puma560.toml this example makes: \
+             rewrite it with `cargo run --release --example identify -- --write-plant`"
+        )
+        .into());
+    }
+    let svg = arg.map_or_else(|| PathBuf::from("target/identify.svg"), PathBuf::from);
 
-    let base = nominal.base_parameters();
-    let truth = base.reduce(&plant.parameters());
+    // The plant's parameters with the payload, reduced by the generated regrouping.
+    let pi_plant: [f64; puma560::PARAMETERS] = Robot::from_model(with_payload(&arm_model))
+        .parameters()
+        .as_slice()
+        .try_into()?;
+    let truth = DVector::from_row_slice(&puma560::base_parameters(&pi_plant));
     println!(
         "PUMA 560: {} parameters, {} base parameters",
-        nominal.parameter_count(),
-        base.count()
+        puma560::PARAMETERS,
+        puma560::BASE_PARAMETERS
     );
+    let base_rows = |q: &V6, qd: &V6, qdd: &V6| puma560::base_regressor(q, qd, qdd);
 
-    let train = record(&plant, 20.0, 0.0);
-    let (y, tau) = stack(&nominal, &train, 10, |y| base.base_regressor(y));
+    let train = record(20.0, 0.0);
+    let (y, tau) = stack::<{ puma560::BASE_PARAMETERS }>(&train, 10, base_rows);
     let svd = y.clone().svd(true, true);
     let s = &svd.singular_values;
     println!(
@@ -214,12 +252,12 @@ fn main() -> Result<(), Box<dyn Error>> {
     };
     println!(
         "without noise: worst error of the {} base parameters {:.1e} (relative, to max(|π_b|, 1e-3))",
-        base.count(),
+        puma560::BASE_PARAMETERS,
         rel(&exact)
     );
 
     // Torque noise: 1 % of each joint's RMS torque, Gaussian.
-    let n = nominal.dof();
+    let n = puma560::DOF;
     let rms: Vec<f64> = (0..n)
         .map(|j| {
             let sum: f64 = tau.iter().skip(j).step_by(n).map(|t| t * t).sum();
@@ -240,7 +278,7 @@ fn main() -> Result<(), Box<dyn Error>> {
     println!("with 1 % torque noise (σ = {:.3?} N·m):", sigma);
     println!("  k   truth         estimate      error      predicted σ   |error|/σ");
     let mut worst_z = 0.0f64;
-    for k in 0..base.count() {
+    for k in 0..puma560::BASE_PARAMETERS {
         let sd = cov[(k, k)].sqrt();
         let z = (estimate[k] - truth[k]).abs() / sd;
         worst_z = worst_z.max(z);
@@ -256,12 +294,12 @@ fn main() -> Result<(), Box<dyn Error>> {
     }
     println!(
         "  largest |error| / predicted σ over {} parameters: {worst_z:.2}",
-        base.count()
+        puma560::BASE_PARAMETERS
     );
 
     // Validation on another trajectory.
-    let validation = record(&plant, 8.0, 2.3);
-    let (yv, tv) = stack(&nominal, &validation, 1, |y| base.base_regressor(y));
+    let validation = record(8.0, 2.3);
+    let (yv, tv) = stack::<{ puma560::BASE_PARAMETERS }>(&validation, 1, base_rows);
     let predicted = &yv * &estimate;
     let err = &predicted - &tv;
     for j in 0..n {
@@ -277,11 +315,17 @@ fn main() -> Result<(), Box<dyn Error>> {
 
     // The payload alone, the arm's own parameters known: τ − Y π_arm = Y_6 π_payload with Y_6
     // the last link's ten columns (the payload's parameters in link 6's frame, the tool's).
-    let own = arm.parameters();
-    let short = record(&plant, 3.0, 4.1);
+    let own = DVector::from_vec(
+        dhgen::parameters::values(&arm_model).ok_or("the arm has mass properties")?,
+    );
+    let short = record(3.0, 4.1);
     let first = 10 * (n - 1);
-    let (y6, t6) = stack(&nominal, &short, 5, |y| y.columns(first, 10).into_owned());
-    let (yall, _) = stack(&nominal, &short, 5, |y| y.clone());
+    let (y6, t6) = stack::<10>(&short, 5, |q, qd, qdd| {
+        puma560::regressor(q, qd, qdd)
+            .fixed_columns::<10>(first)
+            .into_owned()
+    });
+    let (yall, _) = stack::<{ puma560::PARAMETERS }>(&short, 5, puma560::regressor);
     let residual = &t6 - &yall * &own;
     let payload = y6
         .svd(true, true)
