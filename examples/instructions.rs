@@ -13,8 +13,8 @@
 
 use std::hint::black_box;
 
-dhgen::robot!(mod puma560 = "robots/puma560.toml");
-dhgen::robot!(mod panda = "robots/panda.toml");
+dhgen::robot!(mod puma560 = "robots/puma560.toml", regressor);
+dhgen::robot!(mod panda = "robots/panda.toml", regressor);
 
 const CALLS: usize = 1000;
 
@@ -33,6 +33,18 @@ macro_rules! run {
             stringify!($m)
         );
         let robot = dhgen::Robot::from_toml_file(file).expect("catalogue robot");
+        // A payload: 1.7 kg, off-centre, a full inertia tensor (benches/parameters.rs's).
+        let payload = dhgen::payload::Payload::new(
+            1.7,
+            [0.03, -0.02, 0.06],
+            [
+                [0.012, 0.001, -0.002],
+                [0.001, 0.010, 0.0015],
+                [-0.002, 0.0015, 0.008],
+            ],
+        )
+        .expect("a physical payload");
+        let pp = payload.parameters();
         let (qs, qds) = (inputs::<N>(0), inputs::<N>(3));
         let generated = $path == "generated";
         let mut acc = 0.0;
@@ -58,6 +70,31 @@ macro_rules! run {
                 ("forward_dynamics", false) => {
                     robot.forward_dynamics(q, qd, qd).map_or(0.0, |x| x[1])
                 }
+                ("inverse_dynamics_with_payload", true) => {
+                    $m::inverse_dynamics_with_payload(q, qd, qd, &pp)[1]
+                }
+                ("inverse_dynamics_with_payload", false) => {
+                    let (q, qd) = (
+                        dhgen::nalgebra::DVector::from_row_slice(q),
+                        dhgen::nalgebra::DVector::from_row_slice(qd),
+                    );
+                    dhgen::payload::inverse_dynamics(&robot, &payload, &q, &qd, &qd)[1]
+                }
+                ("coriolis_with_payload", true) => $m::coriolis_with_payload(q, qd, &pp)[(1, 0)],
+                ("forward_dynamics_with_payload", true) => {
+                    $m::forward_dynamics_with_payload(q, qd, qd, &pp).map_or(0.0, |x| x[1])
+                }
+                ("forward_dynamics_with_payload", false) => {
+                    let (q, qd) = (
+                        dhgen::nalgebra::DVector::from_row_slice(q),
+                        dhgen::nalgebra::DVector::from_row_slice(qd),
+                    );
+                    dhgen::payload::forward_dynamics(&robot, &payload, &q, &qd, &qd)
+                        .map_or(0.0, |x| x[1])
+                }
+                ("regressor", true) => $m::regressor(q, qd, qd)[(1, 12)],
+                ("regressor", false) => robot.regressor(q, qd, qd)[(1, 12)],
+                ("base_regressor", true) => $m::base_regressor(q, qd, qd)[(1, 3)],
                 (other, _) => {
                     eprintln!("unknown quantity {other}");
                     std::process::exit(2);
