@@ -3,14 +3,15 @@
 //! Test modules import what they need, under another name where they read better:
 //! `use crate::catalogue::puma560 as puma;`.
 
-// The catalogue, robots/*.toml.
+// The catalogue, robots/*.toml (with the regressor where the robot has mass properties and the
+// modules below do not already have it).
 dhgen::robot!(pub mod cylindrical = "robots/cylindrical.toml");
 dhgen::robot!(pub mod panda = "robots/panda.toml");
-dhgen::robot!(pub mod planar_elbow = "robots/planar_elbow.toml");
+dhgen::robot!(pub mod planar_elbow = "robots/planar_elbow.toml", regressor);
 dhgen::robot!(pub mod puma560 = "robots/puma560.toml");
 dhgen::robot!(pub mod scara = "robots/scara.toml");
 dhgen::robot!(pub mod stanford = "robots/stanford.toml");
-dhgen::robot!(pub mod ur5 = "robots/ur5.toml");
+dhgen::robot!(pub mod ur5 = "robots/ur5.toml", regressor);
 
 // Fixtures, tests/fixtures/*.toml.
 dhgen::robot!(pub mod craig = "tests/fixtures/craig.toml");

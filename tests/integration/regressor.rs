@@ -297,7 +297,8 @@ macro_rules! generated_regressor {
 }
 
 use crate::catalogue::{
-    odd_derivatives, panda_regressor, puma560_derivatives, scara_derivatives, stanford_regressor,
+    odd_derivatives, panda_regressor, planar_elbow, puma560_derivatives, scara_derivatives,
+    stanford_regressor, ur5,
 };
 use crate::support::{fixture, runtime};
 
@@ -318,3 +319,9 @@ generated_regressor!(
     runtime("scara")
 );
 generated_regressor!(odd_generated_regressor, odd_derivatives, fixture("odd"));
+generated_regressor!(ur5_generated_regressor, ur5, runtime("ur5"));
+generated_regressor!(
+    planar_elbow_generated_regressor,
+    planar_elbow,
+    runtime("planar_elbow")
+);
