@@ -43,6 +43,7 @@ mod planning_potential;
 mod planning_prm;
 mod planning_workspace;
 mod regressor;
+mod ring_algorithms;
 mod rotation;
 mod runtime_laws;
 mod runtime_reference;

@@ -84,6 +84,22 @@ pub fn coriolis_from(n: usize, graph: &SharedGraph, c: &[E]) -> Vec<E> {
         .collect()
 }
 
+/// `C(q, q̇)` row-major by Echeandia and Wensing's algorithm in root-frame coordinates
+/// ([`RingChain::coriolis_matrix`](crate::chain::RingChain::coriolis_matrix), the runtime
+/// path's algorithm): the candidate for arms without structure.
+pub fn coriolis_spatial(chain: ChainRef<'_>) -> (SharedGraph, Vec<E>) {
+    let graph = SharedGraph::default();
+    let qd: Vec<E> = (0..chain.dof())
+        .map(|i| E::sym(&graph, crate::graph::Sym::Qd(i)))
+        .collect();
+    let c = super::graph_chain(chain, &graph)
+        .coriolis_matrix(&qd)
+        .into_iter()
+        .flatten()
+        .collect();
+    (graph, c)
+}
+
 /// `C(q, q̇)` row-major in O(n²) operations, from the identity
 /// `C = ½ (Ḋ + M − Mᵀ)` with `M = ∂(D q̇)/∂q`, which follows from the definition of the
 /// symbols (`Σ_i q̇_i ∂d_kj/∂q_i = Ḋ_kj`, `Σ_i q̇_i ∂d_ki/∂q_j = ∂(D q̇)_k/∂q_j`, D symmetric):

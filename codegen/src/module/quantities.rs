@@ -10,7 +10,8 @@
 use super::shape::Shape;
 use super::{Context, cholesky};
 use crate::derive::{
-    derivatives, energy, gravity, inertia, kinematics, newton_euler, payload, singularity,
+    christoffel, derivatives, energy, gravity, inertia, kinematics, newton_euler, payload,
+    singularity,
 };
 use crate::graph::{E, SharedGraph};
 use crate::poly::Poly;
@@ -332,8 +333,9 @@ pub const QUANTITIES: &[Quantity] = &[
         available: Availability::Dynamics,
         public: true,
         make: |cx| {
-            // Three candidates: C straight from the symbols (zero symbols fold away), the O(n²)
-            // recursion, or contracting the n³ symbols at run time; the fewest operations win.
+            // Four candidates: C straight from the symbols (zero symbols fold away), the O(n²)
+            // recursion on dual numbers, Echeandia and Wensing's O(n²) algorithm (the runtime
+            // path's), or contracting the n³ symbols at run time; the fewest operations win.
             let n = cx.chain.dof();
             let (graph, c) = cx.christoffel();
             let [(recursive_graph, recursive), (_, direct)] = cx.coriolis_derivations() else {
@@ -343,15 +345,18 @@ pub const QUANTITIES: &[Quantity] = &[
                 let roots: Vec<_> = exprs.iter().map(|e| e.id_in(graph)).collect();
                 crate::graph::count(&graph.borrow(), roots).total()
             };
+            let (spatial_graph, spatial) = christoffel::coriolis_spatial(cx.chain);
             let costs = [
                 cost(graph, direct),
                 cost(recursive_graph, recursive),
+                cost(&spatial_graph, &spatial),
                 cost(graph, c) + 2 * n * n * n,
             ];
-            let best = (0..3).min_by_key(|&i| costs[i]).unwrap_or(0);
+            let best = (0..4).min_by_key(|&i| costs[i]).unwrap_or(0);
             match best {
                 0 => derived(graph.clone(), direct.clone()),
                 1 => derived(recursive_graph.clone(), recursive.clone()),
+                2 => derived(spatial_graph, spatial),
                 _ => composed(
                     quote! {
                         let c = self.christoffel();
