@@ -24,8 +24,11 @@ impl JointSymbols<f64> for Numbers<'_> {
     }
 }
 
+/// A named arm and a state `(q, q̇, q̈)`.
+type Case = (String, Robot, Vec<f64>, Vec<f64>, Vec<f64>);
+
 /// Random arms of both styles, and a seeded state for each.
-fn arms() -> Vec<(String, Robot, Vec<f64>, Vec<f64>, Vec<f64>)> {
+fn arms() -> Vec<Case> {
     let mut out = Vec::new();
     for style in [ArmStyle::General, ArmStyle::Industrial] {
         for n in 2..=12 {
