@@ -84,3 +84,25 @@ fn regressor_recursion_equals_the_runtime() {
     }
     println!("regressor recursion over the ring = runtime Y to {worst:.1e}");
 }
+
+/// The arms of `benches/random_arms.rs` are the seeded ones (`dhgen random --dof N --style
+/// STYLE --seed 1`), so the benchmark measures what the generator of random arms makes.
+#[test]
+fn bench_arms_are_the_seeded_ones() {
+    for (style, word) in [
+        (ArmStyle::General, "general"),
+        (ArmStyle::Industrial, "industrial"),
+    ] {
+        for n in [6, 8, 10, 12] {
+            let path = format!(
+                "{}/benches/arms/{word}_{n}.toml",
+                env!("CARGO_MANIFEST_DIR")
+            );
+            let checked_in = dhgen::RobotModel::from_toml_file(&path).unwrap();
+            assert!(
+                checked_in == random_arm(n, style, 1),
+                "{path} is not the seeded arm"
+            );
+        }
+    }
+}
