@@ -192,6 +192,23 @@ pub trait JointSymbols<R> {
     fn length(&self, j: usize) -> R;
 }
 
+/// Joint values as numbers (`q`, offsets applied, the model's exact quarter turns), to run
+/// the recursions in `f64`: what the generator evaluates at compile time (the base
+/// parameters), and how tests check a recursion against the runtime path.
+pub struct Numbers<'a>(pub ChainRef<'a>, pub &'a [f64]);
+
+impl JointSymbols<f64> for Numbers<'_> {
+    fn angle(&self, j: usize) -> (f64, f64) {
+        match self.0.bodies[j].value(self.1[j]) {
+            JointValue::Revolute { cos, sin } => (cos, sin),
+            JointValue::Prismatic(_) => unreachable!("joint {j} is revolute"),
+        }
+    }
+    fn length(&self, j: usize) -> f64 {
+        self.1[j] + self.0.bodies[j].offset
+    }
+}
+
 /// The chain of one robot in one arithmetic, in joint frames (see
 /// [`ChainRef`]): the recursions run in the root frame, the frame
 /// that `P_0` places in the world.

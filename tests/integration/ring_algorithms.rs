@@ -6,23 +6,7 @@
 
 use dhgen::Robot;
 use dhgen::model::random::{ArmStyle, random_arm};
-use dhgen::model::{ChainRef, JointValue};
-use dhgen_codegen::chain::{JointSymbols, RingChain};
-
-/// Joint values as numbers, with the model's exact quarter turns.
-struct Numbers<'a>(ChainRef<'a>, &'a [f64]);
-
-impl JointSymbols<f64> for Numbers<'_> {
-    fn angle(&self, j: usize) -> (f64, f64) {
-        match self.0.bodies[j].value(self.1[j]) {
-            JointValue::Revolute { cos, sin } => (cos, sin),
-            JointValue::Prismatic(_) => unreachable!("joint {j} is revolute"),
-        }
-    }
-    fn length(&self, j: usize) -> f64 {
-        self.1[j] + self.0.bodies[j].offset
-    }
-}
+use dhgen_codegen::chain::{Numbers, RingChain};
 
 /// A named arm and a state `(q, q̇, q̈)`.
 type Case = (String, Robot, Vec<f64>, Vec<f64>, Vec<f64>);

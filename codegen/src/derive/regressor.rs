@@ -8,11 +8,11 @@
 //! recursion evaluated in `f64` when the module is generated; the base regressor is then the
 //! independent columns, whose derivation is a subset of `Y`'s graph (nothing else is emitted).
 
-use crate::chain::{JointSymbols, RingChain};
+use crate::chain::{Numbers, RingChain};
 use crate::graph::{E, SharedGraph, Sym};
 use dhgen_model::nalgebra::DMatrix;
 use dhgen_model::parameters::{BODY_PARAMETERS, BaseParameters, Column};
-use dhgen_model::{ChainRef, JointValue, Ring, RobotModel};
+use dhgen_model::{ChainRef, Ring, RobotModel};
 
 /// `Y` row by row from the link columns `links` of [`RingChain::regressor`]: the joint-side
 /// columns `q̈_i` (armature), `q̇_i` (viscous) and `coulomb(i)` (Coulomb) in their rows.
@@ -52,21 +52,6 @@ pub fn regressor(chain: ChainRef<'_>, columns: &[Column], graph: &SharedGraph) -
         .into_iter()
         .flatten()
         .collect()
-}
-
-/// Joint values as numbers, with the model's exact quarter turns.
-struct Numbers<'a>(ChainRef<'a>, &'a [f64]);
-
-impl JointSymbols<f64> for Numbers<'_> {
-    fn angle(&self, j: usize) -> (f64, f64) {
-        match self.0.bodies[j].value(self.1[j]) {
-            JointValue::Revolute { cos, sin } => (cos, sin),
-            JointValue::Prismatic(_) => unreachable!("joint {j} is revolute"),
-        }
-    }
-    fn length(&self, j: usize) -> f64 {
-        self.1[j] + self.0.bodies[j].offset
-    }
 }
 
 /// The robot's base parameters, by `dhgen_model::parameters::base_parameters` on this
