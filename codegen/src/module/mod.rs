@@ -132,8 +132,9 @@ impl<'c> Context<'c> {
     }
 
     /// The derivations of C(q, q̇) (row-major), each built once and shared by the quantities
-    /// that start from C: `[0]` the O(n²) recursion, `[1]` C from the Christoffel symbols, in
-    /// their shared graph.
+    /// that start from C: `[0]` the O(n²) recursion on dual numbers, `[1]` C from the
+    /// Christoffel symbols, in their shared graph, `[2]` Echeandia and Wensing's O(n²)
+    /// algorithm.
     pub fn coriolis_derivations(&self) -> &[(SharedGraph, Vec<E>)] {
         self.coriolis.get_or_init(|| {
             let (graph, c) = self.christoffel();
@@ -141,6 +142,7 @@ impl<'c> Context<'c> {
             vec![
                 christoffel::coriolis_recursive(self.chain),
                 (graph.clone(), direct),
+                christoffel::coriolis_spatial(self.chain),
             ]
         })
     }

@@ -10,8 +10,7 @@
 use super::shape::Shape;
 use super::{Context, cholesky};
 use crate::derive::{
-    christoffel, derivatives, energy, gravity, inertia, kinematics, newton_euler, payload,
-    singularity,
+    derivatives, energy, gravity, inertia, kinematics, newton_euler, payload, singularity,
 };
 use crate::graph::{E, SharedGraph};
 use crate::poly::Poly;
@@ -338,25 +337,29 @@ pub const QUANTITIES: &[Quantity] = &[
             // path's), or contracting the n³ symbols at run time; the fewest operations win.
             let n = cx.chain.dof();
             let (graph, c) = cx.christoffel();
-            let [(recursive_graph, recursive), (_, direct)] = cx.coriolis_derivations() else {
-                unreachable!("two derivations of C")
+            let [
+                (recursive_graph, recursive),
+                (_, direct),
+                (spatial_graph, spatial),
+            ] = cx.coriolis_derivations()
+            else {
+                unreachable!("three derivations of C")
             };
             let cost = |graph: &SharedGraph, exprs: &[E]| {
                 let roots: Vec<_> = exprs.iter().map(|e| e.id_in(graph)).collect();
                 crate::graph::count(&graph.borrow(), roots).total()
             };
-            let (spatial_graph, spatial) = christoffel::coriolis_spatial(cx.chain);
             let costs = [
                 cost(graph, direct),
                 cost(recursive_graph, recursive),
-                cost(&spatial_graph, &spatial),
+                cost(spatial_graph, spatial),
                 cost(graph, c) + 2 * n * n * n,
             ];
             let best = (0..4).min_by_key(|&i| costs[i]).unwrap_or(0);
             match best {
                 0 => derived(graph.clone(), direct.clone()),
                 1 => derived(recursive_graph.clone(), recursive.clone()),
-                2 => derived(spatial_graph, spatial),
+                2 => derived(spatial_graph.clone(), spatial.clone()),
                 _ => composed(
                     quote! {
                         let c = self.christoffel();
