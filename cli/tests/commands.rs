@@ -450,6 +450,32 @@ fn derivatives_are_generated_on_request() {
     assert!(!kinematic.contains("derivatives"), "{kinematic}");
 }
 
+/// The regressor is generated on request only (`--regressor`, as `robot!(..., regressor)`),
+/// and then appears in the table and the module, with the base parameters' constants.
+#[test]
+fn regressor_is_generated_on_request() {
+    let plain = stdout(&["ops", "robots/puma560.toml"]);
+    let with = stdout(&["ops", "--regressor", "robots/puma560.toml"]);
+    for name in ["regressor_smooth", "base_regressor_smooth"] {
+        let row = format!("│ {name} ");
+        assert!(!plain.contains(&row), "{plain}");
+        assert!(with.contains(&row), "{with}");
+    }
+    let code = stdout(&["emit", "--regressor", "robots/scara.toml"]);
+    for item in [
+        "pub fn regressor<T: ::dhgen::Real>(",
+        "pub fn base_regressor<T: ::dhgen::Real>(",
+        "pub fn base_parameters<T: ::dhgen::Real>(",
+        "pub const PARAMETERS: usize = 51;",
+        "pub const BASE_PARAMETERS: usize = 18;",
+    ] {
+        assert!(code.contains(item), "{item} missing");
+    }
+    syn::parse_file(&code).expect("the emitted module parses");
+    let kinematic = stdout(&["ops", "--regressor", "robots/cylindrical.toml"]);
+    assert!(!kinematic.contains("regressor"), "{kinematic}");
+}
+
 #[test]
 fn ops_prints_the_cost_table() {
     let out = stdout(&["ops", "robots/puma560.toml"]);
