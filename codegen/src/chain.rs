@@ -97,19 +97,30 @@ impl<R: Ring> MassMoments<R> {
         });
         let pw = dot(p, &w);
         let pp = dot(p, p);
+        // Symmetric: the upper triangle, mirrored.
+        let upper: [[Option<R>; 3]; 3] = core::array::from_fn(|a| {
+            core::array::from_fn(|b| {
+                (a <= b).then(|| {
+                    let rir = ri[a][0].clone() * f.r[b][0].clone()
+                        + ri[a][1].clone() * f.r[b][1].clone()
+                        + ri[a][2].clone() * f.r[b][2].clone();
+                    let mut v = rir
+                        - w[a].clone() * p[b].clone()
+                        - p[a].clone() * w[b].clone()
+                        - self.m.clone() * p[a].clone() * p[b].clone();
+                    if a == b {
+                        v = v + k::<R>(2.0) * pw.clone() + self.m.clone() * pp.clone();
+                    }
+                    v
+                })
+            })
+        });
         let i = core::array::from_fn(|a| {
             core::array::from_fn(|b| {
-                let rir = ri[a][0].clone() * f.r[b][0].clone()
-                    + ri[a][1].clone() * f.r[b][1].clone()
-                    + ri[a][2].clone() * f.r[b][2].clone();
-                let mut v = rir
-                    - w[a].clone() * p[b].clone()
-                    - p[a].clone() * w[b].clone()
-                    - self.m.clone() * p[a].clone() * p[b].clone();
-                if a == b {
-                    v = v + k::<R>(2.0) * pw.clone() + self.m.clone() * pp.clone();
-                }
-                v
+                let (lo, hi) = if a <= b { (a, b) } else { (b, a) };
+                upper[lo][hi]
+                    .clone()
+                    .expect("the upper triangle is computed")
             })
         });
         MassMoments {
@@ -517,7 +528,8 @@ impl<'c, R: Ring> RingChain<'c, R> {
         };
         let mut velocity: (V3<R>, V3<R>) = ([z(), z(), z()], [z(), z(), z()]);
         let mut rates = Vec::with_capacity(n);
-        let mut p: Vec<[[R; 3]; 3]> = Vec::with_capacity(n);
+        let mut g: Vec<[[R; 3]; 3]> = Vec::with_capacity(n);
+        let mut na: Vec<V3<R>> = Vec::with_capacity(n);
         let mut l: Vec<V3<R>> = Vec::with_capacity(n);
         for ((axis, b), rate) in axes.iter().zip(&bodies).zip(qd) {
             velocity = (
@@ -531,57 +543,60 @@ impl<'c, R: Ring> RingChain<'c, R> {
                 add3(&cross(w, &axis.1), &cross(u, &axis.0)),
             ));
             let (ang, lin) = momentum(b, &velocity);
-            // İ_ωω = ŵK − Kŵ + 2(h·u)1 − u hᵀ − h uᵀ; P = ½(İ_ωω − n̂).
+            // İ_ωω = ŵK − Kŵ + 2(h·u)1 − u hᵀ − h uᵀ is symmetric (Kŵ = −(ŵK)ᵀ for a
+            // symmetric K): six entries; P = ½(İ_ωω − n̂) is applied as P s = ½(İ_ωω s − n × s)
+            // and Pᵀ s = ½(İ_ωω s + n × s).
             let hu = dot(&b.h, u);
+            // kw[c] = ŵ K_col c, so (ŵK)_rc = kw[c][r].
             let kw: [V3<R>; 3] = core::array::from_fn(|c| {
                 let col = [b.i[0][c].clone(), b.i[1][c].clone(), b.i[2][c].clone()];
                 cross(w, &col)
             });
-            let wk: [V3<R>; 3] = core::array::from_fn(|r| {
-                let row = [b.i[r][0].clone(), b.i[r][1].clone(), b.i[r][2].clone()];
-                cross(&row, w)
-            });
-            let nh = hat(&ang);
-            p.push(core::array::from_fn(|r| {
+            let upper: [[Option<R>; 3]; 3] = core::array::from_fn(|r| {
                 core::array::from_fn(|c| {
-                    // (ŵK)_rc = (w × K_col c)_r and (Kŵ)_rc = (K_row r × w)_c.
-                    let mut x = kw[c][r].clone()
-                        - wk[r][c].clone()
-                        - u[r].clone() * b.h[c].clone()
-                        - b.h[r].clone() * u[c].clone()
-                        - nh[r][c].clone();
-                    if r == c {
-                        x = x + k::<R>(2.0) * hu.clone();
-                    }
-                    k::<R>(0.5) * x
+                    (r <= c).then(|| {
+                        let mut x = kw[c][r].clone() + kw[r][c].clone()
+                            - u[r].clone() * b.h[c].clone()
+                            - b.h[r].clone() * u[c].clone();
+                        if r == c {
+                            x = x + k::<R>(2.0) * hu.clone();
+                        }
+                        x
+                    })
+                })
+            });
+            g.push(core::array::from_fn(|r| {
+                core::array::from_fn(|c| {
+                    let (a, b) = if r <= c { (r, c) } else { (c, r) };
+                    upper[a][b].clone().expect("the upper triangle is computed")
                 })
             }));
+            na.push(ang);
             l.push(lin);
         }
-        // Composites, tip to base: inertias, P and l.
+        // Composites, tip to base: inertias, İ_ωω, angular and linear momenta.
         let mut composite = bodies;
         for i in (1..n).rev() {
             composite[i - 1] = composite[i - 1].plus(&composite[i]);
-            let (pi, li) = (p[i].clone(), l[i].clone());
-            p[i - 1] = core::array::from_fn(|r| {
-                core::array::from_fn(|c| p[i - 1][r][c].clone() + pi[r][c].clone())
+            let gi = g[i].clone();
+            g[i - 1] = core::array::from_fn(|r| {
+                core::array::from_fn(|c| g[i - 1][r][c].clone() + gi[r][c].clone())
             });
+            let (ni, li) = (na[i].clone(), l[i].clone());
+            na[i - 1] = add3(&na[i - 1], &ni);
             l[i - 1] = add3(&l[i - 1], &li);
         }
         let motion_dot = |m: &(V3<R>, V3<R>), f: &(V3<R>, V3<R>)| dot(&m.0, &f.0) + dot(&m.1, &f.1);
         let mut c = vec![vec![z(); n]; n];
         for j in 0..n {
             let s = &axes[j];
-            let pt_s: V3<R> = core::array::from_fn(|r| {
-                p[j][0][r].clone() * s.0[0].clone()
-                    + p[j][1][r].clone() * s.0[1].clone()
-                    + p[j][2][r].clone() * s.0[2].clone()
-            });
+            let gs = mat_vec(&g[j], &s.0);
+            let ns = cross(&na[j], &s.0);
+            let half = |v: V3<R>| scale3(&k::<R>(0.5), &v);
+            let p_s = half(core::array::from_fn(|r| gs[r].clone() - ns[r].clone()));
+            let pt_s = half(add3(&gs, &ns));
             let rate = momentum(&composite[j], &rates[j]);
-            let f1 = (
-                add3(&rate.0, &mat_vec(&p[j], &s.0)),
-                add3(&rate.1, &cross(&s.0, &l[j])),
-            );
+            let f1 = (add3(&rate.0, &p_s), add3(&rate.1, &cross(&s.0, &l[j])));
             let f2 = momentum(&composite[j], s);
             let f3 = (add3(&pt_s, &cross(&l[j], &s.1)), [z(), z(), z()]);
             c[j][j] = motion_dot(s, &f1);
@@ -701,16 +716,6 @@ impl<'c, R: Ring> RingChain<'c, R> {
     pub fn joint_frames(&self) -> Vec<Frame<R>> {
         self.joint_frames_from(Frame::identity())
     }
-}
-
-/// The cross-product matrix `x̂` with `x̂ y = x × y`.
-fn hat<R: Ring>(x: &V3<R>) -> [[R; 3]; 3] {
-    let z = || k::<R>(0.0);
-    [
-        [z(), -x[2].clone(), x[1].clone()],
-        [x[2].clone(), z(), -x[0].clone()],
-        [-x[1].clone(), x[0].clone(), z()],
-    ]
 }
 
 fn mat_vec<R: Ring>(m: &[[R; 3]; 3], v: &V3<R>) -> V3<R> {
