@@ -7,6 +7,7 @@
 //! [`Ring`]: polynomials (the normal form), expression nodes and dual numbers alike. They run
 //! in the root frame that `P_0` places in the world, with gravity rotated into it.
 
+use dhgen_model::parameters::INERTIA_ENTRIES;
 use dhgen_model::{ChainRef, Frame, Inertial, JointKind, JointValue, Ring};
 
 /// A 3-vector over a ring.
@@ -133,34 +134,29 @@ impl<R: Ring> MassMoments<R> {
     /// The body whose parameters (in the order of `dhgen_model::parameters`) are all zero
     /// but parameter `p`, which is one.
     pub fn unit(p: usize) -> MassMoments<R> {
-        let v = |k: usize| -> R {
-            if k == p {
-                R::from_f64(1.0)
-            } else {
-                R::from_f64(0.0)
-            }
-        };
+        MassMoments::of(|k| R::from_f64(if k == p { 1.0 } else { 0.0 }))
+    }
+
+    /// The body whose parameter k (in the order of `dhgen_model::parameters`) is `value(k)`.
+    pub fn of(value: impl Fn(usize) -> R) -> MassMoments<R> {
         MassMoments {
-            m: v(0),
-            h: [v(1), v(2), v(3)],
-            i: [[v(4), v(5), v(7)], [v(5), v(6), v(8)], [v(7), v(8), v(9)]],
+            m: value(0),
+            h: [value(1), value(2), value(3)],
+            i: INERTIA_ENTRIES.map(|row| row.map(&value)),
         }
     }
 
     /// The ten parameters (`m, h, Ixx, Ixy, Iyy, Ixz, Iyz, Izz`).
     pub fn parameters(&self) -> [R; 10] {
-        [
-            self.m.clone(),
-            self.h[0].clone(),
-            self.h[1].clone(),
-            self.h[2].clone(),
-            self.i[0][0].clone(),
-            self.i[0][1].clone(),
-            self.i[1][1].clone(),
-            self.i[0][2].clone(),
-            self.i[1][2].clone(),
-            self.i[2][2].clone(),
-        ]
+        let mut out: [R; 10] = core::array::from_fn(|_| R::from_f64(0.0));
+        out[0] = self.m.clone();
+        for a in 0..3 {
+            out[1 + a] = self.h[a].clone();
+            for b in a..3 {
+                out[INERTIA_ENTRIES[a][b]] = self.i[a][b].clone();
+            }
+        }
+        out
     }
 
     /// The wrench `(f, n)` (moment about the frame origin) that gives the body the motion

@@ -69,23 +69,24 @@ pub fn body_parameters(mass: f64, com: &[f64; 3], i_com: &[[f64; 3]; 3]) -> [f64
     // I = I_c + m (|c|² 1 − c cᵀ)
     let i =
         |a: usize, b: usize| i_com[a][b] + mass * (if a == b { cc } else { 0.0 } - com[a] * com[b]);
-    [
-        mass,
-        mass * com[0],
-        mass * com[1],
-        mass * com[2],
-        i(0, 0),
-        i(0, 1),
-        i(1, 1),
-        i(0, 2),
-        i(1, 2),
-        i(2, 2),
-    ]
+    let mut out = [0.0; BODY_PARAMETERS];
+    out[0] = mass;
+    for a in 0..3 {
+        out[1 + a] = mass * com[a];
+        for b in a..3 {
+            out[INERTIA_ENTRIES[a][b]] = i(a, b);
+        }
+    }
+    out
 }
+
+/// Where each entry of the inertia tensor sits among a body's parameters: `I[a][b]` is
+/// parameter `INERTIA_ENTRIES[a][b]` (`Ixx, Ixy, Iyy, Ixz, Iyz, Izz` are 4 to 9).
+pub const INERTIA_ENTRIES: [[usize; 3]; 3] = [[4, 5, 7], [5, 6, 8], [7, 8, 9]];
 
 /// The inertia tensor `[[Ixx, Ixy, Ixz], ...]` of a body's parameters `p`.
 pub fn inertia_of(p: &[f64; BODY_PARAMETERS]) -> [[f64; 3]; 3] {
-    [[p[4], p[5], p[7]], [p[5], p[6], p[8]], [p[7], p[8], p[9]]]
+    INERTIA_ENTRIES.map(|row| row.map(|k| p[k]))
 }
 
 /// What one column of the regressor (one parameter) is.

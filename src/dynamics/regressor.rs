@@ -15,7 +15,7 @@ pub(crate) fn inertia_of(p: &[f64; BODY_PARAMETERS]) -> Inertia {
     Inertia {
         mass: p[0],
         h: Vector3::new(p[1], p[2], p[3]),
-        k: Matrix3::new(p[4], p[5], p[7], p[5], p[6], p[8], p[7], p[8], p[9]),
+        k: Matrix3::from(layout::inertia_of(p)).transpose(),
     }
 }
 

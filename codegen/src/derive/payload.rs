@@ -17,12 +17,7 @@ use dhgen_model::{ChainRef, Ring};
 /// the last body of `rc`.
 fn add_payload<R: Ring>(rc: &mut RingChain<'_, R>, graph: &SharedGraph, lift: impl Fn(E) -> R) {
     let n = rc.dof();
-    let p = |k: usize| lift(E::sym(graph, Sym::Payload(k)));
-    let payload = MassMoments {
-        m: p(0),
-        h: [p(1), p(2), p(3)],
-        i: [[p(4), p(5), p(7)], [p(5), p(6), p(8)], [p(7), p(8), p(9)]],
-    };
+    let payload = MassMoments::of(|k| lift(E::sym(graph, Sym::Payload(k))));
     let tool = rc.chain.placements[n].to_ring::<R>();
     rc.bodies[n - 1] = rc.bodies[n - 1].plus(&payload.transformed(&tool));
 }
