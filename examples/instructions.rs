@@ -15,6 +15,10 @@ use std::hint::black_box;
 
 dhgen::robot!(mod puma560 = "robots/puma560.toml", regressor);
 dhgen::robot!(mod panda = "robots/panda.toml", regressor);
+// Seeded random general arms (benches/arms/, `dhgen random --style general --seed 1`): the
+// sizes where the generated code has the least structure to exploit.
+dhgen::robot!(mod general_8 = "benches/arms/general_8.toml", regressor);
+dhgen::robot!(mod general_12 = "benches/arms/general_12.toml", regressor);
 
 const CALLS: usize = 1000;
 
@@ -25,14 +29,15 @@ fn inputs<const N: usize>(shift: usize) -> Vec<[f64; N]> {
 }
 
 macro_rules! run {
-    ($m:ident, $quantity:expr, $path:expr) => {{
+    ($m:ident, $dir:literal, $quantity:expr, $path:expr) => {{
         const N: usize = $m::DOF;
         let file = format!(
-            "{}/robots/{}.toml",
+            "{}/{}/{}.toml",
             env!("CARGO_MANIFEST_DIR"),
+            $dir,
             stringify!($m)
         );
-        let robot = dhgen::Robot::from_toml_file(file).expect("catalogue robot");
+        let robot = dhgen::Robot::from_toml_file(file).expect("a checked-in robot");
         // A payload: 1.7 kg, off-centre, a full inertia tensor (benches/parameters.rs's).
         let payload = dhgen::payload::Payload::new(
             1.7,
@@ -109,15 +114,28 @@ fn main() {
     let args: Vec<String> = std::env::args().collect();
     if args.len() != 4 {
         eprintln!(
-            "usage: instructions ROBOT QUANTITY generated|runtime  (ROBOT: puma560 or panda)"
+            "usage: instructions ROBOT QUANTITY generated|runtime  \
+             (ROBOT: puma560, panda, general_8 or general_12)"
         );
         std::process::exit(2);
     }
     match args[1].as_str() {
-        "puma560" => run!(puma560, args[2].as_str(), args[3].as_str()),
-        "panda" => run!(panda, args[2].as_str(), args[3].as_str()),
+        "puma560" => run!(puma560, "robots", args[2].as_str(), args[3].as_str()),
+        "panda" => run!(panda, "robots", args[2].as_str(), args[3].as_str()),
+        "general_8" => run!(
+            general_8,
+            "benches/arms",
+            args[2].as_str(),
+            args[3].as_str()
+        ),
+        "general_12" => run!(
+            general_12,
+            "benches/arms",
+            args[2].as_str(),
+            args[3].as_str()
+        ),
         other => {
-            eprintln!("unknown robot {other}: puma560 or panda");
+            eprintln!("unknown robot {other}: puma560, panda, general_8 or general_12");
             std::process::exit(2);
         }
     }
