@@ -136,7 +136,8 @@ struct Record {
 /// Computed torque on the nominal generated model drives the generated plant holding the
 /// payload; RK4 at 1 kHz.
 fn record(seconds: f64, seed: f64) -> Vec<Record> {
-    let held = Payload::new(payload().mass, payload().com, payload().inertia)
+    let body = payload();
+    let held = Payload::new(body.mass, body.com, body.inertia)
         .expect("a physical payload")
         .parameters();
     let [q0, qd0, _] = desired(0.0, seed);

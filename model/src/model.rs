@@ -153,6 +153,22 @@ pub struct Inertial {
 }
 
 impl Inertial {
+    /// The description format's six inertia fields, in order, and the tensor entry each names
+    /// (`inertia = { xx, yy, zz, xy, yz, xz }`, products as tensor entries).
+    pub const FIELDS: [(&'static str, [usize; 2]); 6] = [
+        ("xx", [0, 0]),
+        ("yy", [1, 1]),
+        ("zz", [2, 2]),
+        ("xy", [0, 1]),
+        ("yz", [1, 2]),
+        ("xz", [0, 2]),
+    ];
+
+    /// The inertia tensor as the description format's fields ([`Inertial::FIELDS`]).
+    pub fn inertia_fields(&self) -> [(&'static str, f64); 6] {
+        Inertial::FIELDS.map(|(name, [a, b])| (name, self.inertia[a][b]))
+    }
+
     /// The same body described in an outer frame, `f` placing this body's frame in it: the
     /// centre of mass moved by `f`, the inertia turned, `R I Rᵀ`.
     pub fn in_frame(&self, f: &Frame<f64>) -> Inertial {

@@ -959,15 +959,7 @@ impl<'a> Reader<'a> {
                 .map_or(links[joint.child].loc, |i| i.1);
             e.push(("mass".to_string(), mloc, num(m.mass, mloc)));
             e.push(("com".to_string(), mloc, vec(&m.com, mloc)));
-            let t = &m.inertia;
-            let entries = [
-                ("xx", t[0][0]),
-                ("yy", t[1][1]),
-                ("zz", t[2][2]),
-                ("xy", t[0][1]),
-                ("yz", t[1][2]),
-                ("xz", t[0][2]),
-            ];
+            let entries = m.inertia_fields();
             e.push((
                 "inertia".to_string(),
                 mloc,

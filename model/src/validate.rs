@@ -82,7 +82,16 @@ const LINK_COMMON_FIELDS: &[&str] = &[
     "friction",
     "collision",
 ];
-const INERTIA_FIELDS: &[&str] = &["xx", "yy", "zz", "xy", "yz", "xz"];
+/// The inertia table's field names, those of [`Inertial::FIELDS`].
+const INERTIA_FIELDS: [&str; 6] = {
+    let mut out = [""; 6];
+    let mut k = 0;
+    while k < 6 {
+        out[k] = Inertial::FIELDS[k].0;
+        k += 1;
+    }
+    out
+};
 
 /// Where in the description we are: the link (if any) and the field path.
 #[derive(Clone, Copy)]
@@ -708,15 +717,15 @@ fn inertial<L: Clone>(
     let com = f.with("com", |at, v| vec3(at, v, LENGTH))?;
     let inertia = f.with("inertia", |at, v| {
         let t = table(at, v)?;
-        let fields = Fields::new(t, at.link, at.field, INERTIA_FIELDS)?;
-        let mut e = [0.0; 6];
-        for (slot, key) in e.iter_mut().zip(INERTIA_FIELDS) {
-            *slot = fields
+        let fields = Fields::new(t, at.link, at.field, &INERTIA_FIELDS)?;
+        let mut tensor = [[0.0; 3]; 3];
+        for (key, [a, b]) in Inertial::FIELDS {
+            let x = fields
                 .with(key, |at, v| quantity(at, v, INERTIA))?
                 .unwrap_or(0.0);
+            tensor[a][b] = x;
+            tensor[b][a] = x;
         }
-        let [xx, yy, zz, xy, yz, xz] = e;
-        let tensor = [[xx, xy, xz], [xy, yy, yz], [xz, yz, zz]];
         check_inertia(at, t.loc.clone(), &tensor, allow_nonphysical)?;
         Ok(tensor)
     })?;

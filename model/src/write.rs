@@ -47,16 +47,8 @@ fn pose(p: &Pose) -> String {
 }
 
 fn inertia(i: &Inertial) -> String {
-    let t = &i.inertia;
-    let entries = [
-        ("xx", t[0][0]),
-        ("yy", t[1][1]),
-        ("zz", t[2][2]),
-        ("xy", t[0][1]),
-        ("yz", t[1][2]),
-        ("xz", t[0][2]),
-    ];
-    let parts: Vec<String> = entries
+    let parts: Vec<String> = i
+        .inertia_fields()
         .iter()
         .map(|(k, v)| format!("{k} = {}", number(*v)))
         .collect();

@@ -31,6 +31,22 @@ fn arms() -> Vec<Case> {
     out
 }
 
+/// Asserts that the rows `got` equal `want` entry by entry to 1e-12 relative to max(1, |want|);
+/// returns the largest error.
+fn matches(what: &str, got: &[Vec<f64>], want: &dhgen::nalgebra::DMatrix<f64>) -> f64 {
+    assert_eq!((got.len(), got[0].len()), want.shape(), "{what}: shape");
+    let scale = want.amax().max(1.0);
+    let mut worst = 0.0f64;
+    for (r, row) in got.iter().enumerate() {
+        for (c, x) in row.iter().enumerate() {
+            let err = (x - want[(r, c)]).abs() / scale;
+            assert!(err <= 1e-12, "{what}[{r}][{c}] {x} vs {}", want[(r, c)]);
+            worst = worst.max(err);
+        }
+    }
+    worst
+}
+
 #[test]
 fn coriolis_recursion_equals_the_runtime() {
     let mut worst = 0.0f64;
@@ -38,14 +54,7 @@ fn coriolis_recursion_equals_the_runtime() {
         let chain = robot.chain();
         let c = RingChain::new(chain, &Numbers(chain, &q)).coriolis_matrix(&qd);
         let want = robot.coriolis(&q[..], &qd[..]);
-        let scale = want.amax().max(1.0);
-        for (k, row) in c.iter().enumerate() {
-            for (j, x) in row.iter().enumerate() {
-                let err = (x - want[(k, j)]).abs() / scale;
-                assert!(err <= 1e-12, "{name}: C[{k}][{j}] {x} vs {}", want[(k, j)]);
-                worst = worst.max(err);
-            }
-        }
+        worst = worst.max(matches(&format!("{name}: C"), &c, &want));
     }
     println!("Echeandia–Wensing over the ring = runtime C to {worst:.1e}");
 }
@@ -57,14 +66,7 @@ fn regressor_recursion_equals_the_runtime() {
         let chain = robot.chain();
         let y = RingChain::new(chain, &Numbers(chain, &q)).regressor(&qd, &qdd);
         let want = robot.regressor(&q[..], &qd[..], &qdd[..]);
-        let scale = want.amax().max(1.0);
-        for (i, row) in y.iter().enumerate() {
-            for (c, x) in row.iter().enumerate() {
-                let err = (x - want[(i, c)]).abs() / scale;
-                assert!(err <= 1e-12, "{name}: Y[{i}][{c}] {x} vs {}", want[(i, c)]);
-                worst = worst.max(err);
-            }
-        }
+        worst = worst.max(matches(&format!("{name}: Y"), &y, &want));
     }
     println!("regressor recursion over the ring = runtime Y to {worst:.1e}");
 }

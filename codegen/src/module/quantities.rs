@@ -14,6 +14,7 @@ use crate::derive::{
 };
 use crate::graph::{E, SharedGraph};
 use crate::poly::Poly;
+use dhgen_model::parameters::Column;
 use proc_macro2::TokenStream;
 use quote::quote;
 
@@ -123,23 +124,74 @@ fn composed(body: TokenStream, reads: &'static [&'static str]) -> Made {
     }
 }
 
-/// A smooth torque (`call`, reading `reads`) plus the joints' Coulomb friction, which is not
-/// arithmetic (`sign`) and so is added after the straight-line part.
-fn with_coulomb(cx: &Context<'_>, call: TokenStream, reads: &'static [&'static str]) -> Made {
-    let coulomb = cx.coulomb();
-    let binding = if coulomb.is_empty() {
-        quote!(let tau)
+/// The straight-line part `call` (reading `reads`) bound to `var`, then `after`: what Coulomb
+/// friction adds, which is not arithmetic (`sign`) and so comes after; `mut` only when there is
+/// something to add.
+fn then(
+    var: TokenStream,
+    call: TokenStream,
+    after: TokenStream,
+    reads: &'static [&'static str],
+) -> Made {
+    let binding = if after.is_empty() {
+        quote!(let #var)
     } else {
-        quote!(let mut tau)
+        quote!(let mut #var)
     };
     composed(
         quote! {
             #binding = #call;
-            #coulomb
-            tau
+            #after
+            #var
         },
         reads,
     )
+}
+
+/// A smooth torque (`call`, reading `reads`) plus the joints' Coulomb friction.
+fn with_coulomb(cx: &Context<'_>, call: TokenStream, reads: &'static [&'static str]) -> Made {
+    then(quote!(tau), call, cx.coulomb(), reads)
+}
+
+/// A regressor's smooth part (`call`, reading `reads`) whose column `k` is the full
+/// regressor's column `kept[k]`, with the Coulomb columns' `sign(q̇_i)` set.
+fn with_coulomb_columns(
+    cx: &Context<'_>,
+    kept: impl IntoIterator<Item = usize>,
+    call: TokenStream,
+    reads: &'static [&'static str],
+) -> Made {
+    let signs = kept
+        .into_iter()
+        .enumerate()
+        .filter_map(|(k, c)| match cx.columns[c] {
+            Column::Coulomb(i) => Some(quote!(y[(#i, #k)] = sign(qd[#i]);)),
+            _ => None,
+        });
+    then(quote!(y), call, quote!(#(#signs)*), reads)
+}
+
+/// Forward dynamics `q̈ = D⁻¹(τ − h)` by the unrolled Cholesky solve, D and h the values of
+/// `mass_matrix` and `bias` (reading `reads`); the solve's own operations reported under
+/// `cholesky_solve` when `report` (once per module: every solve is the same).
+fn solved(
+    cx: &Context<'_>,
+    mass_matrix: TokenStream,
+    bias: TokenStream,
+    reads: &'static [&'static str],
+    report: bool,
+) -> Made {
+    let (solve, ops) = cholesky::solve(cx.chain.dof());
+    Made::Composed {
+        body: quote! {
+            let dm = #mass_matrix;
+            let h = #bias;
+            let rhs: [T; DOF] = ::core::array::from_fn(|i| tau[i] - h[i]);
+            #solve
+        },
+        reads,
+        ops: report.then_some(("cholesky_solve", ops)),
+    }
 }
 
 fn frame_entries(f: &dhgen_model::Frame<E>) -> Vec<E> {
@@ -567,22 +619,10 @@ pub const QUANTITIES: &[Quantity] = &[
         available: Availability::Regressor,
         public: true,
         make: |cx| {
-            let signs = cx
-                .columns
-                .iter()
-                .enumerate()
-                .filter_map(|(c, col)| match col {
-                    dhgen_model::parameters::Column::Coulomb(i) => {
-                        Some(quote!(y[(#i, #c)] = sign(qd[#i]);))
-                    }
-                    _ => None,
-                });
-            composed(
-                quote! {
-                    let mut y = self.regressor_smooth(qd, qdd);
-                    #(#signs)*
-                    y
-                },
+            with_coulomb_columns(
+                cx,
+                0..cx.columns.len(),
+                quote!(self.regressor_smooth(qd, qdd)),
                 &["regressor_smooth"],
             )
         },
@@ -618,23 +658,10 @@ pub const QUANTITIES: &[Quantity] = &[
         available: Availability::Regressor,
         public: true,
         make: |cx| {
-            let signs = cx
-                .base_parameters()
-                .independent
-                .iter()
-                .enumerate()
-                .filter_map(|(b, &c)| match cx.columns[c] {
-                    dhgen_model::parameters::Column::Coulomb(i) => {
-                        Some(quote!(y[(#i, #b)] = sign(qd[#i]);))
-                    }
-                    _ => None,
-                });
-            composed(
-                quote! {
-                    let mut y = self.base_regressor_smooth(qd, qdd);
-                    #(#signs)*
-                    y
-                },
+            with_coulomb_columns(
+                cx,
+                cx.base_parameters().independent.iter().copied(),
+                quote!(self.base_regressor_smooth(qd, qdd)),
                 &["base_regressor_smooth"],
             )
         },
@@ -679,17 +706,13 @@ pub const QUANTITIES: &[Quantity] = &[
         available: Availability::Dynamics,
         public: true,
         make: |cx| {
-            let (solve, ops) = cholesky::solve(cx.chain.dof());
-            Made::Composed {
-                body: quote! {
-                    let dm = self.mass_matrix();
-                    let h = self.bias(qd);
-                    let rhs: [T; DOF] = ::core::array::from_fn(|i| tau[i] - h[i]);
-                    #solve
-                },
-                reads: &["mass_matrix", "bias"],
-                ops: Some(("cholesky_solve", ops)),
-            }
+            solved(
+                cx,
+                quote!(self.mass_matrix()),
+                quote!(self.bias(qd)),
+                &["mass_matrix", "bias"],
+                true,
+            )
         },
         arm: Some(ArmMethod::Dynamics),
     },
@@ -705,18 +728,13 @@ pub const QUANTITIES: &[Quantity] = &[
         available: Availability::Dynamics,
         public: true,
         make: |cx| {
-            let (solve, _) = cholesky::solve(cx.chain.dof());
-            Made::Composed {
-                body: quote! {
-                    let dm = self.mass_matrix_with_payload(payload);
-                    let h = self.bias_with_payload(qd, payload);
-                    let rhs: [T; DOF] = ::core::array::from_fn(|i| tau[i] - h[i]);
-                    #solve
-                },
-                reads: &["mass_matrix_with_payload", "bias_with_payload"],
-                // The same solve as `forward_dynamics`', reported there.
-                ops: None,
-            }
+            solved(
+                cx,
+                quote!(self.mass_matrix_with_payload(payload)),
+                quote!(self.bias_with_payload(qd, payload)),
+                &["mass_matrix_with_payload", "bias_with_payload"],
+                false,
+            )
         },
         arm: None,
     },
