@@ -80,6 +80,8 @@ pub mod example {
 }
 
 mod arm;
+/// Many configurations per call: generated functions on SIMD packs (`f64x4`, `f32x8`).
+pub mod batch;
 mod joints;
 mod real;
 pub use arm::{Arm, ArmAllocator, ArmDynamics, JointVector};

@@ -1,22 +1,49 @@
 //! The scalar types generated code is generic over.
 
-/// nalgebra's `RealField` (by copy) plus a combined sine and cosine.
+use nalgebra::SimdRealField;
+use simba::simd::{WideF32x8, WideF64x4};
+
+/// nalgebra's `SimdRealField` (by copy) plus a combined sine and cosine: a real number, or a
+/// pack of them evaluated lane by lane.
 ///
 /// Generated functions take any `T: Real`. `f64` and `f32` compute `sincos` with one shared
 /// argument reduction (the `libm` crate's port of musl, accurate to within 1 ulp), about a
-/// quarter fewer instructions than separate `sin` and `cos`; any other `RealField` type can
-/// implement the trait with the default, which calls `sin_cos`.
+/// quarter fewer instructions than separate `sin` and `cos`. Any `RealField` type (a dual
+/// number, say) implements `SimdRealField` with one lane and can implement this trait with the
+/// defaults.
+///
+/// The SIMD packs [`WideF64x4`] (four `f64`) and [`WideF32x8`] (eight `f32`) are `Real` too:
+/// every generated function evaluates four (eight) configurations in one call, each lane
+/// exactly as the scalar path computes it (the same `libm` sine and cosine per lane; branches
+/// of generated code are lane-wise selects). [`crate::batch`] runs slices of configurations
+/// through them.
 ///
 /// ```
 /// use dhgen::Real;
 /// let (s, c) = 0.5f64.sincos();
 /// assert!((s - 0.5f64.sin()).abs() <= f64::EPSILON && (c - 0.5f64.cos()).abs() <= f64::EPSILON);
 /// ```
-pub trait Real: nalgebra::RealField + Copy {
-    /// `(sin x, cos x)`.
+pub trait Real: SimdRealField<Element: nalgebra::RealField> + Copy {
+    /// `(sin x, cos x)`, lane by lane.
     #[inline]
     fn sincos(self) -> (Self, Self) {
-        self.sin_cos()
+        self.simd_sin_cos()
+    }
+
+    /// Which lanes are finite (neither infinite nor NaN).
+    #[inline]
+    fn is_finite_lanes(self) -> Self::SimdBool {
+        // x − x is 0 for a finite x and NaN for ±∞ and NaN, which compares unequal.
+        (self - self).simd_eq(Self::zero())
+    }
+
+    /// Lane-wise sign with `sign(0) = 0`: `1` where positive, `−1` where negative, `0`
+    /// elsewhere (zero and NaN): Coulomb friction's `coulomb · sign(q̇)`.
+    #[inline]
+    fn sign(self) -> Self {
+        let zero = Self::zero();
+        let one = Self::one();
+        one.select(self.simd_gt(zero), (-one).select(self.simd_lt(zero), zero))
     }
 }
 
@@ -25,12 +52,49 @@ impl Real for f64 {
     fn sincos(self) -> (f64, f64) {
         libm::sincos(self)
     }
+
+    #[inline]
+    fn is_finite_lanes(self) -> bool {
+        self.is_finite()
+    }
 }
 
 impl Real for f32 {
     #[inline]
     fn sincos(self) -> (f32, f32) {
         libm::sincosf(self)
+    }
+
+    #[inline]
+    fn is_finite_lanes(self) -> bool {
+        self.is_finite()
+    }
+}
+
+/// Four `f64` lanes: each lane's sine and cosine is `f64`'s (`libm`), so a lane's results equal
+/// the scalar path's bit for bit.
+impl Real for WideF64x4 {
+    #[inline]
+    fn sincos(self) -> (Self, Self) {
+        let mut s = [0.0; 4];
+        let mut c = [0.0; 4];
+        for (i, x) in self.0.to_array().into_iter().enumerate() {
+            (s[i], c[i]) = libm::sincos(x);
+        }
+        (WideF64x4(s.into()), WideF64x4(c.into()))
+    }
+}
+
+/// Eight `f32` lanes, each as `f32` computes it.
+impl Real for WideF32x8 {
+    #[inline]
+    fn sincos(self) -> (Self, Self) {
+        let mut s = [0.0; 8];
+        let mut c = [0.0; 8];
+        for (i, x) in self.0.to_array().into_iter().enumerate() {
+            (s[i], c[i]) = libm::sincosf(x);
+        }
+        (WideF32x8(s.into()), WideF32x8(c.into()))
     }
 }
 
@@ -80,8 +144,8 @@ impl<const N: usize> Real for num_dual::DualSVec64<N> {}
 /// let floor = dhgen::cholesky_pivot_floor(2, 2.0_f64);
 /// assert!(1e-18 <= floor && 1e-12 > floor);
 /// ```
-pub fn cholesky_pivot_floor<T: Real>(n: usize, max_diagonal: T) -> T {
-    nalgebra::convert::<f64, T>(8.0 * n as f64) * T::default_epsilon() * max_diagonal
+pub fn cholesky_pivot_floor<T: SimdRealField>(n: usize, max_diagonal: T) -> T {
+    nalgebra::convert::<f64, T>(8.0 * n as f64) * T::simd_default_epsilon() * max_diagonal
 }
 
 /// The Cholesky factor of an inertia matrix under the rule of [`cholesky_pivot_floor`]:
@@ -95,7 +159,7 @@ pub fn cholesky_pivot_floor<T: Real>(n: usize, max_diagonal: T) -> T {
 /// assert!(dhgen::inertia_cholesky(Matrix2::new(2.0, 0.0, 0.0, 1.0)).is_some());
 /// assert!(dhgen::inertia_cholesky(Matrix2::new(2.0, 0.0, 0.0, 1e-18)).is_none());
 /// ```
-pub fn inertia_cholesky<T: Real, D: nalgebra::Dim>(
+pub fn inertia_cholesky<T: nalgebra::RealField + Copy, D: nalgebra::Dim>(
     d: nalgebra::OMatrix<T, D, D>,
 ) -> Option<nalgebra::Cholesky<T, D>>
 where

@@ -26,6 +26,7 @@ mod support;
 pub mod planning_support;
 mod trajectory_support;
 
+mod batch;
 mod derivatives;
 mod generated_reference;
 mod generated_velocity;

@@ -1599,7 +1599,97 @@ pub mod puma560 {
             let tau = self.bias_smooth(qd);
             tau
         }
-        ///Forward dynamics q̈ = D⁻¹(τ − C q̇ − g − friction) by an unrolled Cholesky solve; `None` where D(q) is singular to working precision (a pivot at or below `dhgen::cholesky_pivot_floor`, the runtime path's rule too) or the acceleration is not finite (non-finite or overflowing inputs).
+        ///Forward dynamics q̈ = D⁻¹(τ − C q̇ − g − friction) by an unrolled Cholesky solve without branches, and the mask of the lanes where it is an answer: a pivot above `dhgen::cholesky_pivot_floor` and a finite q̈ (for a scalar, a `bool`). What `forward_dynamics` returns as an `Option`, for SIMD packs (`dhgen::batch`) whose lanes each get the scalar path's answer.
+        #[must_use]
+        pub fn forward_dynamics_lanes(
+            &self,
+            qd: &impl ::dhgen::JointArray<T, DOF>,
+            tau: &impl ::dhgen::JointArray<T, DOF>,
+        ) -> (na::SVector<T, DOF>, <T as na::SimdValue>::SimdBool) {
+            let qd = &qd.to_array();
+            let tau = &tau.to_array();
+            let dm = self.mass_matrix();
+            let h = self.bias(qd);
+            let rhs: [T; DOF] = ::core::array::from_fn(|i| tau[i] - h[i]);
+            let floor: T = ::dhgen::cholesky_pivot_floor(
+                DOF,
+                na::SimdPartialOrd::simd_max(
+                    na::SimdPartialOrd::simd_max(
+                        na::SimdPartialOrd::simd_max(
+                            na::SimdPartialOrd::simd_max(
+                                na::SimdPartialOrd::simd_max(dm[(0, 0)], dm[(1, 1)]),
+                                dm[(2, 2)],
+                            ),
+                            dm[(3, 3)],
+                        ),
+                        dm[(4, 4)],
+                    ),
+                    dm[(5, 5)],
+                ),
+            );
+            let l0_0: T = dm[(0, 0)];
+            let ok = na::SimdPartialOrd::simd_gt(l0_0, floor);
+            let l0_0: T = na::SimdComplexField::simd_sqrt(l0_0);
+            let inv0: T = T::one() / l0_0;
+            let l1_0: T = (dm[(1, 0)]) * inv0;
+            let l2_0: T = (dm[(2, 0)]) * inv0;
+            let l3_0: T = (dm[(3, 0)]) * inv0;
+            let l4_0: T = (dm[(4, 0)]) * inv0;
+            let l5_0: T = (dm[(5, 0)]) * inv0;
+            let l1_1: T = dm[(1, 1)] - l1_0 * l1_0;
+            let ok = ok & na::SimdPartialOrd::simd_gt(l1_1, floor);
+            let l1_1: T = na::SimdComplexField::simd_sqrt(l1_1);
+            let inv1: T = T::one() / l1_1;
+            let l2_1: T = (dm[(2, 1)] - l2_0 * l1_0) * inv1;
+            let l3_1: T = (dm[(3, 1)] - l3_0 * l1_0) * inv1;
+            let l4_1: T = (dm[(4, 1)] - l4_0 * l1_0) * inv1;
+            let l5_1: T = (dm[(5, 1)] - l5_0 * l1_0) * inv1;
+            let l2_2: T = dm[(2, 2)] - l2_0 * l2_0 - l2_1 * l2_1;
+            let ok = ok & na::SimdPartialOrd::simd_gt(l2_2, floor);
+            let l2_2: T = na::SimdComplexField::simd_sqrt(l2_2);
+            let inv2: T = T::one() / l2_2;
+            let l3_2: T = (dm[(3, 2)] - l3_0 * l2_0 - l3_1 * l2_1) * inv2;
+            let l4_2: T = (dm[(4, 2)] - l4_0 * l2_0 - l4_1 * l2_1) * inv2;
+            let l5_2: T = (dm[(5, 2)] - l5_0 * l2_0 - l5_1 * l2_1) * inv2;
+            let l3_3: T = dm[(3, 3)] - l3_0 * l3_0 - l3_1 * l3_1 - l3_2 * l3_2;
+            let ok = ok & na::SimdPartialOrd::simd_gt(l3_3, floor);
+            let l3_3: T = na::SimdComplexField::simd_sqrt(l3_3);
+            let inv3: T = T::one() / l3_3;
+            let l4_3: T = (dm[(4, 3)] - l4_0 * l3_0 - l4_1 * l3_1 - l4_2 * l3_2) * inv3;
+            let l5_3: T = (dm[(5, 3)] - l5_0 * l3_0 - l5_1 * l3_1 - l5_2 * l3_2) * inv3;
+            let l4_4: T = dm[(4, 4)] - l4_0 * l4_0 - l4_1 * l4_1 - l4_2 * l4_2
+                - l4_3 * l4_3;
+            let ok = ok & na::SimdPartialOrd::simd_gt(l4_4, floor);
+            let l4_4: T = na::SimdComplexField::simd_sqrt(l4_4);
+            let inv4: T = T::one() / l4_4;
+            let l5_4: T = (dm[(5, 4)] - l5_0 * l4_0 - l5_1 * l4_1 - l5_2 * l4_2
+                - l5_3 * l4_3) * inv4;
+            let l5_5: T = dm[(5, 5)] - l5_0 * l5_0 - l5_1 * l5_1 - l5_2 * l5_2
+                - l5_3 * l5_3 - l5_4 * l5_4;
+            let ok = ok & na::SimdPartialOrd::simd_gt(l5_5, floor);
+            let l5_5: T = na::SimdComplexField::simd_sqrt(l5_5);
+            let inv5: T = T::one() / l5_5;
+            let y0: T = (rhs[0]) * inv0;
+            let y1: T = (rhs[1] - l1_0 * y0) * inv1;
+            let y2: T = (rhs[2] - l2_0 * y0 - l2_1 * y1) * inv2;
+            let y3: T = (rhs[3] - l3_0 * y0 - l3_1 * y1 - l3_2 * y2) * inv3;
+            let y4: T = (rhs[4] - l4_0 * y0 - l4_1 * y1 - l4_2 * y2 - l4_3 * y3) * inv4;
+            let y5: T = (rhs[5] - l5_0 * y0 - l5_1 * y1 - l5_2 * y2 - l5_3 * y3
+                - l5_4 * y4) * inv5;
+            let x5: T = (y5) * inv5;
+            let x4: T = (y4 - l5_4 * x5) * inv4;
+            let x3: T = (y3 - l4_3 * x4 - l5_3 * x5) * inv3;
+            let x2: T = (y2 - l3_2 * x3 - l4_2 * x4 - l5_2 * x5) * inv2;
+            let x1: T = (y1 - l2_1 * x2 - l3_1 * x3 - l4_1 * x4 - l5_1 * x5) * inv1;
+            let x0: T = (y0 - l1_0 * x1 - l2_0 * x2 - l3_0 * x3 - l4_0 * x4 - l5_0 * x5)
+                * inv0;
+            let ok = ok & ::dhgen::Real::is_finite_lanes(x0)
+                & ::dhgen::Real::is_finite_lanes(x1) & ::dhgen::Real::is_finite_lanes(x2)
+                & ::dhgen::Real::is_finite_lanes(x3) & ::dhgen::Real::is_finite_lanes(x4)
+                & ::dhgen::Real::is_finite_lanes(x5);
+            (na::SVector::<T, DOF>::from([x0, x1, x2, x3, x4, x5]), ok)
+        }
+        ///Forward dynamics q̈ = D⁻¹(τ − C q̇ − g − friction) by an unrolled Cholesky solve; `None` where D(q) is singular to working precision (a pivot at or below `dhgen::cholesky_pivot_floor`, the runtime path's rule too) or the acceleration is not finite (non-finite or overflowing inputs); for a SIMD pack, `None` unless every lane has an answer (`forward_dynamics_lanes` gives them lane by lane).
         #[doc(alias = "aba")]
         #[doc(alias = "accel")]
         #[doc(alias = "fdyn")]
@@ -1611,23 +1701,41 @@ pub mod puma560 {
         ) -> Option<na::SVector<T, DOF>> {
             let qd = &qd.to_array();
             let tau = &tau.to_array();
-            let dm = self.mass_matrix();
-            let h = self.bias(qd);
+            let (value, ok) = self.forward_dynamics_lanes(qd, tau);
+            na::SimdBool::all(ok).then_some(value)
+        }
+        ///`forward_dynamics_with_payload` with the mask of the lanes where it is an answer, as `forward_dynamics_lanes` is to `forward_dynamics`.
+        #[must_use]
+        pub fn forward_dynamics_with_payload_lanes(
+            &self,
+            qd: &impl ::dhgen::JointArray<T, DOF>,
+            tau: &impl ::dhgen::JointArray<T, DOF>,
+            payload: &[T; 10],
+        ) -> (na::SVector<T, DOF>, <T as na::SimdValue>::SimdBool) {
+            let qd = &qd.to_array();
+            let tau = &tau.to_array();
+            let dm = self.mass_matrix_with_payload(payload);
+            let h = self.bias_with_payload(qd, payload);
             let rhs: [T; DOF] = ::core::array::from_fn(|i| tau[i] - h[i]);
             let floor: T = ::dhgen::cholesky_pivot_floor(
                 DOF,
-                dm[(0, 0)]
-                    .max(dm[(1, 1)])
-                    .max(dm[(2, 2)])
-                    .max(dm[(3, 3)])
-                    .max(dm[(4, 4)])
-                    .max(dm[(5, 5)]),
+                na::SimdPartialOrd::simd_max(
+                    na::SimdPartialOrd::simd_max(
+                        na::SimdPartialOrd::simd_max(
+                            na::SimdPartialOrd::simd_max(
+                                na::SimdPartialOrd::simd_max(dm[(0, 0)], dm[(1, 1)]),
+                                dm[(2, 2)],
+                            ),
+                            dm[(3, 3)],
+                        ),
+                        dm[(4, 4)],
+                    ),
+                    dm[(5, 5)],
+                ),
             );
             let l0_0: T = dm[(0, 0)];
-            if !(l0_0 > floor) {
-                return None;
-            }
-            let l0_0: T = l0_0.sqrt();
+            let ok = na::SimdPartialOrd::simd_gt(l0_0, floor);
+            let l0_0: T = na::SimdComplexField::simd_sqrt(l0_0);
             let inv0: T = T::one() / l0_0;
             let l1_0: T = (dm[(1, 0)]) * inv0;
             let l2_0: T = (dm[(2, 0)]) * inv0;
@@ -1635,47 +1743,37 @@ pub mod puma560 {
             let l4_0: T = (dm[(4, 0)]) * inv0;
             let l5_0: T = (dm[(5, 0)]) * inv0;
             let l1_1: T = dm[(1, 1)] - l1_0 * l1_0;
-            if !(l1_1 > floor) {
-                return None;
-            }
-            let l1_1: T = l1_1.sqrt();
+            let ok = ok & na::SimdPartialOrd::simd_gt(l1_1, floor);
+            let l1_1: T = na::SimdComplexField::simd_sqrt(l1_1);
             let inv1: T = T::one() / l1_1;
             let l2_1: T = (dm[(2, 1)] - l2_0 * l1_0) * inv1;
             let l3_1: T = (dm[(3, 1)] - l3_0 * l1_0) * inv1;
             let l4_1: T = (dm[(4, 1)] - l4_0 * l1_0) * inv1;
             let l5_1: T = (dm[(5, 1)] - l5_0 * l1_0) * inv1;
             let l2_2: T = dm[(2, 2)] - l2_0 * l2_0 - l2_1 * l2_1;
-            if !(l2_2 > floor) {
-                return None;
-            }
-            let l2_2: T = l2_2.sqrt();
+            let ok = ok & na::SimdPartialOrd::simd_gt(l2_2, floor);
+            let l2_2: T = na::SimdComplexField::simd_sqrt(l2_2);
             let inv2: T = T::one() / l2_2;
             let l3_2: T = (dm[(3, 2)] - l3_0 * l2_0 - l3_1 * l2_1) * inv2;
             let l4_2: T = (dm[(4, 2)] - l4_0 * l2_0 - l4_1 * l2_1) * inv2;
             let l5_2: T = (dm[(5, 2)] - l5_0 * l2_0 - l5_1 * l2_1) * inv2;
             let l3_3: T = dm[(3, 3)] - l3_0 * l3_0 - l3_1 * l3_1 - l3_2 * l3_2;
-            if !(l3_3 > floor) {
-                return None;
-            }
-            let l3_3: T = l3_3.sqrt();
+            let ok = ok & na::SimdPartialOrd::simd_gt(l3_3, floor);
+            let l3_3: T = na::SimdComplexField::simd_sqrt(l3_3);
             let inv3: T = T::one() / l3_3;
             let l4_3: T = (dm[(4, 3)] - l4_0 * l3_0 - l4_1 * l3_1 - l4_2 * l3_2) * inv3;
             let l5_3: T = (dm[(5, 3)] - l5_0 * l3_0 - l5_1 * l3_1 - l5_2 * l3_2) * inv3;
             let l4_4: T = dm[(4, 4)] - l4_0 * l4_0 - l4_1 * l4_1 - l4_2 * l4_2
                 - l4_3 * l4_3;
-            if !(l4_4 > floor) {
-                return None;
-            }
-            let l4_4: T = l4_4.sqrt();
+            let ok = ok & na::SimdPartialOrd::simd_gt(l4_4, floor);
+            let l4_4: T = na::SimdComplexField::simd_sqrt(l4_4);
             let inv4: T = T::one() / l4_4;
             let l5_4: T = (dm[(5, 4)] - l5_0 * l4_0 - l5_1 * l4_1 - l5_2 * l4_2
                 - l5_3 * l4_3) * inv4;
             let l5_5: T = dm[(5, 5)] - l5_0 * l5_0 - l5_1 * l5_1 - l5_2 * l5_2
                 - l5_3 * l5_3 - l5_4 * l5_4;
-            if !(l5_5 > floor) {
-                return None;
-            }
-            let l5_5: T = l5_5.sqrt();
+            let ok = ok & na::SimdPartialOrd::simd_gt(l5_5, floor);
+            let l5_5: T = na::SimdComplexField::simd_sqrt(l5_5);
             let inv5: T = T::one() / l5_5;
             let y0: T = (rhs[0]) * inv0;
             let y1: T = (rhs[1] - l1_0 * y0) * inv1;
@@ -1691,12 +1789,11 @@ pub mod puma560 {
             let x1: T = (y1 - l2_1 * x2 - l3_1 * x3 - l4_1 * x4 - l5_1 * x5) * inv1;
             let x0: T = (y0 - l1_0 * x1 - l2_0 * x2 - l3_0 * x3 - l4_0 * x4 - l5_0 * x5)
                 * inv0;
-            if !x0.is_finite() || !x1.is_finite() || !x2.is_finite() || !x3.is_finite()
-                || !x4.is_finite() || !x5.is_finite()
-            {
-                return None;
-            }
-            Some(na::SVector::<T, DOF>::from([x0, x1, x2, x3, x4, x5]))
+            let ok = ok & ::dhgen::Real::is_finite_lanes(x0)
+                & ::dhgen::Real::is_finite_lanes(x1) & ::dhgen::Real::is_finite_lanes(x2)
+                & ::dhgen::Real::is_finite_lanes(x3) & ::dhgen::Real::is_finite_lanes(x4)
+                & ::dhgen::Real::is_finite_lanes(x5);
+            (na::SVector::<T, DOF>::from([x0, x1, x2, x3, x4, x5]), ok)
         }
         ///Forward dynamics with a payload held by the tool (`payload`: its ten parameters, as for `inverse_dynamics_with_payload`), by the unrolled Cholesky solve of `forward_dynamics` on `mass_matrix_with_payload` and `bias_with_payload`; `None` as for `forward_dynamics`.
         #[must_use]
@@ -1708,92 +1805,8 @@ pub mod puma560 {
         ) -> Option<na::SVector<T, DOF>> {
             let qd = &qd.to_array();
             let tau = &tau.to_array();
-            let dm = self.mass_matrix_with_payload(payload);
-            let h = self.bias_with_payload(qd, payload);
-            let rhs: [T; DOF] = ::core::array::from_fn(|i| tau[i] - h[i]);
-            let floor: T = ::dhgen::cholesky_pivot_floor(
-                DOF,
-                dm[(0, 0)]
-                    .max(dm[(1, 1)])
-                    .max(dm[(2, 2)])
-                    .max(dm[(3, 3)])
-                    .max(dm[(4, 4)])
-                    .max(dm[(5, 5)]),
-            );
-            let l0_0: T = dm[(0, 0)];
-            if !(l0_0 > floor) {
-                return None;
-            }
-            let l0_0: T = l0_0.sqrt();
-            let inv0: T = T::one() / l0_0;
-            let l1_0: T = (dm[(1, 0)]) * inv0;
-            let l2_0: T = (dm[(2, 0)]) * inv0;
-            let l3_0: T = (dm[(3, 0)]) * inv0;
-            let l4_0: T = (dm[(4, 0)]) * inv0;
-            let l5_0: T = (dm[(5, 0)]) * inv0;
-            let l1_1: T = dm[(1, 1)] - l1_0 * l1_0;
-            if !(l1_1 > floor) {
-                return None;
-            }
-            let l1_1: T = l1_1.sqrt();
-            let inv1: T = T::one() / l1_1;
-            let l2_1: T = (dm[(2, 1)] - l2_0 * l1_0) * inv1;
-            let l3_1: T = (dm[(3, 1)] - l3_0 * l1_0) * inv1;
-            let l4_1: T = (dm[(4, 1)] - l4_0 * l1_0) * inv1;
-            let l5_1: T = (dm[(5, 1)] - l5_0 * l1_0) * inv1;
-            let l2_2: T = dm[(2, 2)] - l2_0 * l2_0 - l2_1 * l2_1;
-            if !(l2_2 > floor) {
-                return None;
-            }
-            let l2_2: T = l2_2.sqrt();
-            let inv2: T = T::one() / l2_2;
-            let l3_2: T = (dm[(3, 2)] - l3_0 * l2_0 - l3_1 * l2_1) * inv2;
-            let l4_2: T = (dm[(4, 2)] - l4_0 * l2_0 - l4_1 * l2_1) * inv2;
-            let l5_2: T = (dm[(5, 2)] - l5_0 * l2_0 - l5_1 * l2_1) * inv2;
-            let l3_3: T = dm[(3, 3)] - l3_0 * l3_0 - l3_1 * l3_1 - l3_2 * l3_2;
-            if !(l3_3 > floor) {
-                return None;
-            }
-            let l3_3: T = l3_3.sqrt();
-            let inv3: T = T::one() / l3_3;
-            let l4_3: T = (dm[(4, 3)] - l4_0 * l3_0 - l4_1 * l3_1 - l4_2 * l3_2) * inv3;
-            let l5_3: T = (dm[(5, 3)] - l5_0 * l3_0 - l5_1 * l3_1 - l5_2 * l3_2) * inv3;
-            let l4_4: T = dm[(4, 4)] - l4_0 * l4_0 - l4_1 * l4_1 - l4_2 * l4_2
-                - l4_3 * l4_3;
-            if !(l4_4 > floor) {
-                return None;
-            }
-            let l4_4: T = l4_4.sqrt();
-            let inv4: T = T::one() / l4_4;
-            let l5_4: T = (dm[(5, 4)] - l5_0 * l4_0 - l5_1 * l4_1 - l5_2 * l4_2
-                - l5_3 * l4_3) * inv4;
-            let l5_5: T = dm[(5, 5)] - l5_0 * l5_0 - l5_1 * l5_1 - l5_2 * l5_2
-                - l5_3 * l5_3 - l5_4 * l5_4;
-            if !(l5_5 > floor) {
-                return None;
-            }
-            let l5_5: T = l5_5.sqrt();
-            let inv5: T = T::one() / l5_5;
-            let y0: T = (rhs[0]) * inv0;
-            let y1: T = (rhs[1] - l1_0 * y0) * inv1;
-            let y2: T = (rhs[2] - l2_0 * y0 - l2_1 * y1) * inv2;
-            let y3: T = (rhs[3] - l3_0 * y0 - l3_1 * y1 - l3_2 * y2) * inv3;
-            let y4: T = (rhs[4] - l4_0 * y0 - l4_1 * y1 - l4_2 * y2 - l4_3 * y3) * inv4;
-            let y5: T = (rhs[5] - l5_0 * y0 - l5_1 * y1 - l5_2 * y2 - l5_3 * y3
-                - l5_4 * y4) * inv5;
-            let x5: T = (y5) * inv5;
-            let x4: T = (y4 - l5_4 * x5) * inv4;
-            let x3: T = (y3 - l4_3 * x4 - l5_3 * x5) * inv3;
-            let x2: T = (y2 - l3_2 * x3 - l4_2 * x4 - l5_2 * x5) * inv2;
-            let x1: T = (y1 - l2_1 * x2 - l3_1 * x3 - l4_1 * x4 - l5_1 * x5) * inv1;
-            let x0: T = (y0 - l1_0 * x1 - l2_0 * x2 - l3_0 * x3 - l4_0 * x4 - l5_0 * x5)
-                * inv0;
-            if !x0.is_finite() || !x1.is_finite() || !x2.is_finite() || !x3.is_finite()
-                || !x4.is_finite() || !x5.is_finite()
-            {
-                return None;
-            }
-            Some(na::SVector::<T, DOF>::from([x0, x1, x2, x3, x4, x5]))
+            let (value, ok) = self.forward_dynamics_with_payload_lanes(qd, tau, payload);
+            na::SimdBool::all(ok).then_some(value)
         }
         ///Kinetic energy T(q, q̇) = ½ q̇ᵀ D(q) q̇ of the links and rotors.
         #[doc(alias = "computeKineticEnergy")]
@@ -10221,7 +10234,55 @@ pub mod puma560 {
             State { c, s, d }
         }
         #[inline]
+        fn for_forward_dynamics_lanes(q: &impl ::dhgen::JointArray<T, DOF>) -> Self {
+            let q = q.to_array();
+            let mut c = [T::zero(); DOF];
+            let mut s = [T::zero(); DOF];
+            let d = [T::zero(); DOF];
+            let (sj, cj) = ::dhgen::Real::sincos(q[1]);
+            s[1] = sj;
+            c[1] = cj;
+            let (sj, cj) = ::dhgen::Real::sincos(q[2]);
+            s[2] = sj;
+            c[2] = cj;
+            let (sj, cj) = ::dhgen::Real::sincos(q[3]);
+            s[3] = sj;
+            c[3] = cj;
+            let (sj, cj) = ::dhgen::Real::sincos(q[4]);
+            s[4] = sj;
+            c[4] = cj;
+            let (sj, cj) = ::dhgen::Real::sincos(q[5]);
+            s[5] = sj;
+            c[5] = cj;
+            State { c, s, d }
+        }
+        #[inline]
         fn for_forward_dynamics(q: &impl ::dhgen::JointArray<T, DOF>) -> Self {
+            let q = q.to_array();
+            let mut c = [T::zero(); DOF];
+            let mut s = [T::zero(); DOF];
+            let d = [T::zero(); DOF];
+            let (sj, cj) = ::dhgen::Real::sincos(q[1]);
+            s[1] = sj;
+            c[1] = cj;
+            let (sj, cj) = ::dhgen::Real::sincos(q[2]);
+            s[2] = sj;
+            c[2] = cj;
+            let (sj, cj) = ::dhgen::Real::sincos(q[3]);
+            s[3] = sj;
+            c[3] = cj;
+            let (sj, cj) = ::dhgen::Real::sincos(q[4]);
+            s[4] = sj;
+            c[4] = cj;
+            let (sj, cj) = ::dhgen::Real::sincos(q[5]);
+            s[5] = sj;
+            c[5] = cj;
+            State { c, s, d }
+        }
+        #[inline]
+        fn for_forward_dynamics_with_payload_lanes(
+            q: &impl ::dhgen::JointArray<T, DOF>,
+        ) -> Self {
             let q = q.to_array();
             let mut c = [T::zero(); DOF];
             let mut s = [T::zero(); DOF];
@@ -10315,6 +10376,7 @@ pub mod puma560 {
             State { c, s, d }
         }
     }
+    impl<T: ::dhgen::Real + na::RealField> State<T> {}
     ///Pose of the tool frame in the world frame as a homogeneous matrix, base · A1 ⋯ An · tool: the fast path (no conversion to a quaternion).
     #[doc(alias = "fkine")]
     #[doc(alias = "forwardKinematics")]
@@ -10480,7 +10542,16 @@ pub mod puma560 {
     ) -> na::SVector<T, DOF> {
         State::for_bias(q).bias(qd)
     }
-    ///Forward dynamics q̈ = D⁻¹(τ − C q̇ − g − friction) by an unrolled Cholesky solve; `None` where D(q) is singular to working precision (a pivot at or below `dhgen::cholesky_pivot_floor`, the runtime path's rule too) or the acceleration is not finite (non-finite or overflowing inputs).
+    ///Forward dynamics q̈ = D⁻¹(τ − C q̇ − g − friction) by an unrolled Cholesky solve without branches, and the mask of the lanes where it is an answer: a pivot above `dhgen::cholesky_pivot_floor` and a finite q̈ (for a scalar, a `bool`). What `forward_dynamics` returns as an `Option`, for SIMD packs (`dhgen::batch`) whose lanes each get the scalar path's answer.
+    #[must_use]
+    pub fn forward_dynamics_lanes<T: ::dhgen::Real>(
+        q: &impl ::dhgen::JointArray<T, DOF>,
+        qd: &impl ::dhgen::JointArray<T, DOF>,
+        tau: &impl ::dhgen::JointArray<T, DOF>,
+    ) -> (na::SVector<T, DOF>, <T as na::SimdValue>::SimdBool) {
+        State::for_forward_dynamics_lanes(q).forward_dynamics_lanes(qd, tau)
+    }
+    ///Forward dynamics q̈ = D⁻¹(τ − C q̇ − g − friction) by an unrolled Cholesky solve; `None` where D(q) is singular to working precision (a pivot at or below `dhgen::cholesky_pivot_floor`, the runtime path's rule too) or the acceleration is not finite (non-finite or overflowing inputs); for a SIMD pack, `None` unless every lane has an answer (`forward_dynamics_lanes` gives them lane by lane).
     #[doc(alias = "aba")]
     #[doc(alias = "accel")]
     #[doc(alias = "fdyn")]
@@ -10491,6 +10562,17 @@ pub mod puma560 {
         tau: &impl ::dhgen::JointArray<T, DOF>,
     ) -> Option<na::SVector<T, DOF>> {
         State::for_forward_dynamics(q).forward_dynamics(qd, tau)
+    }
+    ///`forward_dynamics_with_payload` with the mask of the lanes where it is an answer, as `forward_dynamics_lanes` is to `forward_dynamics`.
+    #[must_use]
+    pub fn forward_dynamics_with_payload_lanes<T: ::dhgen::Real>(
+        q: &impl ::dhgen::JointArray<T, DOF>,
+        qd: &impl ::dhgen::JointArray<T, DOF>,
+        tau: &impl ::dhgen::JointArray<T, DOF>,
+        payload: &[T; 10],
+    ) -> (na::SVector<T, DOF>, <T as na::SimdValue>::SimdBool) {
+        State::for_forward_dynamics_with_payload_lanes(q)
+            .forward_dynamics_with_payload_lanes(qd, tau, payload)
     }
     ///Forward dynamics with a payload held by the tool (`payload`: its ten parameters, as for `inverse_dynamics_with_payload`), by the unrolled Cholesky solve of `forward_dynamics` on `mass_matrix_with_payload` and `bias_with_payload`; `None` as for `forward_dynamics`.
     #[must_use]
@@ -10520,6 +10602,192 @@ pub mod puma560 {
         qd: &impl ::dhgen::JointArray<T, DOF>,
     ) -> Terms<T> {
         State::for_terms(q).terms(qd)
+    }
+    /// Every function above whose inputs are joint vectors, for slices of
+    /// configurations: evaluated on SIMD packs (`dhgen::batch`), each configuration's
+    /// value equal to the scalar function's.
+    pub mod batch {
+        #[allow(unused_imports)]
+        use super::*;
+        /// [`fk_matrix`](super::fk_matrix) for each configuration: `out[c]` from `q[c]`, four `f64` or eight `f32` configurations per call (`dhgen::batch`).
+        ///
+        /// # Errors
+        /// `LengthMismatch` (nothing written) unless every slice has `out.len()` entries.
+        pub fn fk_matrix<T: ::dhgen::batch::Lanes>(
+            q: &[[T; DOF]],
+            out: &mut [na::Matrix4<T>],
+        ) -> Result<(), ::dhgen::batch::LengthMismatch> {
+            ::dhgen::batch::run([q], out, |[q]| super::fk_matrix(&q))
+        }
+        /// [`fk`](super::fk) for each configuration: `out[c]` from `q[c]`, four `f64` or eight `f32` configurations per call (`dhgen::batch`).
+        ///
+        /// # Errors
+        /// `LengthMismatch` (nothing written) unless every slice has `out.len()` entries.
+        pub fn fk<T: ::dhgen::batch::Lanes>(
+            q: &[[T; DOF]],
+            out: &mut [na::Isometry3<T>],
+        ) -> Result<(), ::dhgen::batch::LengthMismatch> {
+            ::dhgen::batch::run([q], out, |[q]| super::fk(&q))
+        }
+        /// [`frames_matrix`](super::frames_matrix) for each configuration: `out[c]` from `q[c]`, four `f64` or eight `f32` configurations per call (`dhgen::batch`).
+        ///
+        /// # Errors
+        /// `LengthMismatch` (nothing written) unless every slice has `out.len()` entries.
+        pub fn frames_matrix<T: ::dhgen::batch::Lanes>(
+            q: &[[T; DOF]],
+            out: &mut [[na::Matrix4<T>; DOF]],
+        ) -> Result<(), ::dhgen::batch::LengthMismatch> {
+            ::dhgen::batch::run([q], out, |[q]| super::frames_matrix(&q))
+        }
+        /// [`frames`](super::frames) for each configuration: `out[c]` from `q[c]`, four `f64` or eight `f32` configurations per call (`dhgen::batch`).
+        ///
+        /// # Errors
+        /// `LengthMismatch` (nothing written) unless every slice has `out.len()` entries.
+        pub fn frames<T: ::dhgen::batch::Lanes>(
+            q: &[[T; DOF]],
+            out: &mut [[na::Isometry3<T>; DOF]],
+        ) -> Result<(), ::dhgen::batch::LengthMismatch> {
+            ::dhgen::batch::run([q], out, |[q]| super::frames(&q))
+        }
+        /// [`jacobian`](super::jacobian) for each configuration: `out[c]` from `q[c]`, four `f64` or eight `f32` configurations per call (`dhgen::batch`).
+        ///
+        /// # Errors
+        /// `LengthMismatch` (nothing written) unless every slice has `out.len()` entries.
+        pub fn jacobian<T: ::dhgen::batch::Lanes>(
+            q: &[[T; DOF]],
+            out: &mut [na::SMatrix<T, 6, DOF>],
+        ) -> Result<(), ::dhgen::batch::LengthMismatch> {
+            ::dhgen::batch::run([q], out, |[q]| super::jacobian(&q))
+        }
+        /// [`jdot_qdot`](super::jdot_qdot) for each configuration: `out[c]` from `q[c]`, `qd[c]`, four `f64` or eight `f32` configurations per call (`dhgen::batch`).
+        ///
+        /// # Errors
+        /// `LengthMismatch` (nothing written) unless every slice has `out.len()` entries.
+        pub fn jdot_qdot<T: ::dhgen::batch::Lanes>(
+            q: &[[T; DOF]],
+            qd: &[[T; DOF]],
+            out: &mut [na::SVector<T, 6>],
+        ) -> Result<(), ::dhgen::batch::LengthMismatch> {
+            ::dhgen::batch::run([q, qd], out, |[q, qd]| super::jdot_qdot(&q, &qd))
+        }
+        /// [`det_j11`](super::det_j11) for each configuration: `out[c]` from `q[c]`, four `f64` or eight `f32` configurations per call (`dhgen::batch`).
+        ///
+        /// # Errors
+        /// `LengthMismatch` (nothing written) unless every slice has `out.len()` entries.
+        pub fn det_j11<T: ::dhgen::batch::Lanes>(
+            q: &[[T; DOF]],
+            out: &mut [T],
+        ) -> Result<(), ::dhgen::batch::LengthMismatch> {
+            ::dhgen::batch::run([q], out, |[q]| super::det_j11(&q))
+        }
+        /// [`det_j22`](super::det_j22) for each configuration: `out[c]` from `q[c]`, four `f64` or eight `f32` configurations per call (`dhgen::batch`).
+        ///
+        /// # Errors
+        /// `LengthMismatch` (nothing written) unless every slice has `out.len()` entries.
+        pub fn det_j22<T: ::dhgen::batch::Lanes>(
+            q: &[[T; DOF]],
+            out: &mut [T],
+        ) -> Result<(), ::dhgen::batch::LengthMismatch> {
+            ::dhgen::batch::run([q], out, |[q]| super::det_j22(&q))
+        }
+        /// [`mass_matrix`](super::mass_matrix) for each configuration: `out[c]` from `q[c]`, four `f64` or eight `f32` configurations per call (`dhgen::batch`).
+        ///
+        /// # Errors
+        /// `LengthMismatch` (nothing written) unless every slice has `out.len()` entries.
+        pub fn mass_matrix<T: ::dhgen::batch::Lanes>(
+            q: &[[T; DOF]],
+            out: &mut [na::SMatrix<T, DOF, DOF>],
+        ) -> Result<(), ::dhgen::batch::LengthMismatch> {
+            ::dhgen::batch::run([q], out, |[q]| super::mass_matrix(&q))
+        }
+        /// [`christoffel`](super::christoffel) for each configuration: `out[c]` from `q[c]`, four `f64` or eight `f32` configurations per call (`dhgen::batch`).
+        ///
+        /// # Errors
+        /// `LengthMismatch` (nothing written) unless every slice has `out.len()` entries.
+        pub fn christoffel<T: ::dhgen::batch::Lanes>(
+            q: &[[T; DOF]],
+            out: &mut [[[[T; DOF]; DOF]; DOF]],
+        ) -> Result<(), ::dhgen::batch::LengthMismatch> {
+            ::dhgen::batch::run([q], out, |[q]| super::christoffel(&q))
+        }
+        /// [`coriolis`](super::coriolis) for each configuration: `out[c]` from `q[c]`, `qd[c]`, four `f64` or eight `f32` configurations per call (`dhgen::batch`).
+        ///
+        /// # Errors
+        /// `LengthMismatch` (nothing written) unless every slice has `out.len()` entries.
+        pub fn coriolis<T: ::dhgen::batch::Lanes>(
+            q: &[[T; DOF]],
+            qd: &[[T; DOF]],
+            out: &mut [na::SMatrix<T, DOF, DOF>],
+        ) -> Result<(), ::dhgen::batch::LengthMismatch> {
+            ::dhgen::batch::run([q, qd], out, |[q, qd]| super::coriolis(&q, &qd))
+        }
+        /// [`gravity`](super::gravity) for each configuration: `out[c]` from `q[c]`, four `f64` or eight `f32` configurations per call (`dhgen::batch`).
+        ///
+        /// # Errors
+        /// `LengthMismatch` (nothing written) unless every slice has `out.len()` entries.
+        pub fn gravity<T: ::dhgen::batch::Lanes>(
+            q: &[[T; DOF]],
+            out: &mut [na::SVector<T, DOF>],
+        ) -> Result<(), ::dhgen::batch::LengthMismatch> {
+            ::dhgen::batch::run([q], out, |[q]| super::gravity(&q))
+        }
+        /// [`inverse_dynamics`](super::inverse_dynamics) for each configuration: `out[c]` from `q[c]`, `qd[c]`, `qdd[c]`, four `f64` or eight `f32` configurations per call (`dhgen::batch`).
+        ///
+        /// # Errors
+        /// `LengthMismatch` (nothing written) unless every slice has `out.len()` entries.
+        pub fn inverse_dynamics<T: ::dhgen::batch::Lanes>(
+            q: &[[T; DOF]],
+            qd: &[[T; DOF]],
+            qdd: &[[T; DOF]],
+            out: &mut [na::SVector<T, DOF>],
+        ) -> Result<(), ::dhgen::batch::LengthMismatch> {
+            ::dhgen::batch::run(
+                [q, qd, qdd],
+                out,
+                |[q, qd, qdd]| super::inverse_dynamics(&q, &qd, &qdd),
+            )
+        }
+        /// [`bias`](super::bias) for each configuration: `out[c]` from `q[c]`, `qd[c]`, four `f64` or eight `f32` configurations per call (`dhgen::batch`).
+        ///
+        /// # Errors
+        /// `LengthMismatch` (nothing written) unless every slice has `out.len()` entries.
+        pub fn bias<T: ::dhgen::batch::Lanes>(
+            q: &[[T; DOF]],
+            qd: &[[T; DOF]],
+            out: &mut [na::SVector<T, DOF>],
+        ) -> Result<(), ::dhgen::batch::LengthMismatch> {
+            ::dhgen::batch::run([q, qd], out, |[q, qd]| super::bias(&q, &qd))
+        }
+        /// [`forward_dynamics_lanes`](super::forward_dynamics_lanes) for each configuration: `out[c]` from `q[c]`, `qd[c]`, `tau[c]`, four `f64` or eight `f32` configurations per call (`dhgen::batch`).
+        ///
+        /// # Errors
+        /// `LengthMismatch` (nothing written) unless every slice has `out.len()` entries.
+        pub fn forward_dynamics<T: ::dhgen::batch::Lanes>(
+            q: &[[T; DOF]],
+            qd: &[[T; DOF]],
+            tau: &[[T; DOF]],
+            out: &mut [Option<na::SVector<T, DOF>>],
+        ) -> Result<(), ::dhgen::batch::LengthMismatch> {
+            ::dhgen::batch::run(
+                [q, qd, tau],
+                out,
+                |[q, qd, tau]| {
+                    let (value, ok) = super::forward_dynamics_lanes(&q, &qd, &tau);
+                    ::dhgen::batch::Masked(value, ok)
+                },
+            )
+        }
+        /// [`kinetic_energy`](super::kinetic_energy) for each configuration: `out[c]` from `q[c]`, `qd[c]`, four `f64` or eight `f32` configurations per call (`dhgen::batch`).
+        ///
+        /// # Errors
+        /// `LengthMismatch` (nothing written) unless every slice has `out.len()` entries.
+        pub fn kinetic_energy<T: ::dhgen::batch::Lanes>(
+            q: &[[T; DOF]],
+            qd: &[[T; DOF]],
+            out: &mut [T],
+        ) -> Result<(), ::dhgen::batch::LengthMismatch> {
+            ::dhgen::batch::run([q, qd], out, |[q, qd]| super::kinetic_energy(&q, &qd))
+        }
     }
     /// D, C, g and J at one configuration, as a controller needs them.
     #[derive(Clone, Copy, Debug, PartialEq)]

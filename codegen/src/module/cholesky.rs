@@ -4,10 +4,12 @@ use crate::graph::OpCount;
 use proc_macro2::TokenStream;
 use quote::{format_ident, quote};
 
-/// Unrolled `D x = rhs` by Cholesky, `None` on a pivot at or below
-/// `dhgen::cholesky_pivot_floor` (the rule both paths share), with its operation count (the
-/// `n` subtractions forming `rhs = τ − bias` and the floor's n − 1 comparisons and two
-/// products included).
+/// Unrolled `D x = rhs` by Cholesky, with its operation count (the `n` subtractions forming
+/// `rhs = τ − bias` and the floor's n − 1 comparisons and two products included).
+///
+/// The value is `(x, ok)`: `ok` holds, lane by lane, where every pivot is above
+/// `dhgen::cholesky_pivot_floor` (the rule both paths share) and `x` is finite. The code has
+/// no branch: a SIMD pack's lanes each get the scalar path's answer, whatever the others'.
 pub fn solve(n: usize) -> (TokenStream, OpCount) {
     // Per pivot j: j squares subtracted, one sqrt, one reciprocal; per entry below it, j
     // products subtracted and one scaling; forward and back substitution: a row's products
@@ -32,9 +34,12 @@ pub fn solve(n: usize) -> (TokenStream, OpCount) {
     let y = |i: usize| format_ident!("y{}", i);
     let x = |i: usize| format_ident!("x{}", i);
     let mut s = Vec::new();
-    let diagonal = (1..n).map(|j| quote!(.max(dm[(#j, #j)])));
+    let mut largest = quote!(dm[(0, 0)]);
+    for j in 1..n {
+        largest = quote!(na::SimdPartialOrd::simd_max(#largest, dm[(#j, #j)]));
+    }
     s.push(quote! {
-        let floor: T = ::dhgen::cholesky_pivot_floor(DOF, dm[(0, 0)] #(#diagonal)*);
+        let floor: T = ::dhgen::cholesky_pivot_floor(DOF, #largest);
     });
     for j in 0..n {
         let mut diag = quote!(dm[(#j, #j)]);
@@ -44,12 +49,15 @@ pub fn solve(n: usize) -> (TokenStream, OpCount) {
         }
         let ljj = l(j, j);
         let invj = inv(j);
+        let ok = if j == 0 {
+            quote!(let ok = na::SimdPartialOrd::simd_gt(#ljj, floor);)
+        } else {
+            quote!(let ok = ok & na::SimdPartialOrd::simd_gt(#ljj, floor);)
+        };
         s.push(quote! {
             let #ljj: T = #diag;
-            if !(#ljj > floor) {
-                return None;
-            }
-            let #ljj: T = #ljj.sqrt();
+            #ok
+            let #ljj: T = na::SimdComplexField::simd_sqrt(#ljj);
             let #invj: T = T::one() / #ljj;
         });
         for i in j + 1..n {
@@ -88,10 +96,8 @@ pub fn solve(n: usize) -> (TokenStream, OpCount) {
     // runtime path).
     let solve = quote! {
         #(#s)*
-        if #(!#xs.is_finite())||* {
-            return None;
-        }
-        Some(na::SVector::<T, DOF>::from([#(#xs),*]))
+        let ok = ok #(& ::dhgen::Real::is_finite_lanes(#xs))*;
+        (na::SVector::<T, DOF>::from([#(#xs),*]), ok)
     };
     (solve, ops)
 }

@@ -201,6 +201,10 @@ pub fn op_counts_with(
 #[derive(Default)]
 struct Items {
     methods: Vec<TokenStream>,
+    /// Methods for real scalars only ([`Shape::scalar_only`]).
+    scalar_methods: Vec<TokenStream>,
+    /// The `batch` submodule's functions.
+    batch: Vec<TokenStream>,
     private: Vec<TokenStream>,
     preparers: Vec<TokenStream>,
     free: Vec<TokenStream>,
@@ -289,7 +293,15 @@ impl Items {
             .filter(|(_, i)| i.is_joint_vector())
             .map(|(n, _)| n)
             .collect();
-        self.methods.push(quote! {
+        let (methods, bound) = if q.shape.scalar_only() {
+            (
+                &mut self.scalar_methods,
+                quote!(::dhgen::Real + na::RealField),
+            )
+        } else {
+            (&mut self.methods, quote!(::dhgen::Real))
+        };
+        methods.push(quote! {
             #[doc = #doc]
             #aliases
             #[must_use]
@@ -310,10 +322,11 @@ impl Items {
             #[doc = #doc]
             #aliases
             #[must_use]
-            pub fn #name<T: ::dhgen::Real>(q: &impl ::dhgen::JointArray<T, DOF>, #params) -> #ty {
+            pub fn #name<T: #bound>(q: &impl ::dhgen::JointArray<T, DOF>, #params) -> #ty {
                 State::#preparer(q).#name(#(#inputs),*)
             }
         });
+        self.add_batch(q, &inputs);
         let f64_ty = q.shape.ty(&quote!(f64));
         let same = quote! {
             fn #name(&self, q: &na::SVector<f64, DOF>, #(#inputs: &na::SVector<f64, DOF>),*) -> #f64_ty {
@@ -327,6 +340,57 @@ impl Items {
             Some(ArmMethod::Custom(false, tokens)) => self.arm.push(tokens()),
             Some(ArmMethod::Custom(true, tokens)) => self.dynamics.push(tokens()),
         }
+    }
+
+    /// The `batch` function of a public quantity whose inputs are joint vectors and whose value
+    /// SIMD packs compute and [`::dhgen::batch::Unpack`] reads lane by lane (an `Option` from
+    /// the lane-wise form: `forward_dynamics` is `forward_dynamics_lanes`, masked).
+    fn add_batch(&mut self, q: &Quantity, inputs: &[Ident]) {
+        let t = quote!(T);
+        let (name, ty, wrap) = match q.shape {
+            Shape::OptionVector | Shape::Terms => return,
+            _ if q.shape.scalar_only() => return,
+            _ if !q.inputs.iter().all(|i| i.is_joint_vector()) => return,
+            Shape::VectorMask => (
+                q.name.trim_end_matches("_lanes"),
+                quote!(Option<na::SVector<T, DOF>>),
+                true,
+            ),
+            shape => (q.name, shape.ty(&t), false),
+        };
+        let call = format_ident!("{}", q.name);
+        let name = format_ident!("{}", name);
+        let value = quote!(super::#call(&q, #(&#inputs),*));
+        let value = if wrap {
+            quote!({
+                let (value, ok) = #value;
+                ::dhgen::batch::Masked(value, ok)
+            })
+        } else {
+            value
+        };
+        let doc = format!(
+            " [`{call}`](super::{call}) for each configuration: `out[c]` from `q[c]`{}, {} \
+             configurations per call (`dhgen::batch`).",
+            inputs
+                .iter()
+                .map(|i| format!(", `{i}[c]`"))
+                .collect::<String>(),
+            "four `f64` or eight `f32`"
+        );
+        self.batch.push(quote! {
+            #[doc = #doc]
+            ///
+            /// # Errors
+            /// `LengthMismatch` (nothing written) unless every slice has `out.len()` entries.
+            pub fn #name<T: ::dhgen::batch::Lanes>(
+                q: &[[T; DOF]],
+                #(#inputs: &[[T; DOF]],)*
+                out: &mut [#ty],
+            ) -> Result<(), ::dhgen::batch::LengthMismatch> {
+                ::dhgen::batch::run([q, #(#inputs),*], out, |[q, #(#inputs),*]| #value)
+            }
+        });
     }
 
     /// The body of a derived quantity's method: its outputs computed inline when small,
@@ -450,6 +514,8 @@ pub fn generate_with(
     }
     let Items {
         methods,
+        scalar_methods,
+        batch,
         private,
         preparers,
         free,
@@ -505,22 +571,6 @@ pub fn generate_with(
             }
         }
     });
-    // `sign` (Coulomb friction, with sign(0) = 0) only where some joint has Coulomb friction.
-    let coulomb_columns = cx.available(Availability::Regressor)
-        && cx.columns.iter().any(|c| matches!(c, Column::Coulomb(_)));
-    let sign_fn = (has_dynamics && (!cx.coulomb().is_empty() || coulomb_columns)).then(|| {
-        quote! {
-            fn sign<T: ::dhgen::Real>(x: T) -> T {
-                if x > T::zero() {
-                    T::one()
-                } else if x < T::zero() {
-                    -T::one()
-                } else {
-                    T::zero()
-                }
-            }
-        }
-    });
     let parameters = cx
         .available(Availability::Regressor)
         .then(|| parameters(&cx));
@@ -554,7 +604,22 @@ pub fn generate_with(
                 #(#preparers)*
             }
 
+            impl<T: ::dhgen::Real + na::RealField> State<T> {
+                #(#scalar_methods)*
+            }
+
             #(#free)*
+
+            /// Every function above whose inputs are joint vectors, for slices of
+            /// configurations: evaluated on SIMD packs (`dhgen::batch`), each configuration's
+            /// value equal to the scalar function's.
+            pub mod batch {
+                // `na`, `DOF` and the sizes of the outputs (this module's functions shadow
+                // the scalar ones, which it calls as `super::name`).
+                #[allow(unused_imports)]
+                use super::*;
+                #(#batch)*
+            }
             #parameters
             #terms
             #ik
@@ -588,7 +653,6 @@ pub fn generate_with(
                 )
             }
 
-            #sign_fn
         }
     };
     Ok(Generated {

@@ -165,10 +165,22 @@ fn with_coulomb_columns(
         .into_iter()
         .enumerate()
         .filter_map(|(k, c)| match cx.columns[c] {
-            Column::Coulomb(i) => Some(quote!(y[(#i, #k)] = sign(qd[#i]);)),
+            Column::Coulomb(i) => Some(quote!(y[(#i, #k)] = ::dhgen::Real::sign(qd[#i]);)),
             _ => None,
         });
     then(quote!(y), call, quote!(#(#signs)*), reads)
+}
+
+/// A lane-wise value and mask (`call`, reading `reads`) as an `Option`: `Some` when every
+/// lane holds an answer (for a scalar, when it does).
+fn all_lanes(call: TokenStream, reads: &'static [&'static str]) -> Made {
+    composed(
+        quote! {
+            let (value, ok) = #call;
+            na::SimdBool::all(ok).then_some(value)
+        },
+        reads,
+    )
 }
 
 /// Forward dynamics `q̈ = D⁻¹(τ − h)` by the unrolled Cholesky solve, D and h the values of
@@ -695,14 +707,15 @@ pub const QUANTITIES: &[Quantity] = &[
         arm: Some(ArmMethod::Dynamics),
     },
     Quantity {
-        name: "forward_dynamics",
+        name: "forward_dynamics_lanes",
         doc: "Forward dynamics q̈ = D⁻¹(τ − C q̇ − g − friction) by an unrolled Cholesky \
-              solve; `None` where D(q) is singular to working precision (a pivot at or below \
-              `dhgen::cholesky_pivot_floor`, the runtime path's rule too) or the acceleration is \
-              not finite (non-finite or overflowing inputs).",
-        aliases: &["aba", "accel", "fdyn"],
+              solve without branches, and the mask of the lanes where it is an answer: a pivot \
+              above `dhgen::cholesky_pivot_floor` and a finite q̈ (for a scalar, a `bool`). \
+              What `forward_dynamics` returns as an `Option`, for SIMD packs (`dhgen::batch`) \
+              whose lanes each get the scalar path's answer.",
+        aliases: &[],
         inputs: &[Input::Qd, Input::Tau],
-        shape: Shape::OptionVector,
+        shape: Shape::VectorMask,
         available: Availability::Dynamics,
         public: true,
         make: |cx| {
@@ -714,7 +727,47 @@ pub const QUANTITIES: &[Quantity] = &[
                 true,
             )
         },
+        arm: None,
+    },
+    Quantity {
+        name: "forward_dynamics",
+        doc: "Forward dynamics q̈ = D⁻¹(τ − C q̇ − g − friction) by an unrolled Cholesky \
+              solve; `None` where D(q) is singular to working precision (a pivot at or below \
+              `dhgen::cholesky_pivot_floor`, the runtime path's rule too) or the acceleration is \
+              not finite (non-finite or overflowing inputs); for a SIMD pack, `None` unless \
+              every lane has an answer (`forward_dynamics_lanes` gives them lane by lane).",
+        aliases: &["aba", "accel", "fdyn"],
+        inputs: &[Input::Qd, Input::Tau],
+        shape: Shape::OptionVector,
+        available: Availability::Dynamics,
+        public: true,
+        make: |_| {
+            all_lanes(
+                quote!(self.forward_dynamics_lanes(qd, tau)),
+                &["forward_dynamics_lanes"],
+            )
+        },
         arm: Some(ArmMethod::Dynamics),
+    },
+    Quantity {
+        name: "forward_dynamics_with_payload_lanes",
+        doc: "`forward_dynamics_with_payload` with the mask of the lanes where it is an answer, \
+              as `forward_dynamics_lanes` is to `forward_dynamics`.",
+        aliases: &[],
+        inputs: &[Input::Qd, Input::Tau, Input::Payload],
+        shape: Shape::VectorMask,
+        available: Availability::Dynamics,
+        public: true,
+        make: |cx| {
+            solved(
+                cx,
+                quote!(self.mass_matrix_with_payload(payload)),
+                quote!(self.bias_with_payload(qd, payload)),
+                &["mass_matrix_with_payload", "bias_with_payload"],
+                false,
+            )
+        },
+        arm: None,
     },
     Quantity {
         name: "forward_dynamics_with_payload",
@@ -727,13 +780,10 @@ pub const QUANTITIES: &[Quantity] = &[
         shape: Shape::OptionVector,
         available: Availability::Dynamics,
         public: true,
-        make: |cx| {
-            solved(
-                cx,
-                quote!(self.mass_matrix_with_payload(payload)),
-                quote!(self.bias_with_payload(qd, payload)),
-                &["mass_matrix_with_payload", "bias_with_payload"],
-                false,
+        make: |_| {
+            all_lanes(
+                quote!(self.forward_dynamics_with_payload_lanes(qd, tau, payload)),
+                &["forward_dynamics_with_payload_lanes"],
             )
         },
         arm: None,

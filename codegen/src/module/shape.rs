@@ -24,6 +24,8 @@ pub enum Shape {
     Vector,
     /// An optional value per joint.
     OptionVector,
+    /// One value per joint and the mask of the lanes where it is valid.
+    VectorMask,
     /// An n×n matrix, row by row.
     Square,
     /// Two n×n matrices, each row by row, the first then the second.
@@ -55,6 +57,9 @@ impl Shape {
             Shape::Jacobian => quote!(na::SMatrix<#t, 6, DOF>),
             Shape::Vector => quote!(na::SVector<#t, DOF>),
             Shape::OptionVector => quote!(Option<na::SVector<#t, DOF>>),
+            Shape::VectorMask => {
+                quote!((na::SVector<#t, DOF>, <#t as na::SimdValue>::SimdBool))
+            }
             Shape::Square => quote!(na::SMatrix<#t, DOF, DOF>),
             Shape::SquarePair => quote!((na::SMatrix<#t, DOF, DOF>, na::SMatrix<#t, DOF, DOF>)),
             Shape::OptionSquare => quote!(Option<na::SMatrix<#t, DOF, DOF>>),
@@ -70,6 +75,12 @@ impl Shape {
             Shape::Regressor => quote!(na::SMatrix<#t, DOF, PARAMETERS>),
             Shape::BaseRegressor => quote!(na::SMatrix<#t, DOF, BASE_PARAMETERS>),
         }
+    }
+
+    /// Whether functions returning it exist for real scalars only (`T: RealField`), not for
+    /// SIMD packs: the optional matrices, made by nalgebra's Cholesky factorisation.
+    pub fn scalar_only(self) -> bool {
+        matches!(self, Shape::OptionSquare | Shape::OptionSquareTriple)
     }
 
     /// The initial value of a derived output, before its entries are stored (`None` for a
@@ -89,6 +100,7 @@ impl Shape {
             Shape::Pose
             | Shape::PosePerJoint
             | Shape::OptionVector
+            | Shape::VectorMask
             | Shape::OptionSquare
             | Shape::OptionSquareTriple
             | Shape::Terms => {
@@ -151,6 +163,7 @@ impl Shape {
             Shape::Pose
             | Shape::PosePerJoint
             | Shape::OptionVector
+            | Shape::VectorMask
             | Shape::OptionSquare
             | Shape::OptionSquareTriple
             | Shape::Terms => {

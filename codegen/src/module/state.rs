@@ -101,7 +101,7 @@ pub fn coulomb(cx: &Context<'_>) -> TokenStream {
         .filter(|(_, b)| b.friction.coulomb != 0.0)
         .map(|(j, b)| {
             let k = constant(b.friction.coulomb);
-            quote!(tau[#j] += #k * sign(qd[#j]);)
+            quote!(tau[#j] += #k * ::dhgen::Real::sign(qd[#j]);)
         });
     quote!(#(#lines)*)
 }

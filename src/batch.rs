@@ -1,0 +1,179 @@
+//! Many configurations per call: generated functions evaluated on SIMD packs.
+//!
+//! Every generated function is generic over [`Real`], which the packs [`WideF64x4`] (four
+//! `f64`) and [`WideF32x8`] (eight `f32`) implement: called on a pack, a function evaluates
+//! four (eight) configurations at once, lane by lane exactly as the scalar path does (the same
+//! `libm` sine and cosine per lane, and branch-free selects where scalar code would branch:
+//! Coulomb friction's sign, the Cholesky pivot check). Each generated module's `batch`
+//! submodule wraps this for slices: `batch::mass_matrix(&qs, &mut out)` packs the
+//! configurations, evaluates, and writes one output per configuration; [`run`] is the loop
+//! they share.
+//!
+//! The width a pack's arithmetic really gets is the compiler's choice of target: the default
+//! `x86_64` target has SSE2 (two `f64` per instruction); `-C target-cpu=native` (or
+//! `x86-64-v3`) on a CPU with AVX2 gives four.
+//!
+//! ```
+//! dhgen::robot!(mod puma = "robots/puma560.toml");
+//! let qs: Vec<[f64; 6]> = (0..10).map(|i| [0.1 * i as f64; 6]).collect();
+//! let mut d = vec![Default::default(); qs.len()];
+//! puma::batch::mass_matrix(&qs, &mut d).unwrap();
+//! assert_eq!(d[7], puma::mass_matrix(&qs[7]));
+//! ```
+
+use crate::Real;
+use nalgebra::{ArrayStorage, Isometry3, Matrix, Quaternion, Scalar, SimdBool, SimdValue};
+use nalgebra::{Translation3, UnitQuaternion};
+pub use simba::simd::{WideBoolF32x8, WideBoolF64x4, WideF32x8, WideF64x4};
+
+/// A real scalar with a SIMD pack of it: `f64` (four lanes) and `f32` (eight).
+pub trait Lanes: Real + nalgebra::RealField {
+    /// The pack: `SimdValue::LANES` values of `Self` at once (as wide an instruction as the
+    /// target allows).
+    type Pack: Real + SimdValue<Element = Self> + Unpack<Lane = Self>;
+}
+
+impl Lanes for f64 {
+    type Pack = WideF64x4;
+}
+
+impl Lanes for f32 {
+    type Pack = WideF32x8;
+}
+
+/// A value computed on packs, read back one lane at a time.
+pub trait Unpack {
+    /// The value of one lane.
+    type Lane;
+    /// Lane `i` (`i <` the number of lanes).
+    fn lane(&self, i: usize) -> Self::Lane;
+}
+
+impl Unpack for WideF64x4 {
+    type Lane = f64;
+    #[inline]
+    fn lane(&self, i: usize) -> f64 {
+        self.extract(i)
+    }
+}
+
+impl Unpack for WideF32x8 {
+    type Lane = f32;
+    #[inline]
+    fn lane(&self, i: usize) -> f32 {
+        self.extract(i)
+    }
+}
+
+impl<P, const R: usize, const C: usize> Unpack
+    for Matrix<P, nalgebra::Const<R>, nalgebra::Const<C>, ArrayStorage<P, R, C>>
+where
+    P: Scalar + Unpack,
+    P::Lane: Scalar,
+{
+    type Lane = nalgebra::SMatrix<P::Lane, R, C>;
+    #[inline]
+    fn lane(&self, i: usize) -> Self::Lane {
+        self.map(|x| x.lane(i))
+    }
+}
+
+impl<X: Unpack, const N: usize> Unpack for [X; N] {
+    type Lane = [X::Lane; N];
+    #[inline]
+    fn lane(&self, i: usize) -> Self::Lane {
+        core::array::from_fn(|k| self[k].lane(i))
+    }
+}
+
+impl<A: Unpack, B: Unpack> Unpack for (A, B) {
+    type Lane = (A::Lane, B::Lane);
+    #[inline]
+    fn lane(&self, i: usize) -> Self::Lane {
+        (self.0.lane(i), self.1.lane(i))
+    }
+}
+
+impl<P> Unpack for Isometry3<P>
+where
+    P: Real + Unpack,
+    P::Lane: nalgebra::RealField,
+{
+    type Lane = Isometry3<P::Lane>;
+    #[inline]
+    fn lane(&self, i: usize) -> Self::Lane {
+        let t = self.translation.vector.lane(i);
+        let q = self.rotation.quaternion().coords.lane(i);
+        Isometry3::from_parts(
+            Translation3::from(t),
+            UnitQuaternion::new_unchecked(Quaternion::from(q)),
+        )
+    }
+}
+
+/// A value with the mask of the lanes where it is an answer (generated
+/// `forward_dynamics_lanes`), read back as `Some` or `None` per lane.
+#[derive(Clone, Copy, Debug)]
+pub struct Masked<V, B>(pub V, pub B);
+
+impl<V: Unpack, B: SimdBool> Unpack for Masked<V, B> {
+    type Lane = Option<V::Lane>;
+    #[inline]
+    fn lane(&self, i: usize) -> Self::Lane {
+        ((self.1.bitmask() >> i) & 1 == 1).then(|| self.0.lane(i))
+    }
+}
+
+/// The inputs and the outputs of a batch call differ in length.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, thiserror::Error)]
+#[error(
+    "batch: {inputs} configurations but {outputs} outputs (every slice must have one per configuration)"
+)]
+pub struct LengthMismatch {
+    /// The length of the first input slice that differs from the outputs' (or of `q`).
+    pub inputs: usize,
+    /// The length of the output slice.
+    pub outputs: usize,
+}
+
+/// Evaluates `f` on packs of as many configurations as `T::Pack` has lanes and writes each lane's value to its
+/// place in `out`: configuration `c` is `inputs[k][c]` for each input `k` (`q`, `q̇`, ...),
+/// its value `out[c]`. A last, partial pack repeats the last configuration in its spare lanes
+/// (and writes only the real ones).
+///
+/// # Errors
+/// [`LengthMismatch`] (and nothing written) unless every input slice is as long as `out`.
+pub fn run<T, const N: usize, const K: usize, O>(
+    inputs: [&[[T; N]]; K],
+    out: &mut [O::Lane],
+    f: impl Fn([[T::Pack; N]; K]) -> O,
+) -> Result<(), LengthMismatch>
+where
+    T: Lanes,
+    O: Unpack,
+{
+    if let Some(bad) = inputs.iter().find(|x| x.len() != out.len()) {
+        return Err(LengthMismatch {
+            inputs: bad.len(),
+            outputs: out.len(),
+        });
+    }
+    let lanes = <T::Pack as SimdValue>::LANES;
+    for (start, chunk) in (0..out.len()).step_by(lanes).zip(out.chunks_mut(lanes)) {
+        let last = chunk.len() - 1;
+        let packed: [[T::Pack; N]; K] = core::array::from_fn(|k| {
+            core::array::from_fn(|j| {
+                let mut p = T::Pack::splat(inputs[k][start + last][j]);
+                for l in 0..last {
+                    p.replace(l, inputs[k][start + l][j]);
+                }
+                p
+            })
+        });
+        let value = f(packed);
+        for (l, o) in chunk.iter_mut().enumerate() {
+            *o = value.lane(l);
+        }
+    }
+    Ok(())
+}

@@ -1,0 +1,212 @@
+//! Generated code on SIMD packs (`dhgen::batch`): every configuration of a batch gets exactly
+//! (bit for bit) what the scalar function returns for it, in `f64` (four lanes) and `f32`
+//! (eight), on every catalogue robot and the fixtures that exercise prismatic joints, modified
+//! DH, base and tool, motors, Coulomb friction (at q̇ = 0 too) and a singular inertia matrix.
+//! The slices are of 11 configurations: two full `f64` packs and a partial one.
+
+use crate::catalogue::*;
+use dhgen::batch::LengthMismatch;
+
+/// A seeded stream in [-2, 2), with exact zeros now and then (Coulomb friction's sign(0)).
+struct Stream(u64);
+
+impl Stream {
+    fn next(&mut self) -> f64 {
+        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        z ^= z >> 31;
+        if z % 7 == 0 {
+            return 0.0;
+        }
+        (z >> 11) as f64 / (1u64 << 53) as f64 * 4.0 - 2.0
+    }
+
+    fn states<const N: usize>(&mut self, count: usize) -> Vec<[f64; N]> {
+        (0..count)
+            .map(|_| std::array::from_fn(|_| self.next()))
+            .collect()
+    }
+}
+
+/// Exact equality, NaN and the sign of zero included: `Debug` prints the shortest string that
+/// reads back to the same bits.
+fn same<A: std::fmt::Debug, B: std::fmt::Debug>(what: &str, c: usize, batch: &A, scalar: &B) {
+    let (a, b) = (format!("{batch:?}"), format!("{scalar:?}"));
+    assert_eq!(a, b, "{what}, configuration {c}: batch differs from scalar");
+}
+
+/// The input a name stands for, from `(q̇, q̈, τ)`.
+macro_rules! pick {
+    (qd, $s:ident) => {
+        $s.0
+    };
+    (qdd, $s:ident) => {
+        $s.1
+    };
+    (tau, $s:ident) => {
+        $s.2
+    };
+}
+
+/// Checks every listed batch function of module `$m` against its scalar function, for `$t`.
+macro_rules! check {
+    ($m:ident, $t:ty, [$($f:ident($($x:ident),*)),* $(,)?]) => {{
+        use $m as m;
+        const N: usize = m::DOF;
+        let mut s = Stream(0x5EED ^ N as u64);
+        let cast = |v: Vec<[f64; N]>| -> Vec<[$t; N]> {
+            v.into_iter().map(|x| x.map(|e| e as $t)).collect()
+        };
+        let q = cast(s.states::<N>(11));
+        let qd = cast(s.states::<N>(11));
+        let qdd = cast(s.states::<N>(11));
+        let tau = cast(s.states::<N>(11));
+        let inputs = (qd, qdd, tau);
+        let _ = &inputs;
+        $(
+            // Any value of the right type to overwrite: configuration 0's.
+            let mut out = vec![m::$f(&q[0], $(&pick!($x, inputs)[0]),*); q.len()];
+            m::batch::$f(&q, $(&pick!($x, inputs),)* &mut out).expect("lengths agree");
+            for (c, o) in out.iter().enumerate() {
+                same(
+                    concat!(stringify!($m), "::", stringify!($f), " ", stringify!($t)),
+                    c,
+                    o,
+                    &m::$f(&q[c], $(&pick!($x, inputs)[c]),*),
+                );
+            }
+        )*
+    }};
+}
+
+macro_rules! kinematics {
+    ($m:ident, $t:ty) => {
+        check!(
+            $m,
+            $t,
+            [
+                fk_matrix(),
+                fk(),
+                frames_matrix(),
+                jacobian(),
+                jdot_qdot(qd)
+            ]
+        )
+    };
+}
+
+macro_rules! dynamics {
+    ($m:ident, $t:ty) => {{
+        kinematics!($m, $t);
+        check!(
+            $m,
+            $t,
+            [
+                mass_matrix(),
+                christoffel(),
+                coriolis(qd),
+                gravity(),
+                inverse_dynamics(qd, qdd),
+                bias(qd),
+                forward_dynamics(qd, tau),
+                kinetic_energy(qd),
+            ]
+        )
+    }};
+}
+
+#[test]
+fn batch_lanes_equal_scalar_f64() {
+    dynamics!(puma560, f64);
+    dynamics!(panda, f64);
+    dynamics!(stanford, f64);
+    dynamics!(scara, f64);
+    dynamics!(ur5, f64);
+    dynamics!(planar_elbow, f64);
+    dynamics!(odd, f64);
+    kinematics!(craig, f64);
+    dynamics!(weightless_wrist, f64);
+    dynamics!(kinova_urdf, f64);
+    dynamics!(random_urdf_3, f64);
+    kinematics!(cylindrical, f64);
+    kinematics!(gantry, f64);
+}
+
+#[test]
+fn batch_lanes_equal_scalar_f32() {
+    dynamics!(puma560, f32);
+    dynamics!(panda, f32);
+    dynamics!(odd, f32);
+    dynamics!(weightless_wrist, f32);
+    kinematics!(gantry, f32);
+}
+
+#[test]
+fn batch_derivatives_and_regressor_equal_scalar() {
+    check!(
+        odd_derivatives,
+        f64,
+        [
+            inverse_dynamics_derivatives(qd, qdd),
+            mass_matrix_rate(qd),
+            coriolis_transpose_qd(qd),
+            regressor(qd, qdd),
+            base_regressor(qd, qdd),
+        ]
+    );
+    check!(
+        puma560_derivatives,
+        f64,
+        [inverse_dynamics_derivatives(qd, qdd)]
+    );
+}
+
+/// Forward dynamics of a pack is lane by lane: a lane with a singular or non-finite case is
+/// `None` and does not disturb its neighbours.
+#[test]
+fn forward_dynamics_lanes_are_independent() {
+    use dhgen::batch::WideF64x4;
+    let mut s = Stream(7);
+    let q = s.states::<6>(4);
+    let qd = s.states::<6>(4);
+    let mut tau = s.states::<6>(4);
+    tau[2][3] = f64::NAN;
+    let mut out = vec![None; 4];
+    puma560::batch::forward_dynamics(&q, &qd, &tau, &mut out).unwrap();
+    assert!(out[2].is_none());
+    for c in [0, 1, 3] {
+        assert_eq!(out[c], puma560::forward_dynamics(&q[c], &qd[c], &tau[c]));
+        assert!(out[c].is_some());
+    }
+    // The pack itself: `Option` only when every lane has an answer.
+    let pack = |v: &[[f64; 6]]| -> [WideF64x4; 6] {
+        std::array::from_fn(|j| WideF64x4([v[0][j], v[1][j], v[2][j], v[3][j]].into()))
+    };
+    assert!(puma560::forward_dynamics(&pack(&q), &pack(&qd), &pack(&tau)).is_none());
+    let (_, ok) = puma560::forward_dynamics_lanes(&pack(&q), &pack(&qd), &pack(&tau));
+    assert_eq!(dhgen::nalgebra::SimdBool::bitmask(ok), 0b1011);
+    tau[2][3] = 0.5;
+    assert!(puma560::forward_dynamics(&pack(&q), &pack(&qd), &pack(&tau)).is_some());
+}
+
+#[test]
+fn batch_lengths_must_agree() {
+    let q = vec![[0.0; 6]; 3];
+    let qd = vec![[0.0; 6]; 2];
+    let mut out = vec![Default::default(); 3];
+    assert_eq!(
+        puma560::batch::coriolis(&q, &qd, &mut out),
+        Err(LengthMismatch {
+            inputs: 2,
+            outputs: 3
+        })
+    );
+    assert!(
+        out.iter()
+            .all(|m: &dhgen::nalgebra::SMatrix<f64, 6, 6>| m.iter().all(|&x| x == 0.0))
+    );
+    let mut none: Vec<dhgen::nalgebra::SMatrix<f64, 6, 6>> = Vec::new();
+    assert_eq!(puma560::batch::mass_matrix(&[], &mut none), Ok(()));
+}
