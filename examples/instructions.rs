@@ -9,7 +9,9 @@
 //!   valgrind --tool=callgrind --callgrind-out-file=/dev/null $B puma560 mass_matrix $path 2>&1 | grep Collected
 //! done
 //! ```
-//! Instructions per call = (count − count of `none`) / 1000.
+//! Instructions per call = (count − count of `none`) / 1000. `batch` evaluates the same 1,000
+//! configurations through the module's `batch` functions (SIMD packs of four `f64`): its
+//! count per configuration is the same formula.
 
 use std::hint::black_box;
 
@@ -26,6 +28,23 @@ fn inputs<const N: usize>(shift: usize) -> Vec<[f64; N]> {
     (0..CALLS)
         .map(|i| core::array::from_fn(|j| (((i + shift) * 7 + j * 13) as f64 * 0.37).sin() * 2.0))
         .collect()
+}
+
+/// dhgen's branch-free sine and cosine (what `f64` packs use), not inlined: its code on its
+/// own, for reading (`objdump -d`).
+#[inline(never)]
+fn probe_sincos(x: f64) -> (f64, f64) {
+    dhgen::sincos::sincos(x)
+}
+
+/// Fills CALLS outputs by one batch call and sums one entry of each.
+fn through<O: Clone + Default>(
+    fill: impl FnOnce(&mut [O]) -> Result<(), dhgen::batch::LengthMismatch>,
+    pick: impl Fn(&O) -> f64,
+) -> f64 {
+    let mut out = vec![O::default(); CALLS];
+    fill(&mut out).expect("equal lengths");
+    out.iter().map(pick).sum()
 }
 
 macro_rules! run {
@@ -53,10 +72,39 @@ macro_rules! run {
         let (qs, qds) = (inputs::<N>(0), inputs::<N>(3));
         let generated = $path == "generated";
         let mut acc = 0.0;
+        if $path == "batch" {
+            // All CALLS configurations through the module's `batch` functions (f64x4 packs).
+            let (qs, qds) = (black_box(&qs), black_box(&qds));
+            acc += match $quantity {
+                "none" => 0.0,
+                "fk" => through(|o| $m::batch::fk(qs, o), |x| x.translation.x),
+                "jacobian" => through(|o| $m::batch::jacobian(qs, o), |x| x[(0, 1)]),
+                "mass_matrix" => through(|o| $m::batch::mass_matrix(qs, o), |x| x[(1, 1)]),
+                "christoffel" => through(|o| $m::batch::christoffel(qs, o), |x| x[1][2][0]),
+                "coriolis" => through(|o| $m::batch::coriolis(qs, qds, o), |x| x[(1, 0)]),
+                "gravity" => through(|o| $m::batch::gravity(qs, o), |x| x[1]),
+                "inverse_dynamics" => {
+                    through(|o| $m::batch::inverse_dynamics(qs, qds, qds, o), |x| x[1])
+                }
+                "forward_dynamics" => through(
+                    |o| $m::batch::forward_dynamics(qs, qds, qds, o),
+                    |x| x.map_or(0.0, |x| x[1]),
+                ),
+                other => {
+                    eprintln!("no batch form of {other}");
+                    std::process::exit(2);
+                }
+            };
+            println!("{acc}");
+            return;
+        }
         for i in 0..CALLS {
             let (q, qd) = (black_box(&qs[i]), black_box(&qds[i]));
             acc += match ($quantity, generated) {
                 ("none", _) => 0.0,
+                // One sine and cosine: dhgen's branch-free one against `libm`'s.
+                ("sincos", true) => probe_sincos(q[0]).0,
+                ("sincos", false) => libm::sincos(q[0]).0,
                 ("fk", true) => $m::fk(q).translation.x,
                 ("fk", false) => robot.fk(q).translation.x,
                 ("jacobian", true) => $m::jacobian(q)[(0, 1)],
@@ -114,7 +162,7 @@ fn main() {
     let args: Vec<String> = std::env::args().collect();
     if args.len() != 4 {
         eprintln!(
-            "usage: instructions ROBOT QUANTITY generated|runtime  \
+            "usage: instructions ROBOT QUANTITY generated|runtime|batch  \
              (ROBOT: puma560, panda, general_8 or general_12)"
         );
         std::process::exit(2);

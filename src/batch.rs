@@ -2,9 +2,11 @@
 //!
 //! Every generated function is generic over [`Real`], which the packs [`WideF64x4`] (four
 //! `f64`) and [`WideF32x8`] (eight `f32`) implement: called on a pack, a function evaluates
-//! four (eight) configurations at once, lane by lane exactly as the scalar path does (the same
-//! `libm` sine and cosine per lane, and branch-free selects where scalar code would branch:
-//! Coulomb friction's sign, the Cholesky pivot check). Each generated module's `batch`
+//! four (eight) configurations at once, lane by lane as the scalar path does (branch-free
+//! selects where scalar code would branch: Coulomb friction's sign, the Cholesky pivot check).
+//! `f32` lanes are bit for bit the scalar results; `f64` lanes agree to rounding, because the
+//! pack's sine and cosine are branch-free polynomials (within one ulp) where scalar `f64` keeps
+//! `libm`'s, faster one value at a time. Each generated module's `batch`
 //! submodule wraps this for slices: `batch::mass_matrix(&qs, &mut out)` packs the
 //! configurations, evaluates, and writes one output per configuration; [`run`] is the loop
 //! they share.

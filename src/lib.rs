@@ -84,6 +84,9 @@ mod arm;
 pub mod batch;
 mod joints;
 mod real;
+/// Sine and cosine together, branch-free, for `f64` and packs of `f64` (what
+/// [`batch::WideF64x4`]'s [`Real::sincos`] is), within one ulp.
+pub mod sincos;
 pub use arm::{Arm, ArmAllocator, ArmDynamics, JointVector};
 pub use joints::{JointArray, Joints};
 pub use real::{Real, cholesky_pivot_floor, inertia_cholesky};

@@ -1,0 +1,123 @@
+//! Many configurations per call (`dhgen::batch`, SIMD packs) against one at a time, and the
+//! branch-free sine and cosine against `libm`'s.
+//!
+//! `{robot}/{quantity}/{scalar_f64|batch_f64x4}` evaluates the same 64 seeded configurations
+//! (`scalar`: a loop of the generated function; `batch`: the module's `batch` function over
+//! the slice): divide by 64 for the time per configuration. `sincos/{dhgen|dhgen_f64x4|libm}`:
+//! 64 angles in [−π, π], one at a time or four per pack.
+//!
+//! `cargo bench --bench batch`.
+
+use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
+use std::hint::black_box;
+use std::time::Duration;
+
+dhgen::robot!(mod puma560 = "robots/puma560.toml");
+dhgen::robot!(mod panda = "robots/panda.toml");
+
+const STATES: usize = 64;
+
+fn states<const N: usize>(seed: u64) -> Vec<[f64; N]> {
+    let mut s = seed;
+    let mut next = move || {
+        s = s
+            .wrapping_mul(6_364_136_223_846_793_005)
+            .wrapping_add(1_442_695_040_888_963_407);
+        ((s >> 11) as f64 / (1u64 << 53) as f64) * 2.0 * std::f64::consts::PI - std::f64::consts::PI
+    };
+    (0..STATES)
+        .map(|_| std::array::from_fn(|_| next()))
+        .collect()
+}
+
+/// The input a name stands for, from `(q̇, q̈)`.
+macro_rules! pick {
+    (qd, $s:ident) => {
+        $s.0
+    };
+    (qdd, $s:ident) => {
+        $s.1
+    };
+}
+
+macro_rules! pair {
+    ($c:expr, $m:ident, $name:literal, $f:ident($($x:ident),*)) => {{
+        use $m as g;
+        const N: usize = g::DOF;
+        let q = states::<N>(1);
+        let inputs = (states::<N>(2), states::<N>(3));
+        let _ = &inputs;
+        let mut group = $c.benchmark_group(stringify!($m));
+        group.bench_function(BenchmarkId::new($name, "scalar_f64"), |b| {
+            b.iter(|| {
+                let q = black_box(&q);
+                for c in 0..STATES {
+                    black_box(g::$f(&q[c], $(&pick!($x, inputs)[c]),*));
+                }
+            })
+        });
+        let mut out = vec![g::$f(&q[0], $(&pick!($x, inputs)[0]),*); STATES];
+        group.bench_function(BenchmarkId::new($name, "batch_f64x4"), |b| {
+            b.iter(|| {
+                g::batch::$f(black_box(&q), $(black_box(&pick!($x, inputs)),)* &mut out)
+                    .unwrap();
+                black_box(&out);
+            })
+        });
+        group.finish();
+    }};
+}
+
+macro_rules! robot {
+    ($c:expr, $m:ident) => {{
+        pair!($c, $m, "fk", fk());
+        pair!($c, $m, "fk_matrix", fk_matrix());
+        pair!($c, $m, "jacobian", jacobian());
+        pair!($c, $m, "mass_matrix", mass_matrix());
+        pair!($c, $m, "christoffel", christoffel());
+        pair!($c, $m, "coriolis", coriolis(qd));
+        pair!($c, $m, "gravity", gravity());
+        pair!($c, $m, "inverse_dynamics", inverse_dynamics(qd, qdd));
+        pair!($c, $m, "forward_dynamics", forward_dynamics(qd, qdd));
+    }};
+}
+
+fn batch(c: &mut Criterion) {
+    let angles: Vec<f64> = states::<1>(9).into_iter().map(|a| a[0]).collect();
+    let mut group = c.benchmark_group("sincos");
+    group.bench_function("dhgen", |b| {
+        b.iter(|| {
+            for &x in black_box(&angles) {
+                black_box(dhgen::sincos::sincos(x));
+            }
+        })
+    });
+    let packs: Vec<dhgen::batch::WideF64x4> = angles
+        .chunks(4)
+        .map(|a| dhgen::batch::WideF64x4([a[0], a[1], a[2], a[3]].into()))
+        .collect();
+    group.bench_function("dhgen_f64x4", |b| {
+        b.iter(|| {
+            for &x in black_box(&packs) {
+                black_box(dhgen::Real::sincos(x));
+            }
+        })
+    });
+    group.bench_function("libm", |b| {
+        b.iter(|| {
+            for &x in black_box(&angles) {
+                black_box(libm::sincos(x));
+            }
+        })
+    });
+    group.finish();
+    robot!(c, puma560);
+    robot!(c, panda);
+}
+
+criterion_group! {
+    name = benches;
+    config = Criterion::default().warm_up_time(Duration::from_millis(300)).measurement_time(Duration::from_millis(1000)).sample_size(30);
+    targets = batch
+}
+criterion_main!(benches);
