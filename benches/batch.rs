@@ -1,9 +1,10 @@
 //! Many configurations per call (`dhgen::batch`, SIMD packs) against one at a time, and the
 //! branch-free sine and cosine against `libm`'s.
 //!
-//! `{robot}/{quantity}/{scalar_f64|batch_f64x4}` evaluates the same 64 seeded configurations
+//! `{robot}/{quantity}/{scalar_f64|batch_f64x4|packs_f64x4}` evaluates the same 64 seeded configurations
 //! (`scalar`: a loop of the generated function; `batch`: the module's `batch` function over
-//! the slice): divide by 64 for the time per configuration. `sincos/{dhgen|dhgen_f64x4|libm}`:
+//! the slice; `packs`: the generated function called on the 16 packs themselves, the
+//! values left as packs): divide by 64 for the time per configuration. `sincos/{dhgen|dhgen_f64x4|libm}`:
 //! 64 angles in [−π, π], one at a time or four per pack.
 //!
 //! `cargo bench --bench batch`.
@@ -40,8 +41,22 @@ macro_rules! pick {
     };
 }
 
+/// Four configurations per pack.
+fn packs<const N: usize>(v: &[[f64; N]]) -> Vec<[dhgen::batch::WideF64x4; N]> {
+    v.chunks(4)
+        .map(|c| {
+            std::array::from_fn(|j| {
+                dhgen::batch::WideF64x4([c[0][j], c[1][j], c[2][j], c[3][j]].into())
+            })
+        })
+        .collect()
+}
+
 macro_rules! pair {
-    ($c:expr, $m:ident, $name:literal, $f:ident($($x:ident),*)) => {{
+    ($c:expr, $m:ident, $name:literal, $f:ident($($x:ident),*)) => {
+        pair!($c, $m, $name, $f($($x),*), $f)
+    };
+    ($c:expr, $m:ident, $name:literal, $f:ident($($x:ident),*), $packed:ident) => {{
         use $m as g;
         const N: usize = g::DOF;
         let q = states::<N>(1);
@@ -64,6 +79,16 @@ macro_rules! pair {
                 black_box(&out);
             })
         });
+        let (qp, inputs_p) = (packs(&q), (packs(&inputs.0), packs(&inputs.1)));
+        let _ = &inputs_p;
+        group.bench_function(BenchmarkId::new($name, "packs_f64x4"), |b| {
+            b.iter(|| {
+                let qp = black_box(&qp);
+                for c in 0..STATES / 4 {
+                    black_box(g::$packed(&qp[c], $(&pick!($x, inputs_p)[c]),*));
+                }
+            })
+        });
         group.finish();
     }};
 }
@@ -78,7 +103,13 @@ macro_rules! robot {
         pair!($c, $m, "coriolis", coriolis(qd));
         pair!($c, $m, "gravity", gravity());
         pair!($c, $m, "inverse_dynamics", inverse_dynamics(qd, qdd));
-        pair!($c, $m, "forward_dynamics", forward_dynamics(qd, qdd));
+        pair!(
+            $c,
+            $m,
+            "forward_dynamics",
+            forward_dynamics(qd, qdd),
+            forward_dynamics_lanes
+        );
     }};
 }
 

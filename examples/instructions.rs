@@ -11,7 +11,8 @@
 //! ```
 //! Instructions per call = (count − count of `none`) / 1000. `batch` evaluates the same 1,000
 //! configurations through the module's `batch` functions (SIMD packs of four `f64`): its
-//! count per configuration is the same formula.
+//! count per configuration is the same formula. `packs` calls the generated functions on the
+//! packs themselves (what `batch` does before unpacking each lane's value).
 
 use std::hint::black_box;
 
@@ -72,6 +73,37 @@ macro_rules! run {
         let (qs, qds) = (inputs::<N>(0), inputs::<N>(3));
         let generated = $path == "generated";
         let mut acc = 0.0;
+        if $path == "packs" {
+            // The same configurations as packs of four, the generated functions called on
+            // the packs directly (no unpacking into per-configuration values).
+            use dhgen::batch::WideF64x4;
+            let pack = |v: &[[f64; N]], i: usize| -> [WideF64x4; N] {
+                core::array::from_fn(|j| {
+                    WideF64x4([v[i][j], v[i + 1][j], v[i + 2][j], v[i + 3][j]].into())
+                })
+            };
+            for i in (0..CALLS).step_by(4) {
+                let (q, qd) = (black_box(pack(&qs, i)), black_box(pack(&qds, i)));
+                let lane = |x: WideF64x4| x.0.to_array()[1];
+                acc += match $quantity {
+                    "none" => 0.0,
+                    "fk" => lane($m::fk(&q).translation.x),
+                    "jacobian" => lane($m::jacobian(&q)[(0, 1)]),
+                    "mass_matrix" => lane($m::mass_matrix(&q)[(1, 1)]),
+                    "christoffel" => lane($m::christoffel(&q)[1][2][0]),
+                    "coriolis" => lane($m::coriolis(&q, &qd)[(1, 0)]),
+                    "gravity" => lane($m::gravity(&q)[1]),
+                    "inverse_dynamics" => lane($m::inverse_dynamics(&q, &qd, &qd)[1]),
+                    "forward_dynamics" => lane($m::forward_dynamics_lanes(&q, &qd, &qd).0[1]),
+                    other => {
+                        eprintln!("no pack form of {other}");
+                        std::process::exit(2);
+                    }
+                };
+            }
+            println!("{acc}");
+            return;
+        }
         if $path == "batch" {
             // All CALLS configurations through the module's `batch` functions (f64x4 packs).
             let (qs, qds) = (black_box(&qs), black_box(&qds));
@@ -162,7 +194,7 @@ fn main() {
     let args: Vec<String> = std::env::args().collect();
     if args.len() != 4 {
         eprintln!(
-            "usage: instructions ROBOT QUANTITY generated|runtime|batch  \
+            "usage: instructions ROBOT QUANTITY generated|runtime|batch|packs  \
              (ROBOT: puma560, panda, general_8 or general_12)"
         );
         std::process::exit(2);

@@ -49,13 +49,18 @@ pub trait Unpack {
     type Lane;
     /// Lane `i` (`i <` the number of lanes).
     fn lane(&self, i: usize) -> Self::Lane;
+    /// Lane `i` written over `out` (in place, entry by entry, for large values).
+    #[inline]
+    fn lane_into(&self, i: usize, out: &mut Self::Lane) {
+        *out = self.lane(i);
+    }
 }
 
 impl Unpack for WideF64x4 {
     type Lane = f64;
     #[inline]
     fn lane(&self, i: usize) -> f64 {
-        self.extract(i)
+        self.0.as_array()[i]
     }
 }
 
@@ -63,7 +68,7 @@ impl Unpack for WideF32x8 {
     type Lane = f32;
     #[inline]
     fn lane(&self, i: usize) -> f32 {
-        self.extract(i)
+        self.0.as_array()[i]
     }
 }
 
@@ -78,6 +83,12 @@ where
     fn lane(&self, i: usize) -> Self::Lane {
         self.map(|x| x.lane(i))
     }
+    #[inline]
+    fn lane_into(&self, i: usize, out: &mut Self::Lane) {
+        for (o, x) in out.as_mut_slice().iter_mut().zip(self.as_slice()) {
+            x.lane_into(i, o);
+        }
+    }
 }
 
 impl<X: Unpack, const N: usize> Unpack for [X; N] {
@@ -86,6 +97,12 @@ impl<X: Unpack, const N: usize> Unpack for [X; N] {
     fn lane(&self, i: usize) -> Self::Lane {
         core::array::from_fn(|k| self[k].lane(i))
     }
+    #[inline]
+    fn lane_into(&self, i: usize, out: &mut Self::Lane) {
+        for (o, x) in out.iter_mut().zip(self) {
+            x.lane_into(i, o);
+        }
+    }
 }
 
 impl<A: Unpack, B: Unpack> Unpack for (A, B) {
@@ -93,6 +110,11 @@ impl<A: Unpack, B: Unpack> Unpack for (A, B) {
     #[inline]
     fn lane(&self, i: usize) -> Self::Lane {
         (self.0.lane(i), self.1.lane(i))
+    }
+    #[inline]
+    fn lane_into(&self, i: usize, out: &mut Self::Lane) {
+        self.0.lane_into(i, &mut out.0);
+        self.1.lane_into(i, &mut out.1);
     }
 }
 
@@ -123,6 +145,13 @@ impl<V: Unpack, B: SimdBool> Unpack for Masked<V, B> {
     #[inline]
     fn lane(&self, i: usize) -> Self::Lane {
         ((self.1.bitmask() >> i) & 1 == 1).then(|| self.0.lane(i))
+    }
+    #[inline]
+    fn lane_into(&self, i: usize, out: &mut Self::Lane) {
+        match out {
+            Some(o) if (self.1.bitmask() >> i) & 1 == 1 => self.0.lane_into(i, o),
+            _ => *out = self.lane(i),
+        }
     }
 }
 
@@ -174,7 +203,7 @@ where
         });
         let value = f(packed);
         for (l, o) in chunk.iter_mut().enumerate() {
-            *o = value.lane(l);
+            value.lane_into(l, o);
         }
     }
     Ok(())

@@ -34,7 +34,9 @@ pub trait Real: SimdRealField<Element: nalgebra::RealField> + Copy {
     #[inline]
     fn is_finite_lanes(self) -> Self::SimdBool {
         // x − x is 0 for a finite x and NaN for ±∞ and NaN, which compares unequal.
-        (self - self).simd_eq(Self::zero())
+        #[allow(clippy::eq_op)]
+        let difference = self - self;
+        difference.simd_eq(Self::zero())
     }
 
     /// Lane-wise sign with `sign(0) = 0`: `1` where positive, `−1` where negative, `0`

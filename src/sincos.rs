@@ -166,7 +166,7 @@ mod tests {
     /// (sin x, cos x) to about 2⁻¹⁰⁰ relative.
     fn reference(x: f64) -> (Dd, Dd) {
         const PIO2: [f64; 4] = [
-            1.570_796_326_794_896_6,
+            core::f64::consts::FRAC_PI_2,
             6.123_233_995_736_766e-17,
             -1.497_384_904_859_169_8e-33,
             5.562_271_104_316_826e-50,

@@ -19,7 +19,7 @@ impl Stream {
         z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
         z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
         z ^= z >> 31;
-        if z % 7 == 0 {
+        if z.is_multiple_of(7) {
             return 0.0;
         }
         (z >> 11) as f64 / (1u64 << 53) as f64 * 4.0 - 2.0
