@@ -123,13 +123,13 @@ fn batch(c: &mut Criterion) {
             }
         })
     });
-    let packs: Vec<dhgen::batch::WideF64x4> = angles
+    let angle_packs: Vec<dhgen::batch::WideF64x4> = angles
         .chunks(4)
         .map(|a| dhgen::batch::WideF64x4([a[0], a[1], a[2], a[3]].into()))
         .collect();
     group.bench_function("dhgen_f64x4", |b| {
         b.iter(|| {
-            for &x in black_box(&packs) {
+            for &x in black_box(&angle_packs) {
                 black_box(dhgen::Real::sincos(x));
             }
         })
@@ -138,6 +138,25 @@ fn batch(c: &mut Criterion) {
         b.iter(|| {
             for &x in black_box(&angles) {
                 black_box(libm::sincos(x));
+            }
+        })
+    });
+    group.finish();
+    // Every joint's sine and cosine (`State::new`), one configuration at a time and by packs.
+    let q = states::<7>(1);
+    let qp = packs(&q);
+    let mut group = c.benchmark_group("panda");
+    group.bench_function(BenchmarkId::new("state", "scalar_f64"), |b| {
+        b.iter(|| {
+            for x in black_box(&q) {
+                black_box(panda::State::new(x));
+            }
+        })
+    });
+    group.bench_function(BenchmarkId::new("state", "packs_f64x4"), |b| {
+        b.iter(|| {
+            for x in black_box(&qp) {
+                black_box(panda::State::new(x));
             }
         })
     });

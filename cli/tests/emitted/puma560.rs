@@ -250,7 +250,17 @@ pub mod puma560 {
         #[doc(alias = "forwardKinematics")]
         #[must_use]
         pub fn fk_matrix(&self) -> na::Matrix4<T> {
-            let mut out: na::Matrix4<T> = na::Matrix4::identity();
+            let mut out: na::Matrix4<T> = {
+                let (z, o) = (T::zero(), T::one());
+                na::Matrix4::from_data(
+                    na::ArrayStorage([
+                        [o, z, z, z],
+                        [z, o, z, z],
+                        [z, z, o, z],
+                        [z, z, z, o],
+                    ]),
+                )
+            };
             let c1: T = self.c[0];
             let s1: T = self.s[0];
             let c2: T = self.c[1];
@@ -389,7 +399,17 @@ pub mod puma560 {
         #[doc(alias = "updateFramePlacements")]
         #[must_use]
         pub fn frames_matrix(&self) -> [na::Matrix4<T>; DOF] {
-            let mut out: [na::Matrix4<T>; DOF] = [na::Matrix4::identity(); DOF];
+            let mut out: [na::Matrix4<T>; DOF] = [{
+                let (z, o) = (T::zero(), T::one());
+                na::Matrix4::from_data(
+                    na::ArrayStorage([
+                        [o, z, z, z],
+                        [z, o, z, z],
+                        [z, z, o, z],
+                        [z, z, z, o],
+                    ]),
+                )
+            }; DOF];
             let c1: T = self.c[0];
             let s1: T = self.s[0];
             let c2: T = self.c[1];
@@ -602,7 +622,9 @@ pub mod puma560 {
         #[doc(alias = "getFrameJacobian")]
         #[must_use]
         pub fn jacobian(&self) -> na::SMatrix<T, 6, DOF> {
-            let mut out: na::SMatrix<T, 6, DOF> = na::SMatrix::zeros();
+            let mut out: na::SMatrix<T, 6, DOF> = na::Matrix::from_data(
+                na::ArrayStorage([[T::zero(); 6]; DOF]),
+            );
             let c1: T = self.c[0];
             let s1: T = self.s[0];
             let c2: T = self.c[1];
@@ -753,7 +775,9 @@ pub mod puma560 {
             qd: &impl ::dhgen::JointArray<T, DOF>,
         ) -> na::SVector<T, 6> {
             let qd = &qd.to_array();
-            let mut out: na::SVector<T, 6> = na::SVector::zeros();
+            let mut out: na::SVector<T, 6> = na::Matrix::from_data(
+                na::ArrayStorage([[T::zero(); 6]; 1]),
+            );
             let c1: T = self.c[0];
             let s1: T = self.s[0];
             let c2: T = self.c[1];
@@ -1063,7 +1087,9 @@ pub mod puma560 {
         #[doc(alias = "inertia")]
         #[must_use]
         pub fn mass_matrix(&self) -> na::SMatrix<T, DOF, DOF> {
-            let mut out: na::SMatrix<T, DOF, DOF> = na::SMatrix::zeros();
+            let mut out: na::SMatrix<T, DOF, DOF> = na::Matrix::from_data(
+                na::ArrayStorage([[T::zero(); DOF]; DOF]),
+            );
             let c2: T = self.c[1];
             let s2: T = self.s[1];
             let c3: T = self.c[2];
@@ -1343,7 +1369,9 @@ pub mod puma560 {
             qd: &impl ::dhgen::JointArray<T, DOF>,
         ) -> na::SMatrix<T, DOF, DOF> {
             let qd = &qd.to_array();
-            let mut out: na::SMatrix<T, DOF, DOF> = na::SMatrix::zeros();
+            let mut out: na::SMatrix<T, DOF, DOF> = na::Matrix::from_data(
+                na::ArrayStorage([[T::zero(); DOF]; DOF]),
+            );
             let mut w = [T::zero(); 53];
             self.coriolis_part0(qd, &mut w, &mut out);
             self.coriolis_part1(qd, &mut w, &mut out);
@@ -1355,7 +1383,9 @@ pub mod puma560 {
         #[doc(alias = "computeGeneralizedGravity")]
         #[must_use]
         pub fn gravity(&self) -> na::SVector<T, DOF> {
-            let mut out: na::SVector<T, DOF> = na::SVector::zeros();
+            let mut out: na::SVector<T, DOF> = na::Matrix::from_data(
+                na::ArrayStorage([[T::zero(); DOF]; 1]),
+            );
             let c2: T = self.c[1];
             let s2: T = self.s[1];
             let c3: T = self.c[2];
@@ -1450,7 +1480,9 @@ pub mod puma560 {
             &self,
             payload: &[T; 10],
         ) -> na::SMatrix<T, DOF, DOF> {
-            let mut out: na::SMatrix<T, DOF, DOF> = na::SMatrix::zeros();
+            let mut out: na::SMatrix<T, DOF, DOF> = na::Matrix::from_data(
+                na::ArrayStorage([[T::zero(); DOF]; DOF]),
+            );
             let mut w = [T::zero(); 28];
             self.mass_matrix_with_payload_part0(payload, &mut w, &mut out);
             self.mass_matrix_with_payload_part1(&mut w, &mut out);
@@ -1459,7 +1491,9 @@ pub mod puma560 {
         ///g(q) with a payload held by the tool (`payload`: its ten parameters, as for `inverse_dynamics_with_payload`).
         #[must_use]
         pub fn gravity_with_payload(&self, payload: &[T; 10]) -> na::SVector<T, DOF> {
-            let mut out: na::SVector<T, DOF> = na::SVector::zeros();
+            let mut out: na::SVector<T, DOF> = na::Matrix::from_data(
+                na::ArrayStorage([[T::zero(); DOF]; 1]),
+            );
             let c2: T = self.c[1];
             let s2: T = self.s[1];
             let c3: T = self.c[2];
@@ -1577,7 +1611,9 @@ pub mod puma560 {
             payload: &[T; 10],
         ) -> na::SMatrix<T, DOF, DOF> {
             let qd = &qd.to_array();
-            let mut out: na::SMatrix<T, DOF, DOF> = na::SMatrix::zeros();
+            let mut out: na::SMatrix<T, DOF, DOF> = na::Matrix::from_data(
+                na::ArrayStorage([[T::zero(); DOF]; DOF]),
+            );
             let mut w = [T::zero(); 219];
             self.coriolis_with_payload_part0(qd, payload, &mut w, &mut out);
             self.coriolis_with_payload_part1(qd, payload, &mut w, &mut out);
@@ -4304,7 +4340,9 @@ pub mod puma560 {
             qd: &[T; DOF],
             qdd: &[T; DOF],
         ) -> na::SVector<T, DOF> {
-            let mut out: na::SVector<T, DOF> = na::SVector::zeros();
+            let mut out: na::SVector<T, DOF> = na::Matrix::from_data(
+                na::ArrayStorage([[T::zero(); DOF]; 1]),
+            );
             let mut w = [T::zero(); 46];
             self.inverse_dynamics_smooth_part0(qd, qdd, &mut w, &mut out);
             self.inverse_dynamics_smooth_part1(qd, qdd, &mut w, &mut out);
@@ -5057,7 +5095,9 @@ pub mod puma560 {
             qdd: &[T; DOF],
             payload: &[T; 10],
         ) -> na::SVector<T, DOF> {
-            let mut out: na::SVector<T, DOF> = na::SVector::zeros();
+            let mut out: na::SVector<T, DOF> = na::Matrix::from_data(
+                na::ArrayStorage([[T::zero(); DOF]; 1]),
+            );
             let mut w = [T::zero(); 52];
             self.inverse_dynamics_with_payload_smooth_part0(
                 qd,
@@ -5776,7 +5816,9 @@ pub mod puma560 {
             qd: &[T; DOF],
             payload: &[T; 10],
         ) -> na::SVector<T, DOF> {
-            let mut out: na::SVector<T, DOF> = na::SVector::zeros();
+            let mut out: na::SVector<T, DOF> = na::Matrix::from_data(
+                na::ArrayStorage([[T::zero(); DOF]; 1]),
+            );
             let mut w = [T::zero(); 51];
             self.bias_with_payload_smooth_part0(qd, payload, &mut w, &mut out);
             self.bias_with_payload_smooth_part1(qd, payload, &mut w, &mut out);
@@ -9806,7 +9848,9 @@ pub mod puma560 {
             out[4] = t577;
         }
         fn bias_smooth(&self, qd: &[T; DOF]) -> na::SVector<T, DOF> {
-            let mut out: na::SVector<T, DOF> = na::SVector::zeros();
+            let mut out: na::SVector<T, DOF> = na::Matrix::from_data(
+                na::ArrayStorage([[T::zero(); DOF]; 1]),
+            );
             let mut w = [T::zero(); 40];
             self.bias_smooth_part0(qd, &mut w, &mut out);
             self.bias_smooth_part1(qd, &mut w, &mut out);

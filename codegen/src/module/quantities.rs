@@ -427,7 +427,7 @@ pub const QUANTITIES: &[Quantity] = &[
                 _ => composed(
                     quote! {
                         let c = self.christoffel();
-                        let mut out = na::SMatrix::<T, DOF, DOF>::zeros();
+                        let mut out = na::SMatrix::<T, DOF, DOF>::from_data(na::ArrayStorage([[T::zero(); DOF]; DOF]));
                         for k in 0..DOF {
                             for j in 0..DOF {
                                 let mut sum = T::zero();

@@ -86,16 +86,34 @@ impl Shape {
     /// The initial value of a derived output, before its entries are stored (`None` for a
     /// scalar, which is assigned exactly once).
     pub fn init(self) -> Option<TokenStream> {
+        // Matrices are built from arrays (`ArrayStorage` is column-major): nalgebra's
+        // `zeros()` and `identity()` fill through an iterator that, for a SIMD pack, compiles
+        // to a loop of overlapping stores and loads (store-forwarding stalls: Panda's D on
+        // packs of four took 3× its arithmetic).
+        let zeros = |r: TokenStream, c: TokenStream| quote!(na::Matrix::from_data(na::ArrayStorage([[T::zero(); #r]; #c])));
+        let identity = quote!({
+            let (z, o) = (T::zero(), T::one());
+            na::Matrix4::from_data(na::ArrayStorage([
+                [o, z, z, z],
+                [z, o, z, z],
+                [z, z, o, z],
+                [z, z, z, o],
+            ]))
+        });
         match self {
             Shape::Scalar => None,
-            Shape::Homogeneous => Some(quote!(na::Matrix4::identity())),
-            Shape::HomogeneousPerJoint => Some(quote!([na::Matrix4::identity(); DOF])),
-            Shape::Vector6 => Some(quote!(na::SVector::zeros())),
-            Shape::Jacobian | Shape::Square | Shape::Regressor | Shape::BaseRegressor => {
-                Some(quote!(na::SMatrix::zeros()))
+            Shape::Homogeneous => Some(identity),
+            Shape::HomogeneousPerJoint => Some(quote!([#identity; DOF])),
+            Shape::Vector6 => Some(zeros(quote!(6), quote!(1))),
+            Shape::Jacobian => Some(zeros(quote!(6), quote!(DOF))),
+            Shape::Square => Some(zeros(quote!(DOF), quote!(DOF))),
+            Shape::Regressor => Some(zeros(quote!(DOF), quote!(PARAMETERS))),
+            Shape::BaseRegressor => Some(zeros(quote!(DOF), quote!(BASE_PARAMETERS))),
+            Shape::SquarePair => {
+                let z = zeros(quote!(DOF), quote!(DOF));
+                Some(quote!((#z, #z)))
             }
-            Shape::SquarePair => Some(quote!((na::SMatrix::zeros(), na::SMatrix::zeros()))),
-            Shape::Vector => Some(quote!(na::SVector::zeros())),
+            Shape::Vector => Some(zeros(quote!(DOF), quote!(1))),
             Shape::Cube => Some(quote!([[[T::zero(); DOF]; DOF]; DOF])),
             Shape::Pose
             | Shape::PosePerJoint
