@@ -32,7 +32,7 @@ pub use simba::simd::{WideBoolF32x8, WideBoolF64x4, WideF32x8, WideF64x4};
 pub trait Lanes: Real + nalgebra::RealField {
     /// The pack: `SimdValue::LANES` values of `Self` at once (as wide an instruction as the
     /// target allows).
-    type Pack: Real + SimdValue<Element = Self> + Unpack<Lane = Self>;
+    type Pack: Real + SimdValue<Element = Self> + Leaf<Lane = Self>;
 }
 
 impl Lanes for f64 {
@@ -53,6 +53,33 @@ pub trait Unpack {
     #[inline]
     fn lane_into(&self, i: usize, out: &mut Self::Lane) {
         *out = self.lane(i);
+    }
+    /// The first `out.len()` lanes written over `out`, lane `l` to `out[l]`.
+    #[inline]
+    fn unpack_into(&self, out: &mut [Self::Lane]) {
+        for (l, o) in out.iter_mut().enumerate() {
+            self.lane_into(l, o);
+        }
+    }
+}
+
+/// A pack itself: its lanes as an array.
+pub trait Leaf: Unpack + Copy {
+    /// Every lane.
+    fn lanes(&self) -> &[Self::Lane];
+}
+
+impl Leaf for WideF64x4 {
+    #[inline]
+    fn lanes(&self) -> &[f64] {
+        self.0.as_array()
+    }
+}
+
+impl Leaf for WideF32x8 {
+    #[inline]
+    fn lanes(&self) -> &[f32] {
+        self.0.as_array()
     }
 }
 
@@ -75,8 +102,8 @@ impl Unpack for WideF32x8 {
 impl<P, const R: usize, const C: usize> Unpack
     for Matrix<P, nalgebra::Const<R>, nalgebra::Const<C>, ArrayStorage<P, R, C>>
 where
-    P: Scalar + Unpack,
-    P::Lane: Scalar,
+    P: Scalar + Leaf,
+    P::Lane: Scalar + Copy,
 {
     type Lane = nalgebra::SMatrix<P::Lane, R, C>;
     #[inline]
@@ -87,6 +114,15 @@ where
     fn lane_into(&self, i: usize, out: &mut Self::Lane) {
         for (o, x) in out.as_mut_slice().iter_mut().zip(self.as_slice()) {
             x.lane_into(i, o);
+        }
+    }
+    /// Entry by entry, each pack read once and its lanes spread over the outputs.
+    #[inline]
+    fn unpack_into(&self, out: &mut [Self::Lane]) {
+        for (k, x) in self.as_slice().iter().enumerate() {
+            for (o, &v) in out.iter_mut().zip(x.lanes()) {
+                o.as_mut_slice()[k] = v;
+            }
         }
     }
 }
@@ -120,8 +156,8 @@ impl<A: Unpack, B: Unpack> Unpack for (A, B) {
 
 impl<P> Unpack for Isometry3<P>
 where
-    P: Real + Unpack,
-    P::Lane: nalgebra::RealField,
+    P: Real + Leaf,
+    P::Lane: nalgebra::RealField + Copy,
 {
     type Lane = Isometry3<P::Lane>;
     #[inline]
@@ -201,10 +237,7 @@ where
                 p
             })
         });
-        let value = f(packed);
-        for (l, o) in chunk.iter_mut().enumerate() {
-            value.lane_into(l, o);
-        }
+        f(packed).unpack_into(chunk);
     }
     Ok(())
 }
