@@ -2,6 +2,10 @@
 //! robot × quantity → median ns of generated f64, generated f32 and runtime, the speed-up,
 //! and the operation count of the generated function.
 //!
+//! Then, when `cargo bench --bench batch` has run, a second table: the time per configuration
+//! of the scalar functions, of the `batch` slice functions and of the generated functions on
+//! SIMD packs (`f64x4`).
+//!
 //! `cargo bench --bench generated && cargo run --release --example bench_report`
 
 use dhgen::RobotModel;
@@ -106,6 +110,50 @@ fn main() {
         }
         if let Some(sep) = median_ns(&criterion.join(robot).join("all_terms/separate_f64")) {
             println!("| {robot} | all_terms (separate calls) | {sep:.0} | | | | |");
+        }
+    }
+    batch_table(&criterion);
+}
+
+/// The `batch` bench's figures, per configuration (each of its measurements covers 64).
+fn batch_table(criterion: &Path) {
+    const BATCH: [&str; 9] = [
+        "fk",
+        "fk_matrix",
+        "jacobian",
+        "mass_matrix",
+        "christoffel",
+        "coriolis",
+        "gravity",
+        "inverse_dynamics",
+        "forward_dynamics",
+    ];
+    if median_ns(&criterion.join("puma560/fk/batch_f64x4")).is_none() {
+        eprintln!("(no batch figures: run `cargo bench --bench batch` for them)");
+        return;
+    }
+    println!();
+    println!(
+        "| robot | quantity | scalar f64 (ns/config) | batch f64x4 (ns/config) | packs f64x4 (ns/config) | scalar / batch | scalar / packs |"
+    );
+    println!("|---|---|---:|---:|---:|---:|---:|");
+    for robot in ["puma560", "panda"] {
+        for q in BATCH {
+            let dir = criterion.join(robot).join(q);
+            let per = |v: &str| median_ns(&dir.join(v)).map(|t| t / 64.0);
+            let (s, b, p) = (per("scalar_f64"), per("batch_f64x4"), per("packs_f64x4"));
+            let ratio = |x: Option<f64>| match (s, x) {
+                (Some(s), Some(x)) => format!("{:.1}×", s / x),
+                _ => "–".into(),
+            };
+            println!(
+                "| {robot} | {q} | {} | {} | {} | {} | {} |",
+                fmt(s),
+                fmt(b),
+                fmt(p),
+                ratio(b),
+                ratio(p)
+            );
         }
     }
 }
