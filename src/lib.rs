@@ -80,12 +80,9 @@ pub mod example {
 }
 
 mod arm;
-/// Many configurations per call: generated functions on SIMD packs (`f64x4`, `f32x8`).
 pub mod batch;
 mod joints;
 mod real;
-/// Sine and cosine together, branch-free, for `f64` and packs of `f64` (what
-/// [`batch::WideF64x4`]'s [`Real::sincos`] is), within one ulp.
 pub mod sincos;
 pub use arm::{Arm, ArmAllocator, ArmDynamics, JointVector};
 pub use joints::{JointArray, Joints};
