@@ -207,12 +207,13 @@ fn batch_derivatives_and_regressor_equal_scalar() {
             coriolis_transpose_qd(qd),
             regressor(qd, qdd),
             base_regressor(qd, qdd),
+            mass_matrix_inverse(),
         ]
     );
     check!(
         puma560_derivatives,
         f64,
-        [inverse_dynamics_derivatives(qd, qdd)]
+        [inverse_dynamics_derivatives(qd, qdd), mass_matrix_inverse()]
     );
 }
 

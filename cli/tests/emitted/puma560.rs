@@ -10420,7 +10420,6 @@ pub mod puma560 {
             State { c, s, d }
         }
     }
-    impl<T: ::dhgen::Real + na::RealField> State<T> {}
     ///Pose of the tool frame in the world frame as a homogeneous matrix, base · A1 ⋯ An · tool: the fast path (no conversion to a quaternion).
     #[doc(alias = "fkine")]
     #[doc(alias = "forwardKinematics")]

@@ -1,21 +1,30 @@
-//! Forward dynamics' linear solve: `D(q) x = rhs` by an unrolled Cholesky factorisation.
+//! The unrolled Cholesky factorisation of D(q), without branches, and what is built on it:
+//! forward dynamics' solve `D x = rhs` and the inverse `D⁻¹`.
+//!
+//! Both values come with `ok`: lane by lane, whether every pivot is above
+//! `dhgen::cholesky_pivot_floor` (the rule both paths share) and the result is finite. The
+//! code has no branch, so a SIMD pack's lanes each get the scalar path's answer, whatever the
+//! others'.
 
 use crate::graph::OpCount;
-use proc_macro2::TokenStream;
+use proc_macro2::{Ident, TokenStream};
 use quote::{format_ident, quote};
 
-/// Unrolled `D x = rhs` by Cholesky, with its operation count (the `n` subtractions forming
-/// `rhs = τ − bias` and the floor's n − 1 comparisons and two products included).
-///
-/// The value is `(x, ok)`: `ok` holds, lane by lane, where every pivot is above
-/// `dhgen::cholesky_pivot_floor` (the rule both paths share) and `x` is finite. The code has
-/// no branch: a SIMD pack's lanes each get the scalar path's answer, whatever the others'.
-pub fn solve(n: usize) -> (TokenStream, OpCount) {
+fn l(i: usize, j: usize) -> Ident {
+    format_ident!("l{}_{}", i, j)
+}
+
+fn inv(i: usize) -> Ident {
+    format_ident!("inv{}", i)
+}
+
+/// The factor `L` of `dm` (`l{i}_{j}`, with `inv{j} = 1 / l{j}_{j}`) and `ok` over the
+/// pivots; its operation count (the floor's two products included).
+fn factor(n: usize) -> (Vec<TokenStream>, OpCount) {
     // Per pivot j: j squares subtracted, one sqrt, one reciprocal; per entry below it, j
-    // products subtracted and one scaling; forward and back substitution: a row's products
-    // and one scaling each.
+    // products subtracted and one scaling.
     let mut ops = OpCount {
-        add: n + (n - 1),
+        add: n - 1,
         mul: 2,
         ..OpCount::default()
     };
@@ -25,14 +34,6 @@ pub fn solve(n: usize) -> (TokenStream, OpCount) {
         ops.sqrt += 1;
         ops.div += 1;
     }
-    for i in 0..n {
-        ops.mul += 2 * i + 2;
-        ops.add += 2 * i;
-    }
-    let l = |i: usize, j: usize| format_ident!("l{}_{}", i, j);
-    let inv = |i: usize| format_ident!("inv{}", i);
-    let y = |i: usize| format_ident!("y{}", i);
-    let x = |i: usize| format_ident!("x{}", i);
     let mut s = Vec::new();
     let mut largest = quote!(dm[(0, 0)]);
     for j in 1..n {
@@ -70,6 +71,21 @@ pub fn solve(n: usize) -> (TokenStream, OpCount) {
             s.push(quote!(let #lij: T = (#e) * #invj;));
         }
     }
+    (s, ops)
+}
+
+/// Unrolled `D x = rhs` (`dm`, `rhs` in scope) as `(x, ok)`, with its operation count (the
+/// `n` subtractions forming `rhs = τ − bias` included).
+pub fn solve(n: usize) -> (TokenStream, OpCount) {
+    let (mut s, mut ops) = factor(n);
+    ops.add += n;
+    // Forward and back substitution: a row's products and one scaling each.
+    for i in 0..n {
+        ops.mul += 2 * i + 2;
+        ops.add += 2 * i;
+    }
+    let y = |i: usize| format_ident!("y{}", i);
+    let x = |i: usize| format_ident!("x{}", i);
     for i in 0..n {
         let mut e = quote!(rhs[#i]);
         for k in 0..i {
@@ -100,4 +116,72 @@ pub fn solve(n: usize) -> (TokenStream, OpCount) {
         (na::SVector::<T, DOF>::from([#(#xs),*]), ok)
     };
     (solve, ops)
+}
+
+/// Unrolled `D⁻¹` (`dm` in scope) as `(inverse, ok)`, with its operation count: `M = L⁻¹`
+/// (lower triangular, its diagonal the pivots' reciprocals), then `D⁻¹ = Mᵀ M` on and above
+/// the diagonal, mirrored below.
+pub fn inverse(n: usize) -> (TokenStream, OpCount) {
+    let (mut s, mut ops) = factor(n);
+    let m = |i: usize, j: usize| format_ident!("m{}_{}", i, j);
+    // Row i of M below the diagonal: m_ij = −(Σ_{k=j}^{i−1} l_ik m_kj) · inv_i.
+    for i in 0..n {
+        for j in 0..i {
+            let mut e = quote!();
+            for k in j..i {
+                let (lik, mkj) = (l(i, k), m(k, j));
+                let term = if k == j {
+                    // m_jj is inv_j.
+                    let invj = inv(j);
+                    quote!(#lik * #invj)
+                } else {
+                    quote!(#lik * #mkj)
+                };
+                e = if k == j { term } else { quote!(#e + #term) };
+                ops.mul += 1;
+                ops.add += usize::from(k != j);
+            }
+            let (mij, invi) = (m(i, j), inv(i));
+            ops.mul += 1;
+            s.push(quote!(let #mij: T = -(#e) * #invi;));
+        }
+    }
+    // (D⁻¹)_ab = Σ_{k ≥ b} m_ka m_kb for a ≤ b.
+    let mut entries = Vec::new();
+    for a in 0..n {
+        for b in a..n {
+            let term = |k: usize| {
+                let mka = if k == a { inv(a) } else { m(k, a) };
+                let mkb = if k == b { inv(b) } else { m(k, b) };
+                quote!(#mka * #mkb)
+            };
+            let mut e = term(b);
+            ops.mul += 1;
+            for k in b + 1..n {
+                let t = term(k);
+                e = quote!(#e + #t);
+                ops.mul += 1;
+                ops.add += 1;
+            }
+            let name = format_ident!("d{}_{}", a, b);
+            s.push(quote!(let #name: T = #e;));
+            entries.push((a, b, name));
+        }
+    }
+    let stores = entries.iter().map(|(a, b, name)| {
+        if a == b {
+            quote!(out[(#a, #b)] = #name;)
+        } else {
+            quote!(out[(#a, #b)] = #name; out[(#b, #a)] = #name;)
+        }
+    });
+    let names = entries.iter().map(|(_, _, name)| name);
+    let inverse = quote! {
+        #(#s)*
+        let ok = ok #(& ::dhgen::Real::is_finite_lanes(#names))*;
+        let mut out = na::SMatrix::<T, DOF, DOF>::from_data(na::ArrayStorage([[T::zero(); DOF]; DOF]));
+        #(#stores)*
+        (out, ok)
+    };
+    (inverse, ops)
 }

@@ -201,8 +201,6 @@ pub fn op_counts_with(
 #[derive(Default)]
 struct Items {
     methods: Vec<TokenStream>,
-    /// Methods for real scalars only ([`Shape::scalar_only`]).
-    scalar_methods: Vec<TokenStream>,
     /// The `batch` submodule's functions.
     batch: Vec<TokenStream>,
     private: Vec<TokenStream>,
@@ -293,15 +291,7 @@ impl Items {
             .filter(|(_, i)| i.is_joint_vector())
             .map(|(n, _)| n)
             .collect();
-        let (methods, bound) = if q.shape.scalar_only() {
-            (
-                &mut self.scalar_methods,
-                quote!(::dhgen::Real + na::RealField),
-            )
-        } else {
-            (&mut self.methods, quote!(::dhgen::Real))
-        };
-        methods.push(quote! {
+        self.methods.push(quote! {
             #[doc = #doc]
             #aliases
             #[must_use]
@@ -322,7 +312,7 @@ impl Items {
             #[doc = #doc]
             #aliases
             #[must_use]
-            pub fn #name<T: #bound>(q: &impl ::dhgen::JointArray<T, DOF>, #params) -> #ty {
+            pub fn #name<T: ::dhgen::Real>(q: &impl ::dhgen::JointArray<T, DOF>, #params) -> #ty {
                 State::#preparer(q).#name(#(#inputs),*)
             }
         });
@@ -343,17 +333,26 @@ impl Items {
     }
 
     /// The `batch` function of a public quantity whose inputs are joint vectors and whose value
-    /// SIMD packs compute and [`::dhgen::batch::Unpack`] reads lane by lane (an `Option` from
-    /// the lane-wise form: `forward_dynamics` is `forward_dynamics_lanes`, masked).
+    /// [`::dhgen::batch::Unpack`] reads lane by lane (an `Option` from the lane-wise form:
+    /// `forward_dynamics` is `forward_dynamics_lanes`, masked).
     fn add_batch(&mut self, q: &Quantity, inputs: &[Ident]) {
         let t = quote!(T);
         let (name, ty, wrap) = match q.shape {
-            Shape::OptionVector | Shape::Terms => return,
-            _ if q.shape.scalar_only() => return,
+            Shape::OptionVector
+            | Shape::OptionSquare
+            | Shape::OptionSquareTriple
+            | Shape::Terms => {
+                return;
+            }
             _ if !q.inputs.iter().all(|i| i.is_joint_vector()) => return,
             Shape::VectorMask => (
                 q.name.trim_end_matches("_lanes"),
                 quote!(Option<na::SVector<T, DOF>>),
+                true,
+            ),
+            Shape::SquareMask => (
+                q.name.trim_end_matches("_lanes"),
+                quote!(Option<na::SMatrix<T, DOF, DOF>>),
                 true,
             ),
             shape => (q.name, shape.ty(&t), false),
@@ -514,7 +513,6 @@ pub fn generate_with(
     }
     let Items {
         methods,
-        scalar_methods,
         batch,
         private,
         preparers,
@@ -602,10 +600,6 @@ pub fn generate_with(
                 #(#methods)*
                 #(#private)*
                 #(#preparers)*
-            }
-
-            impl<T: ::dhgen::Real + na::RealField> State<T> {
-                #(#scalar_methods)*
             }
 
             #(#free)*

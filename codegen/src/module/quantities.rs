@@ -853,21 +853,42 @@ pub const QUANTITIES: &[Quantity] = &[
         arm: None,
     },
     Quantity {
+        name: "mass_matrix_inverse_lanes",
+        doc: "D(q)⁻¹ by the unrolled Cholesky factorisation of `forward_dynamics`, without \
+              branches, and the mask of the lanes where it is an answer (pivots above \
+              `dhgen::cholesky_pivot_floor`, finite entries); for a scalar, a `bool`.",
+        aliases: &[],
+        inputs: &[],
+        shape: Shape::SquareMask,
+        available: Availability::Derivatives,
+        public: true,
+        make: |cx| {
+            let (inverse, ops) = cholesky::inverse(cx.chain.dof());
+            Made::Composed {
+                body: quote! {
+                    let dm = self.mass_matrix();
+                    #inverse
+                },
+                reads: &["mass_matrix"],
+                ops: Some(("cholesky_inverse", ops)),
+            }
+        },
+        arm: None,
+    },
+    Quantity {
         name: "mass_matrix_inverse",
         doc: "D(q)⁻¹ by Cholesky factorisation; `None` where D(q) is singular to working \
-              precision (the pivot rule of `forward_dynamics`).",
+              precision (the pivot rule of `forward_dynamics`); for a SIMD pack, `None` unless \
+              every lane has an answer (`mass_matrix_inverse_lanes` gives them lane by lane).",
         aliases: &["computeMinverse", "inertia_inverse"],
         inputs: &[],
         shape: Shape::OptionSquare,
         available: Availability::Derivatives,
         public: true,
         make: |_| {
-            composed(
-                quote! {
-                    let inverse = ::dhgen::inertia_cholesky(self.mass_matrix())?.inverse();
-                    inverse.iter().all(|x| x.is_finite()).then_some(inverse)
-                },
-                &["mass_matrix"],
+            all_lanes(
+                quote!(self.mass_matrix_inverse_lanes()),
+                &["mass_matrix_inverse_lanes"],
             )
         },
         arm: None,
@@ -876,26 +897,26 @@ pub const QUANTITIES: &[Quantity] = &[
         name: "forward_dynamics_derivatives",
         doc: "The derivatives of forward dynamics, `(∂q̈/∂q, ∂q̈/∂q̇, ∂q̈/∂τ = D⁻¹)` at (q, q̇, τ), \
               from ∂q̈/∂x = −D⁻¹ ∂τ/∂x at q̈ = D⁻¹(τ − C q̇ − g − friction); `None` where D(q) \
-              is singular to working precision or q̈ is not finite, as for `forward_dynamics`.",
+              is singular to working precision or q̈ is not finite, as for `forward_dynamics` \
+              (for a SIMD pack, unless every lane has an answer).",
         aliases: &["computeABADerivatives", "aba_derivatives"],
         inputs: &[Input::Qd, Input::Tau],
         shape: Shape::OptionSquareTriple,
         available: Availability::Derivatives,
         public: true,
-        make: |_| {
+        make: |cx| {
+            let joints = 0..cx.chain.dof();
             composed(
                 quote! {
-                    // D and its inverse once: q̈ = D⁻¹(τ − h), then the derivatives at it.
-                    let inverse = self.mass_matrix_inverse()?;
+                    // D⁻¹ once: q̈ = D⁻¹(τ − h), then the derivatives at it.
+                    let (inverse, ok) = self.mass_matrix_inverse_lanes();
                     let qdd = inverse * (na::SVector::<T, DOF>::from(*tau) - self.bias(qd));
-                    if qdd.iter().any(|x| !x.is_finite()) {
-                        return None;
-                    }
+                    let ok = ok #(& ::dhgen::Real::is_finite_lanes(qdd[#joints]))*;
                     let (dq, dqd) = self.inverse_dynamics_derivatives(qd, &qdd);
-                    Some((-(inverse * dq), -(inverse * dqd), inverse))
+                    na::SimdBool::all(ok).then(|| (-(inverse * dq), -(inverse * dqd), inverse))
                 },
                 &[
-                    "mass_matrix_inverse",
+                    "mass_matrix_inverse_lanes",
                     "bias",
                     "inverse_dynamics_derivatives",
                 ],

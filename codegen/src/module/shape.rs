@@ -26,6 +26,8 @@ pub enum Shape {
     OptionVector,
     /// One value per joint and the mask of the lanes where it is valid.
     VectorMask,
+    /// An n×n matrix and the mask of the lanes where it is valid.
+    SquareMask,
     /// An n×n matrix, row by row.
     Square,
     /// Two n×n matrices, each row by row, the first then the second.
@@ -60,6 +62,9 @@ impl Shape {
             Shape::VectorMask => {
                 quote!((na::SVector<#t, DOF>, <#t as na::SimdValue>::SimdBool))
             }
+            Shape::SquareMask => {
+                quote!((na::SMatrix<#t, DOF, DOF>, <#t as na::SimdValue>::SimdBool))
+            }
             Shape::Square => quote!(na::SMatrix<#t, DOF, DOF>),
             Shape::SquarePair => quote!((na::SMatrix<#t, DOF, DOF>, na::SMatrix<#t, DOF, DOF>)),
             Shape::OptionSquare => quote!(Option<na::SMatrix<#t, DOF, DOF>>),
@@ -75,12 +80,6 @@ impl Shape {
             Shape::Regressor => quote!(na::SMatrix<#t, DOF, PARAMETERS>),
             Shape::BaseRegressor => quote!(na::SMatrix<#t, DOF, BASE_PARAMETERS>),
         }
-    }
-
-    /// Whether functions returning it exist for real scalars only (`T: RealField`), not for
-    /// SIMD packs: the optional matrices, made by nalgebra's Cholesky factorisation.
-    pub fn scalar_only(self) -> bool {
-        matches!(self, Shape::OptionSquare | Shape::OptionSquareTriple)
     }
 
     /// The initial value of a derived output, before its entries are stored (`None` for a
@@ -119,6 +118,7 @@ impl Shape {
             | Shape::PosePerJoint
             | Shape::OptionVector
             | Shape::VectorMask
+            | Shape::SquareMask
             | Shape::OptionSquare
             | Shape::OptionSquareTriple
             | Shape::Terms => {
@@ -182,6 +182,7 @@ impl Shape {
             | Shape::PosePerJoint
             | Shape::OptionVector
             | Shape::VectorMask
+            | Shape::SquareMask
             | Shape::OptionSquare
             | Shape::OptionSquareTriple
             | Shape::Terms => {
