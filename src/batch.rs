@@ -33,14 +33,24 @@ pub trait Lanes: Real + nalgebra::RealField {
     /// The pack: `SimdValue::LANES` values of `Self` at once (as wide an instruction as the
     /// target allows).
     type Pack: Real + SimdValue<Element = Self> + Leaf<Lane = Self>;
+    /// The pack whose lane `l` is `lane(l)`.
+    fn pack(lane: impl FnMut(usize) -> Self) -> Self::Pack;
 }
 
 impl Lanes for f64 {
     type Pack = WideF64x4;
+    #[inline]
+    fn pack(lane: impl FnMut(usize) -> f64) -> WideF64x4 {
+        WideF64x4::from(core::array::from_fn::<f64, 4, _>(lane))
+    }
 }
 
 impl Lanes for f32 {
     type Pack = WideF32x8;
+    #[inline]
+    fn pack(lane: impl FnMut(usize) -> f32) -> WideF32x8 {
+        WideF32x8::from(core::array::from_fn::<f32, 8, _>(lane))
+    }
 }
 
 /// A value computed on packs, read back one lane at a time.
@@ -229,13 +239,8 @@ where
     for (start, chunk) in (0..out.len()).step_by(lanes).zip(out.chunks_mut(lanes)) {
         let last = chunk.len() - 1;
         let packed: [[T::Pack; N]; K] = core::array::from_fn(|k| {
-            core::array::from_fn(|j| {
-                let mut p = T::Pack::splat(inputs[k][start + last][j]);
-                for l in 0..last {
-                    p.replace(l, inputs[k][start + l][j]);
-                }
-                p
-            })
+            let rows = &inputs[k][start..=start + last];
+            core::array::from_fn(|j| T::pack(|l| rows[l.min(last)][j]))
         });
         f(packed).unpack_into(chunk);
     }

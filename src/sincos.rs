@@ -127,7 +127,7 @@ where
 /// over 10⁷ arguments: the whole range uniformly, the joint range densely, the neighbours of
 /// multiples of π/2 (where the reduction cancels) and of odd multiples of π/4 (where the
 /// rounding of n switches), the range's edges, tiny, subnormal and signed-zero arguments.
-#[cfg(test)]
+#[cfg(all(test, feature = "std"))]
 mod tests {
     use super::{LIMIT, sincos};
 
@@ -209,38 +209,25 @@ mod tests {
         err / ulp
     }
 
-    struct Stream(u64);
-
-    impl Stream {
-        fn unit(&mut self) -> f64 {
-            self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-            let mut z = self.0;
-            z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-            z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-            z ^= z >> 31;
-            (z >> 11) as f64 / (1u64 << 53) as f64
-        }
-    }
-
     fn step(x: f64, ulps: i64) -> f64 {
         f64::from_bits((x.to_bits() as i64 + ulps) as u64)
     }
 
     #[test]
     fn sincos_within_one_ulp() {
-        let mut rng = Stream(0x51C0);
+        let mut rng = dhgen_model::random::Stream(0x51C0);
         let mut points: Vec<f64> = Vec::with_capacity(10_100_000);
         for _ in 0..4_000_000 {
-            points.push((rng.unit() * 2.0 - 1.0) * LIMIT);
+            points.push((rng.uniform(0.0, 1.0) * 2.0 - 1.0) * LIMIT);
         }
         for _ in 0..3_000_000 {
-            points.push((rng.unit() * 2.0 - 1.0) * 4.0 * core::f64::consts::PI);
+            points.push((rng.uniform(0.0, 1.0) * 2.0 - 1.0) * 4.0 * core::f64::consts::PI);
         }
         // Neighbours of k·π/4 (multiples of π/2: cancellation; odd multiples of π/4: the
         // rounding of n switches), for k up to the range's end.
         let kmax = (LIMIT / core::f64::consts::FRAC_PI_4) as u64;
         for _ in 0..400_000 {
-            let k = (rng.unit() * kmax as f64) as u64;
+            let k = (rng.uniform(0.0, 1.0) * kmax as f64) as u64;
             let centre = k as f64 * core::f64::consts::FRAC_PI_4;
             for d in -3..=3 {
                 points.push(step(centre, d));
