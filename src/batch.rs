@@ -97,7 +97,7 @@ impl Unpack for WideF64x4 {
     type Lane = f64;
     #[inline]
     fn lane(&self, i: usize) -> f64 {
-        self.0.as_array()[i]
+        self.lanes()[i]
     }
 }
 
@@ -105,7 +105,7 @@ impl Unpack for WideF32x8 {
     type Lane = f32;
     #[inline]
     fn lane(&self, i: usize) -> f32 {
-        self.0.as_array()[i]
+        self.lanes()[i]
     }
 }
 
@@ -186,16 +186,24 @@ where
 #[derive(Clone, Copy, Debug)]
 pub struct Masked<V, B>(pub V, pub B);
 
+impl<V, B: SimdBool> Masked<V, B> {
+    /// Whether lane `i` holds an answer.
+    #[inline]
+    fn holds(&self, i: usize) -> bool {
+        (self.1.bitmask() >> i) & 1 == 1
+    }
+}
+
 impl<V: Unpack, B: SimdBool> Unpack for Masked<V, B> {
     type Lane = Option<V::Lane>;
     #[inline]
     fn lane(&self, i: usize) -> Self::Lane {
-        ((self.1.bitmask() >> i) & 1 == 1).then(|| self.0.lane(i))
+        self.holds(i).then(|| self.0.lane(i))
     }
     #[inline]
     fn lane_into(&self, i: usize, out: &mut Self::Lane) {
         match out {
-            Some(o) if (self.1.bitmask() >> i) & 1 == 1 => self.0.lane_into(i, o),
+            Some(o) if self.holds(i) => self.0.lane_into(i, o),
             _ => *out = self.lane(i),
         }
     }

@@ -149,9 +149,9 @@ pub fn cholesky_pivot_floor<T: SimdRealField>(n: usize, max_diagonal: T) -> T {
 
 /// The Cholesky factor of an inertia matrix under the rule of [`cholesky_pivot_floor`]:
 /// `None` when the factorisation fails or a pivot is at or below the floor (singular to
-/// working precision). The one check behind `forward_dynamics`' and `mass_matrix_inverse`'s
-/// `None` on the runtime path and in generated modules (whose unrolled forward-dynamics
-/// solve applies the same floor pivot by pivot).
+/// working precision). The check behind `forward_dynamics`' and `mass_matrix_inverse`'s `None`
+/// on the runtime path; generated modules apply the same floor pivot by pivot in their
+/// unrolled, branch-free factorisation.
 ///
 /// ```
 /// use dhgen::nalgebra::Matrix2;

@@ -10650,7 +10650,6 @@ pub mod puma560 {
     /// configurations: evaluated on SIMD packs (`dhgen::batch`), each configuration's
     /// value equal to the scalar function's.
     pub mod batch {
-        #[allow(unused_imports)]
         use super::*;
         /// [`fk_matrix`](super::fk_matrix) for each configuration: `out[c]` from `q[c]`, four `f64` or eight `f32` configurations per call (`dhgen::batch`).
         ///

@@ -6,6 +6,7 @@
 //! code has no branch, so a SIMD pack's lanes each get the scalar path's answer, whatever the
 //! others'.
 
+use super::shape::Shape;
 use crate::graph::OpCount;
 use proc_macro2::{Ident, TokenStream};
 use quote::{format_ident, quote};
@@ -176,10 +177,11 @@ pub fn inverse(n: usize) -> (TokenStream, OpCount) {
         }
     });
     let names = entries.iter().map(|(_, _, name)| name);
+    let zeros = Shape::Square.init();
     let inverse = quote! {
         #(#s)*
         let ok = ok #(& ::dhgen::Real::is_finite_lanes(#names))*;
-        let mut out = na::SMatrix::<T, DOF, DOF>::from_data(na::ArrayStorage([[T::zero(); DOF]; DOF]));
+        let mut out: na::SMatrix<T, DOF, DOF> = #zeros;
         #(#stores)*
         (out, ok)
     };

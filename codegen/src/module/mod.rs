@@ -610,7 +610,6 @@ pub fn generate_with(
             pub mod batch {
                 // `na`, `DOF` and the sizes of the outputs (this module's functions shadow
                 // the scalar ones, which it calls as `super::name`).
-                #[allow(unused_imports)]
                 use super::*;
                 #(#batch)*
             }

@@ -425,19 +425,22 @@ pub const QUANTITIES: &[Quantity] = &[
                 1 => derived(recursive_graph.clone(), recursive.clone()),
                 2 => derived(spatial_graph.clone(), spatial.clone()),
                 _ => composed(
-                    quote! {
-                        let c = self.christoffel();
-                        let mut out = na::SMatrix::<T, DOF, DOF>::from_data(na::ArrayStorage([[T::zero(); DOF]; DOF]));
-                        for k in 0..DOF {
-                            for j in 0..DOF {
-                                let mut sum = T::zero();
-                                for i in 0..DOF {
-                                    sum += c[i][j][k] * qd[i];
+                    {
+                        let zeros = Shape::Square.init();
+                        quote! {
+                            let c = self.christoffel();
+                            let mut out: na::SMatrix<T, DOF, DOF> = #zeros;
+                            for k in 0..DOF {
+                                for j in 0..DOF {
+                                    let mut sum = T::zero();
+                                    for i in 0..DOF {
+                                        sum += c[i][j][k] * qd[i];
+                                    }
+                                    out[(k, j)] = sum;
                                 }
-                                out[(k, j)] = sum;
                             }
+                            out
                         }
-                        out
                     },
                     &["christoffel"],
                 ),
