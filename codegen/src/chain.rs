@@ -5,7 +5,8 @@
 //! inertia is constant, and consecutive frames differ by `T_k = P_k · Z_k(q_k)`. The
 //! algorithms below (composite inertia, gravity, Newton-Euler, J̇q̇) are written once for any
 //! [`Ring`]: polynomials (the normal form), expression nodes and dual numbers alike. They run
-//! in the root frame that `P_0` places in the world, with gravity rotated into it.
+//! in the root frame that `P_0` places in the world, with gravity rotated into it; the
+//! spatial ones (C, ∂τ/∂q) in any frame's coordinates ([`Coordinates`]).
 
 use dhgen_model::parameters::INERTIA_ENTRIES;
 use dhgen_model::{ChainRef, Frame, Inertial, JointKind, JointValue, Ring};
@@ -173,6 +174,15 @@ impl<R: Ring> MassMoments<R> {
             &cross(&self.h, a),
         );
         (f, nn)
+    }
+
+    /// The momentum `I v` of the body moving with the motion `(ω, u)` (`u` the velocity of
+    /// the origin): angular about the origin `Ī ω + h × u`, linear `m u + ω × h`.
+    pub fn momentum(&self, (w, u): &(V3<R>, V3<R>)) -> (V3<R>, V3<R>) {
+        (
+            add3(&mat_vec(&self.i, w), &cross(&self.h, u)),
+            add3(&scale3(&self.m, u), &cross(w, &self.h)),
+        )
     }
 
     /// Two bodies' moments about the same origin, combined.
@@ -484,21 +494,15 @@ impl<'c, R: Ring> RingChain<'c, R> {
         self.inward(forces)
     }
 
-    /// C(q, q̇) row by row, the Christoffel-consistent Coriolis matrix, by Echeandia and
-    /// Wensing's O(n²) algorithm (the runtime path's, written here over any ring): in root-frame
-    /// coordinates, each body's `B = ½(v×* I − I v× + (I v)×̄)`, held as the 3×3 `P = ½(İ_ωω −
-    /// n̂)` and the linear momentum `l`, summed tip to base with the inertias; then
-    /// `C_kj = S_k·(I^C_j Ṡ_j + B^C_j S_j)` for `k ≤ j` and `C_jk = Ṡ_k·I^C_j S_j +
-    /// S_k·B^C_jᵀ S_j` for `k < j`, with `Ṡ_j = v_j × S_j`. Every joint axis and body is
-    /// carried into the root frame once, so a pair (k, j) costs a few dot products: the
-    /// candidate without structure to exploit (general arms), where it costs no more
-    /// operations than the runtime path does.
-    pub fn coriolis_matrix(&self, qd: &[R]) -> Vec<Vec<R>> {
+    /// The terms of Echeandia and Wensing's Coriolis algorithm at `qd`, in the coordinates
+    /// `at`: every joint axis and body carried into that frame once, the velocities, the
+    /// axes' rates, and the composites (inertias, İ_ωω, momenta) summed tip to base.
+    fn root_terms(&self, at: Coordinates, qd: &[R]) -> RootTerms<R> {
         let n = self.dof();
         let z = || k::<R>(0.0);
-        let frames = self.joint_frames();
-        // Spatial axes (angular, linear at the root origin) in root coordinates.
-        let axes: Vec<(V3<R>, V3<R>)> = frames
+        let frames = self.joint_frames_in(at);
+        // Spatial axes (angular, linear at the origin).
+        let axes: Vec<Sv<R>> = frames
             .iter()
             .zip(&self.kinds)
             .map(|(f, kind)| {
@@ -515,33 +519,20 @@ impl<'c, R: Ring> RingChain<'c, R> {
             .zip(&frames)
             .map(|(b, f)| b.transformed(f))
             .collect();
-        // The momentum (angular about the origin, linear) of body b moving with (ω, u).
-        let momentum = |b: &MassMoments<R>, (w, u): &(V3<R>, V3<R>)| -> (V3<R>, V3<R>) {
-            (
-                add3(&mat_vec(&b.i, w), &cross(&b.h, u)),
-                add3(&scale3(&b.m, u), &cross(w, &b.h)),
-            )
-        };
-        let mut velocity: (V3<R>, V3<R>) = ([z(), z(), z()], [z(), z(), z()]);
+        let mut velocity: Sv<R> = ([z(), z(), z()], [z(), z(), z()]);
+        let mut velocities = Vec::with_capacity(n);
         let mut rates = Vec::with_capacity(n);
+        let mut momenta = Vec::with_capacity(n);
         let mut g: Vec<[[R; 3]; 3]> = Vec::with_capacity(n);
-        let mut na: Vec<V3<R>> = Vec::with_capacity(n);
-        let mut l: Vec<V3<R>> = Vec::with_capacity(n);
         for ((axis, b), rate) in axes.iter().zip(&bodies).zip(qd) {
             velocity = (
                 add3(&velocity.0, &scale3(rate, &axis.0)),
                 add3(&velocity.1, &scale3(rate, &axis.1)),
             );
             let (w, u) = &velocity;
-            // v × S (motion cross product).
-            rates.push((
-                cross(w, &axis.0),
-                add3(&cross(w, &axis.1), &cross(u, &axis.0)),
-            ));
-            let (ang, lin) = momentum(b, &velocity);
+            rates.push(motion_cross(&velocity, axis));
             // İ_ωω = ŵK − Kŵ + 2(h·u)1 − u hᵀ − h uᵀ is symmetric (Kŵ = −(ŵK)ᵀ for a
-            // symmetric K): six entries; P = ½(İ_ωω − n̂) is applied as P s = ½(İ_ωω s − n × s)
-            // and Pᵀ s = ½(İ_ωω s + n × s).
+            // symmetric K): six entries.
             let hu = dot(&b.h, u);
             // kw[c] = ŵ K_col c, so (ŵK)_rc = kw[c][r].
             let kw: [V3<R>; 3] = core::array::from_fn(|c| {
@@ -567,41 +558,174 @@ impl<'c, R: Ring> RingChain<'c, R> {
                     upper[a][b].clone().expect("the upper triangle is computed")
                 })
             }));
-            na.push(ang);
-            l.push(lin);
+            momenta.push(b.momentum(&velocity));
+            velocities.push(velocity.clone());
         }
         // Composites, tip to base: inertias, İ_ωω, angular and linear momenta.
-        let mut composite = bodies;
+        let mut composite = bodies.clone();
+        let mut momentum = momenta.clone();
         for i in (1..n).rev() {
             composite[i - 1] = composite[i - 1].plus(&composite[i]);
             let gi = g[i].clone();
             g[i - 1] = core::array::from_fn(|r| {
                 core::array::from_fn(|c| g[i - 1][r][c].clone() + gi[r][c].clone())
             });
-            let (ni, li) = (na[i].clone(), l[i].clone());
-            na[i - 1] = add3(&na[i - 1], &ni);
-            l[i - 1] = add3(&l[i - 1], &li);
+            let (ni, li) = momentum[i].clone();
+            momentum[i - 1] = (add3(&momentum[i - 1].0, &ni), add3(&momentum[i - 1].1, &li));
         }
-        let motion_dot = |m: &(V3<R>, V3<R>), f: &(V3<R>, V3<R>)| dot(&m.0, &f.0) + dot(&m.1, &f.1);
-        let mut c = vec![vec![z(); n]; n];
-        for j in 0..n {
-            let s = &axes[j];
-            let gs = mat_vec(&g[j], &s.0);
-            let ns = cross(&na[j], &s.0);
-            let half = |v: V3<R>| scale3(&k::<R>(0.5), &v);
-            let p_s = half(core::array::from_fn(|r| gs[r].clone() - ns[r].clone()));
-            let pt_s = half(add3(&gs, &ns));
-            let rate = momentum(&composite[j], &rates[j]);
-            let f1 = (add3(&rate.0, &p_s), add3(&rate.1, &cross(&s.0, &l[j])));
-            let f2 = momentum(&composite[j], s);
-            let f3 = (add3(&pt_s, &cross(&l[j], &s.1)), [z(), z(), z()]);
+        RootTerms {
+            axes,
+            velocities,
+            rates,
+            bodies,
+            momenta,
+            composite,
+            g,
+            momentum,
+        }
+    }
+
+    /// C(q, q̇) row by row, the Christoffel-consistent Coriolis matrix, by Echeandia and
+    /// Wensing's O(n²) algorithm (the runtime path's, written here over any ring): in root-frame
+    /// coordinates, each body's `B = ½(v×* I − I v× + (I v)×̄)`, held as the 3×3 `P = ½(İ_ωω −
+    /// n̂)` and the linear momentum `l`, summed tip to base with the inertias; then
+    /// `C_kj = S_k·(I^C_j Ṡ_j + B^C_j S_j)` for `k ≤ j` and `C_jk = Ṡ_k·I^C_j S_j +
+    /// S_k·B^C_jᵀ S_j` for `k < j`, with `Ṡ_j = v_j × S_j`. Every joint axis and body is
+    /// carried into the root frame once, so a pair (k, j) costs a few dot products: the
+    /// candidate without structure to exploit (general arms), where it costs no more
+    /// operations than the runtime path does.
+    pub fn coriolis_matrix(&self, qd: &[R]) -> Vec<Vec<R>> {
+        self.coriolis_matrix_in(Coordinates::Root, qd)
+    }
+
+    /// [`coriolis_matrix`](RingChain::coriolis_matrix) computed in the coordinates `at`.
+    pub fn coriolis_matrix_in(&self, at: Coordinates, qd: &[R]) -> Vec<Vec<R>> {
+        self.coriolis_from_terms(&self.root_terms(at, qd))
+    }
+
+    /// Every joint frame in the coordinates `at` (joint m moves about their z axis through
+    /// their origin).
+    pub fn joint_frames_in(&self, at: Coordinates) -> Vec<Frame<R>> {
+        match at {
+            Coordinates::Root => self.joint_frames(),
+            Coordinates::Joint(m) => {
+                let n = self.dof();
+                let mut out = vec![Frame::identity(); n];
+                for j in m + 1..n {
+                    out[j] = out[j - 1].compose(&self.t[j]);
+                }
+                for j in (0..m).rev() {
+                    out[j] = out[j + 1].compose(&self.t[j + 1].inverse());
+                }
+                out
+            }
+        }
+    }
+
+    /// Gravity in the coordinates `at`.
+    fn gravity_in(&self, at: Coordinates) -> V3<R> {
+        match at {
+            Coordinates::Root => self.gravity.clone(),
+            Coordinates::Joint(m) => self.gravity_in_frames().swap_remove(m),
+        }
+    }
+
+    fn coriolis_from_terms(&self, t: &RootTerms<R>) -> Vec<Vec<R>> {
+        let n = self.dof();
+        let mut c = vec![vec![k::<R>(0.0); n]; n];
+        for (j, s) in t.axes.iter().enumerate() {
+            let f1 = add_sv(
+                &t.composite[j].momentum(&t.rates[j]),
+                &t.coriolis_action(j, s, 1.0),
+            );
+            let f2 = t.composite[j].momentum(s);
+            let f3 = t.coriolis_transpose_action(j, s);
             c[j][j] = motion_dot(s, &f1);
-            for kk in 0..j {
-                c[kk][j] = motion_dot(&axes[kk], &f1);
-                c[j][kk] = motion_dot(&rates[kk], &f2) + motion_dot(&axes[kk], &f3);
+            for (kk, (sk, rk)) in t.axes.iter().zip(&t.rates).take(j).enumerate() {
+                c[kk][j] = motion_dot(sk, &f1);
+                c[j][kk] = motion_dot(rk, &f2) + dot(&sk.0, &f3);
             }
         }
         c
+    }
+
+    /// `∂τ/∂q` row by row (entry `[i][j]` = ∂τ_i/∂q_j, gravity included) and C(q, q̇), in
+    /// closed form from the root-frame terms C already has (the analytic derivatives of
+    /// Carpentier and Mansard, RSS 2018, in the form of Singh, Russell and Wensing, 2022).
+    ///
+    /// Moving joint j turns every body after it rigidly about the screw `S_j`; in root
+    /// coordinates, with `Ψ̇_j = Ṡ_j = v_j × S_j`, `Ψ̈_j = a_{j−1} × S_j + v_{j−1} × Ψ̇_j`,
+    /// each body's force `f_k = I_k a_k + v_k ×* I_k v_k` (k ≥ j) changes by `S_j ×* f_k +
+    /// I_k Ψ̈_j + 2 B_k Ψ̇_j`. Summed over the bodies a joint carries, and with `S_i·(S_j ×*
+    /// F) = −(S_j × S_i)·F` cancelling the turn of the axis itself:
+    /// - `∂τ_i/∂q_j = (I^C_i S_i)·Ψ̈_j + 2 (B^C_iᵀ S_i)·Ψ̇_j` for `i ≥ j`;
+    /// - `∂τ_i/∂q_j = S_i·(S_j ×* F_j + I^C_j Ψ̈_j + 2 B^C_j Ψ̇_j)` for `i < j`,
+    ///
+    /// `F_j` the force joint j transmits. O(n) 6-vectors and O(n²) dot products.
+    ///
+    /// Every output is a dot product of spatial vectors, the same in any coordinates: `at`
+    /// chooses them (the root frame, or a joint frame nearer the middle of the chain, where
+    /// fewer joint variables separate the bodies from the coordinates).
+    pub fn inverse_dynamics_derivatives(
+        &self,
+        at: Coordinates,
+        qd: &[R],
+        qdd: &[R],
+    ) -> [Vec<Vec<R>>; 2] {
+        let n = self.dof();
+        let z = || k::<R>(0.0);
+        let t = self.root_terms(at, qd);
+        let c = self.coriolis_from_terms(&t);
+        // Accelerations (the base's upwards instead of gravity), Ψ̈, and the bodies' forces.
+        let mut a: Sv<R> = ([z(), z(), z()], self.gravity_in(at).map(|x| -x));
+        let mut v: Sv<R> = ([z(), z(), z()], [z(), z(), z()]);
+        let mut psi_dd = Vec::with_capacity(n);
+        let mut forces = Vec::with_capacity(n);
+        for j in 0..n {
+            let s = &t.axes[j];
+            psi_dd.push(add_sv(&motion_cross(&a, s), &motion_cross(&v, &t.rates[j])));
+            a = add_sv(
+                &add_sv(&a, &scale_sv(&qdd[j], s)),
+                &scale_sv(&qd[j], &t.rates[j]),
+            );
+            v = t.velocities[j].clone();
+            forces.push(add_sv(
+                &t.bodies[j].momentum(&a),
+                &force_cross(&v, &t.momenta[j]),
+            ));
+        }
+        for j in (1..n).rev() {
+            let fj = forces[j].clone();
+            forces[j - 1] = add_sv(&forces[j - 1], &fj);
+        }
+        // Per joint i: I^C_i S_i and the angular part of B^C_iᵀ S_i (what C has too).
+        let (f2, f3): (Vec<Sv<R>>, Vec<V3<R>>) = (0..n)
+            .map(|i| {
+                let si = &t.axes[i];
+                (
+                    t.composite[i].momentum(si),
+                    t.coriolis_transpose_action(i, si),
+                )
+            })
+            .unzip();
+        let mut dq = vec![vec![z(); n]; n];
+        for j in 0..n {
+            let s = &t.axes[j];
+            let (pd, pdd) = (&t.rates[j], &psi_dd[j]);
+            // i ≥ j: (I^C_i S_i)·Ψ̈_j + 2 (B^C_iᵀ S_i)·Ψ̇_j.
+            for (i, row) in dq.iter_mut().enumerate().skip(j) {
+                row[j] = motion_dot(pdd, &f2[i]) + k::<R>(2.0) * dot(&pd.0, &f3[i]);
+            }
+            // i < j: S_i·y_j.
+            let y = add_sv(
+                &add_sv(&force_cross(s, &forces[j]), &t.composite[j].momentum(pdd)),
+                &t.coriolis_action(j, pd, 2.0),
+            );
+            for (i, row) in dq.iter_mut().enumerate().take(j) {
+                row[j] = motion_dot(&t.axes[i], &y);
+            }
+        }
+        [dq, c]
     }
 
     /// The acceleration the outward pass starts from: the base accelerates upwards instead of
@@ -720,4 +844,86 @@ fn mat_vec<R: Ring>(m: &[[R; 3]; 3], v: &V3<R>) -> V3<R> {
             + m[i][1].clone() * v[1].clone()
             + m[i][2].clone() * v[2].clone()
     })
+}
+
+/// The coordinates a spatial algorithm works in.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Coordinates {
+    /// The root frame (what `P_0` places in the world).
+    Root,
+    /// Joint frame m, moving with link m.
+    Joint(usize),
+}
+
+/// A spatial vector in one frame's coordinates: `(angular, linear at the origin)` for a
+/// motion, `(moment about the origin, force)` for a force.
+type Sv<R> = (V3<R>, V3<R>);
+
+fn add_sv<R: Ring>(a: &Sv<R>, b: &Sv<R>) -> Sv<R> {
+    (add3(&a.0, &b.0), add3(&a.1, &b.1))
+}
+
+fn scale_sv<R: Ring>(s: &R, a: &Sv<R>) -> Sv<R> {
+    (scale3(s, &a.0), scale3(s, &a.1))
+}
+
+/// `m × x` of motions: `(ω × a, ω × b + u × a)`.
+fn motion_cross<R: Ring>((w, u): &Sv<R>, (a, b): &Sv<R>) -> Sv<R> {
+    (cross(w, a), add3(&cross(w, b), &cross(u, a)))
+}
+
+/// `m ×* f` of a motion on a force: `(ω × n + u × f, ω × f)`.
+fn force_cross<R: Ring>((w, u): &Sv<R>, (nn, f): &Sv<R>) -> Sv<R> {
+    (add3(&cross(w, nn), &cross(u, f)), cross(w, f))
+}
+
+/// A motion applied to a force: `ω·n + u·f`.
+fn motion_dot<R: Ring>(m: &Sv<R>, f: &Sv<R>) -> R {
+    dot(&m.0, &f.0) + dot(&m.1, &f.1)
+}
+
+/// What [`RingChain::coriolis_matrix`] and [`RingChain::inverse_dynamics_derivatives`] share,
+/// per joint j, all in one frame's coordinates ([`Coordinates`]).
+struct RootTerms<R> {
+    /// `S_j`.
+    axes: Vec<Sv<R>>,
+    /// `v_j`, the velocity of body j.
+    velocities: Vec<Sv<R>>,
+    /// `Ṡ_j = v_j × S_j`.
+    rates: Vec<Sv<R>>,
+    /// Body j.
+    bodies: Vec<MassMoments<R>>,
+    /// `I_j v_j`.
+    momenta: Vec<Sv<R>>,
+    /// `I^C_j`, bodies j..n.
+    composite: Vec<MassMoments<R>>,
+    /// The composite İ_ωω (symmetric).
+    g: Vec<[[R; 3]; 3]>,
+    /// The composite momentum `Σ_{k ≥ j} I_k v_k`.
+    momentum: Vec<Sv<R>>,
+}
+
+impl<R: Ring> RootTerms<R> {
+    /// `x B^C_j u` with `B = [[P, 0], [−l×, 0]]`, `P = ½(İ_ωω − n̂)`, `(n, l)` the composite
+    /// momentum: `(½x(İ_ωω ω − n × ω), x ω × l)`.
+    fn coriolis_action(&self, j: usize, (w, _): &Sv<R>, x: f64) -> Sv<R> {
+        let (half, whole) = (k::<R>(0.5 * x), k::<R>(x));
+        let gw = mat_vec(&self.g[j], w);
+        let nw = cross(&self.momentum[j].0, w);
+        (
+            core::array::from_fn(|r| half.clone() * (gw[r].clone() - nw[r].clone())),
+            scale3(&whole, &cross(w, &self.momentum[j].1)),
+        )
+    }
+
+    /// The angular part of `B^C_jᵀ s` (its linear part is zero): `½(İ_ωω ω + n × ω) + l × u`.
+    fn coriolis_transpose_action(&self, j: usize, (w, u): &Sv<R>) -> V3<R> {
+        let half = k::<R>(0.5);
+        let gw = mat_vec(&self.g[j], w);
+        let nw = cross(&self.momentum[j].0, w);
+        add3(
+            &core::array::from_fn(|r| half.clone() * (gw[r].clone() + nw[r].clone())),
+            &cross(&self.momentum[j].1, u),
+        )
+    }
 }

@@ -6,7 +6,7 @@
 
 use dhgen::Robot;
 use dhgen::model::random::{ArmStyle, random_arm};
-use dhgen_codegen::chain::{Numbers, RingChain};
+use dhgen_codegen::chain::{Coordinates, Numbers, RingChain};
 
 /// A named arm and a state `(q, q̇, q̈)`.
 type Case = (String, Robot, Vec<f64>, Vec<f64>, Vec<f64>);
@@ -47,16 +47,52 @@ fn matches(what: &str, got: &[Vec<f64>], want: &dhgen::nalgebra::DMatrix<f64>) -
     worst
 }
 
+/// The coordinates the spatial candidates may be built in: the root frame, the first, a
+/// middle and the last joint frame.
+fn coordinates(n: usize) -> [Coordinates; 4] {
+    [
+        Coordinates::Root,
+        Coordinates::Joint(0),
+        Coordinates::Joint(n / 2),
+        Coordinates::Joint(n - 1),
+    ]
+}
+
 #[test]
 fn coriolis_recursion_equals_the_runtime() {
     let mut worst = 0.0f64;
     for (name, robot, q, qd, _) in arms() {
         let chain = robot.chain();
-        let c = RingChain::new(chain, &Numbers(chain, &q)).coriolis_matrix(&qd);
         let want = robot.coriolis(&q[..], &qd[..]);
-        worst = worst.max(matches(&format!("{name}: C"), &c, &want));
+        for at in coordinates(robot.dof()) {
+            let c = RingChain::new(chain, &Numbers(chain, &q)).coriolis_matrix_in(at, &qd);
+            worst = worst.max(matches(&format!("{name} in {at:?}: C"), &c, &want));
+        }
     }
     println!("Echeandia–Wensing over the ring = runtime C to {worst:.1e}");
+}
+
+/// The closed-form ∂τ/∂q (Carpentier–Mansard in root coordinates) against the runtime's
+/// forward-mode tangents of Newton–Euler, a different algorithm; and the C it returns with it.
+#[test]
+fn inverse_dynamics_derivatives_in_closed_form_equal_the_runtime() {
+    let mut worst = 0.0f64;
+    for (name, robot, q, qd, qdd) in arms() {
+        let chain = robot.chain();
+        let (want_dq, _) = robot.inverse_dynamics_derivatives(&q[..], &qd[..], &qdd[..]);
+        let want_c = robot.coriolis(&q[..], &qd[..]);
+        for at in coordinates(robot.dof()) {
+            let [dq, c] = RingChain::new(chain, &Numbers(chain, &q))
+                .inverse_dynamics_derivatives(at, &qd, &qdd);
+            worst = worst.max(matches(
+                &format!("{name} in {at:?}: dtau/dq"),
+                &dq,
+                &want_dq,
+            ));
+            worst = worst.max(matches(&format!("{name} in {at:?}: C"), &c, &want_c));
+        }
+    }
+    println!("closed-form dtau/dq over the ring = runtime tangents to {worst:.1e}");
 }
 
 #[test]

@@ -88,16 +88,21 @@ pub fn coriolis_from(n: usize, graph: &SharedGraph, c: &[E]) -> Vec<E> {
 /// ([`RingChain::coriolis_matrix`](crate::chain::RingChain::coriolis_matrix), the runtime
 /// path's algorithm): the candidate for arms without structure.
 pub fn coriolis_spatial(chain: ChainRef<'_>) -> (SharedGraph, Vec<E>) {
-    let graph = SharedGraph::default();
-    let qd: Vec<E> = (0..chain.dof())
-        .map(|i| E::sym(&graph, crate::graph::Sym::Qd(i)))
+    let candidates = super::derivatives::coordinates(chain)
+        .map(|at| {
+            let graph = SharedGraph::default();
+            let qd: Vec<E> = (0..chain.dof())
+                .map(|i| E::sym(&graph, crate::graph::Sym::Qd(i)))
+                .collect();
+            let c = super::graph_chain(chain, &graph)
+                .coriolis_matrix_in(at, &qd)
+                .into_iter()
+                .flatten()
+                .collect();
+            (graph, c)
+        })
         .collect();
-    let c = super::graph_chain(chain, &graph)
-        .coriolis_matrix(&qd)
-        .into_iter()
-        .flatten()
-        .collect();
-    (graph, c)
+    super::cheapest(candidates)
 }
 
 /// `C(q, q̇)` row-major in O(n²) operations, from the identity

@@ -1,10 +1,11 @@
 //! Derivatives of the dynamics: ∂τ/∂q and ∂τ/∂q̇ (what MPC and trajectory optimisation
 //! linearise), Ḋ(q, q̇) and Cᵀ(q, q̇) q̇ (what a momentum observer needs every cycle).
 //!
-//! All by forward-mode dual numbers over the recursions, never by expanding a polynomial:
+//! All by recursions, never by expanding a polynomial:
 //! - ∂τ/∂q, ∂τ/∂q̇: the Newton-Euler recursion on duals with 2n lanes (n seeded by the joint
-//!   angles, n by the joint velocities), or n lanes for ∂τ/∂q and 2C + diag(viscous) for
-//!   ∂τ/∂q̇, whichever is cheaper, O(n²) operations;
+//!   angles, n by the joint velocities), or 2C + diag(viscous) for ∂τ/∂q̇ with ∂τ/∂q by n
+//!   lanes of duals or in closed form (Carpentier and Mansard's analytic derivatives),
+//!   whichever is cheapest, O(n²) operations;
 //! - Ḋ: one lane along q̇ over the composite-rigid-body recursion, or C + Cᵀ from the O(n²)
 //!   Coriolis recursion, whichever is cheaper;
 //! - Cᵀq̇ from that same C.
@@ -13,7 +14,7 @@
 //! its derivative is taken as 0 everywhere (the subgradient at 0 that is also the derivative
 //! at every other velocity), so these functions differentiate the smooth part of τ.
 
-use crate::chain::RingChain;
+use crate::chain::{Coordinates, RingChain};
 use crate::dual::{Dual, DualSymbols, RateSymbols};
 use crate::graph::{E, SharedGraph, Sym};
 use dhgen_model::ChainRef;
@@ -46,11 +47,13 @@ fn dual_rnea(chain: ChainRef<'_>, graph: &SharedGraph, lanes: usize) -> Vec<Dual
 }
 
 /// `[∂τ/∂q row-major, ∂τ/∂q̇ row-major]`: `2n²` scalars, entry `(k, m)` = ∂τ_k/∂x_m; the
-/// cheapest of two kinds of candidate:
+/// cheapest of three kinds of candidate:
 /// - the Newton–Euler recursion on duals with 2n lanes (q and q̇ seeded), in its own graph;
-/// - for each derivation of C in `coriolis`: n lanes (q only) in C's graph, and
-///   ∂τ/∂q̇ = 2C + diag(viscous) (for the Christoffel-consistent C, ∂(C q̇)/∂q̇ = 2C), which
-///   shares what C already computes.
+/// - for each derivation of C in `coriolis`, with ∂τ/∂q̇ = 2C + diag(viscous) (for the
+///   Christoffel-consistent C, ∂(C q̇)/∂q̇ = 2C), which shares what C already computes, and
+///   ∂τ/∂q in C's graph either by n lanes (q only) of duals over Newton–Euler or in closed
+///   form ([`RingChain::inverse_dynamics_derivatives`], Carpentier and Mansard's analytic
+///   derivatives in root coordinates, which share Echeandia and Wensing's terms with C).
 pub fn inverse_dynamics_derivatives(
     chain: ChainRef<'_>,
     coriolis: &[(SharedGraph, Vec<E>)],
@@ -75,18 +78,34 @@ pub fn inverse_dynamics_derivatives(
         }
         (graph, out)
     };
+    let twice_c = |c: &[E], out: &mut Vec<E>| {
+        for k in 0..n {
+            out.extend((0..n).map(|m| E::K(2.0) * c[k * n + m].clone() + viscous(k, m)));
+        }
+    };
     let mut candidates = vec![both_lanes];
-    candidates.extend(coriolis.iter().map(|(graph, c)| {
+    for (graph, c) in coriolis {
         let tau = dual_rnea(chain, graph, n);
         let mut out = Vec::with_capacity(2 * n * n);
         for t in &tau {
             out.extend((0..n).map(|m| t.partial(m)));
         }
-        for k in 0..n {
-            out.extend((0..n).map(|m| E::K(2.0) * c[k * n + m].clone() + viscous(k, m)));
-        }
-        (graph.clone(), out)
-    }));
+        twice_c(c, &mut out);
+        candidates.push((graph.clone(), out));
+    }
+    // The closed form with the C of the same terms, in each coordinate frame.
+    for at in coordinates(chain) {
+        let graph = SharedGraph::default();
+        let sym = |s: fn(usize) -> Sym| (0..n).map(|i| E::sym(&graph, s(i))).collect::<Vec<E>>();
+        let [dq, c] = super::graph_chain(chain, &graph).inverse_dynamics_derivatives(
+            at,
+            &sym(Sym::Qd),
+            &sym(Sym::Qdd),
+        );
+        let mut out: Vec<E> = dq.into_iter().flatten().collect();
+        twice_c(&c.concat(), &mut out);
+        candidates.push((graph, out));
+    }
     super::cheapest(candidates)
 }
 
@@ -140,4 +159,9 @@ pub fn coriolis_transpose_qd(
         })
         .collect();
     super::cheapest(candidates)
+}
+
+/// The coordinates the spatial candidates are built in: the root frame and every joint frame.
+pub fn coordinates(chain: ChainRef<'_>) -> impl Iterator<Item = Coordinates> {
+    std::iter::once(Coordinates::Root).chain((0..chain.dof()).map(Coordinates::Joint))
 }
