@@ -16,12 +16,12 @@
 
 use std::hint::black_box;
 
-dhgen::robot!(mod puma560 = "robots/puma560.toml", regressor);
-dhgen::robot!(mod panda = "robots/panda.toml", regressor);
+dhgen::robot!(mod puma560 = "robots/puma560.toml", regressor, derivatives);
+dhgen::robot!(mod panda = "robots/panda.toml", regressor, derivatives);
 // Seeded random general arms (benches/arms/, `dhgen random --style general --seed 1`): the
 // sizes where the generated code has the least structure to exploit.
-dhgen::robot!(mod general_8 = "benches/arms/general_8.toml", regressor);
-dhgen::robot!(mod general_12 = "benches/arms/general_12.toml", regressor);
+dhgen::robot!(mod general_8 = "benches/arms/general_8.toml", regressor, derivatives);
+dhgen::robot!(mod general_12 = "benches/arms/general_12.toml", regressor, derivatives);
 
 const CALLS: usize = 1000;
 
@@ -180,6 +180,18 @@ macro_rules! run {
                 ("regressor", true) => $m::regressor(q, qd, qd)[(1, 12)],
                 ("regressor", false) => robot.regressor(q, qd, qd)[(1, 12)],
                 ("base_regressor", true) => $m::base_regressor(q, qd, qd)[(1, 3)],
+                ("inverse_dynamics_derivatives", true) => {
+                    $m::inverse_dynamics_derivatives(q, qd, qd).0[(1, 0)]
+                }
+                ("inverse_dynamics_derivatives", false) => {
+                    robot.inverse_dynamics_derivatives(q, qd, qd).0[(1, 0)]
+                }
+                ("forward_dynamics_derivatives", true) => {
+                    $m::forward_dynamics_derivatives(q, qd, qd).map_or(0.0, |x| x.0[(1, 0)])
+                }
+                ("forward_dynamics_derivatives", false) => robot
+                    .forward_dynamics_derivatives(q, qd, qd)
+                    .map_or(0.0, |x| x.0[(1, 0)]),
                 (other, _) => {
                     eprintln!("unknown quantity {other}");
                     std::process::exit(2);
