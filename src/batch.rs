@@ -67,8 +67,16 @@ pub trait Unpack {
     /// The first `out.len()` lanes written over `out`, lane `l` to `out[l]`.
     #[inline]
     fn unpack_into(&self, out: &mut [Self::Lane]) {
+        self.unpack_at(out, |o: &mut Self::Lane| o);
+    }
+    /// The first `out.len()` lanes written over the parts `at(&mut out[l])` of `out`: how a
+    /// value inside a larger one (an entry of an array) is unpacked pack by pack, each pack
+    /// read once and its lanes spread over the outputs, where lane-by-lane unpacking would
+    /// read every pack once per lane.
+    #[inline]
+    fn unpack_at<L>(&self, out: &mut [L], at: impl Fn(&mut L) -> &mut Self::Lane) {
         for (l, o) in out.iter_mut().enumerate() {
-            self.lane_into(l, o);
+            self.lane_into(l, at(o));
         }
     }
 }
@@ -99,6 +107,12 @@ impl Unpack for WideF64x4 {
     fn lane(&self, i: usize) -> f64 {
         self.lanes()[i]
     }
+    #[inline]
+    fn unpack_at<L>(&self, out: &mut [L], at: impl Fn(&mut L) -> &mut f64) {
+        for (o, &v) in out.iter_mut().zip(self.lanes()) {
+            *at(o) = v;
+        }
+    }
 }
 
 impl Unpack for WideF32x8 {
@@ -106,6 +120,12 @@ impl Unpack for WideF32x8 {
     #[inline]
     fn lane(&self, i: usize) -> f32 {
         self.lanes()[i]
+    }
+    #[inline]
+    fn unpack_at<L>(&self, out: &mut [L], at: impl Fn(&mut L) -> &mut f32) {
+        for (o, &v) in out.iter_mut().zip(self.lanes()) {
+            *at(o) = v;
+        }
     }
 }
 
@@ -128,11 +148,9 @@ where
     }
     /// Entry by entry, each pack read once and its lanes spread over the outputs.
     #[inline]
-    fn unpack_into(&self, out: &mut [Self::Lane]) {
+    fn unpack_at<L>(&self, out: &mut [L], at: impl Fn(&mut L) -> &mut Self::Lane) {
         for (k, x) in self.as_slice().iter().enumerate() {
-            for (o, &v) in out.iter_mut().zip(x.lanes()) {
-                o.as_mut_slice()[k] = v;
-            }
+            x.unpack_at(out, |o: &mut L| &mut at(o).as_mut_slice()[k]);
         }
     }
 }
@@ -149,9 +167,22 @@ impl<X: Unpack, const N: usize> Unpack for [X; N] {
             x.lane_into(i, o);
         }
     }
+    /// Entry by entry, as for matrices.
+    #[inline]
+    fn unpack_at<L>(&self, out: &mut [L], at: impl Fn(&mut L) -> &mut Self::Lane) {
+        for (k, x) in self.iter().enumerate() {
+            x.unpack_at(out, |o: &mut L| &mut at(o)[k]);
+        }
+    }
 }
 
-impl<A: Unpack, B: Unpack> Unpack for (A, B) {
+impl<A: Unpack, B: Unpack> Unpack for (A, B)
+where
+    // The lanes are plain values (numbers, matrices); the bound lets a closure project a
+    // pair's half for every lifetime.
+    A::Lane: 'static,
+    B::Lane: 'static,
+{
     type Lane = (A::Lane, B::Lane);
     #[inline]
     fn lane(&self, i: usize) -> Self::Lane {
@@ -161,6 +192,11 @@ impl<A: Unpack, B: Unpack> Unpack for (A, B) {
     fn lane_into(&self, i: usize, out: &mut Self::Lane) {
         self.0.lane_into(i, &mut out.0);
         self.1.lane_into(i, &mut out.1);
+    }
+    #[inline]
+    fn unpack_at<L>(&self, out: &mut [L], at: impl Fn(&mut L) -> &mut Self::Lane) {
+        self.0.unpack_at(out, |o: &mut L| &mut at(o).0);
+        self.1.unpack_at(out, |o: &mut L| &mut at(o).1);
     }
 }
 
@@ -244,13 +280,24 @@ where
         });
     }
     let lanes = <T::Pack as SimdValue>::LANES;
-    for (start, chunk) in (0..out.len()).step_by(lanes).zip(out.chunks_mut(lanes)) {
-        let last = chunk.len() - 1;
+    // Full packs: every slice length a compile-time constant, so packing and unpacking
+    // compile to plain loads and stores.
+    let full = out.len() - out.len() % lanes;
+    let (head, tail) = out.split_at_mut(full);
+    for (start, chunk) in (0..full).step_by(lanes).zip(head.chunks_exact_mut(lanes)) {
         let packed: [[T::Pack; N]; K] = core::array::from_fn(|k| {
-            let rows = &inputs[k][start..=start + last];
-            core::array::from_fn(|j| T::pack(|l| rows[l.min(last)][j]))
+            let rows = &inputs[k][start..start + lanes];
+            core::array::from_fn(|j| T::pack(|l| rows[l][j]))
         });
         f(packed).unpack_into(chunk);
+    }
+    // The last, partial pack: its spare lanes repeat its last configuration.
+    if let Some(last) = tail.len().checked_sub(1) {
+        let packed: [[T::Pack; N]; K] = core::array::from_fn(|k| {
+            let rows = &inputs[k][full..];
+            core::array::from_fn(|j| T::pack(|l| rows[l.min(last)][j]))
+        });
+        f(packed).unpack_into(tail);
     }
     Ok(())
 }
