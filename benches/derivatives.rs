@@ -6,10 +6,11 @@
 //! `cargo bench --bench derivatives`
 //!
 //! Pinocchio 4.1.0 on the same models and machine (`scripts/pinocchio_bench.sh`: its templates
-//! compiled with `-O3 -march=native`, medians): PUMA 560 `rnea` 1.11 µs,
-//! `computeRNEADerivatives` 4.49 µs, `computeABADerivatives` 5.34 µs; Panda 1.30, 5.26 and
-//! 6.89 µs. Generated here, the same session: PUMA 560 τ 0.15 µs, ∂τ 0.93 µs, ∂q̈ 2.20 µs;
-//! Panda 0.30, 2.89 and 5.01 µs.
+//! compiled with `-O3 -march=native`, medians of three rounds alternating with this benchmark,
+//! 2026-11-30): PUMA 560 `rnea` 0.93–1.10 µs, `computeRNEADerivatives` 3.61–4.62 µs,
+//! `computeABADerivatives` 4.62–5.71 µs; Panda 1.13–1.24, 4.58–5.19 and 6.36–6.69 µs.
+//! Generated here, the same rounds: PUMA 560 ∂τ 0.76–0.95 µs, ∂q̈ 1.27–1.81 µs; Panda
+//! 1.64–2.26 and 2.33–3.52 µs (τ alone: 0.14 and 0.22 µs).
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use dhgen::Robot;
