@@ -88,7 +88,7 @@ pub fn coriolis_from(n: usize, graph: &SharedGraph, c: &[E]) -> Vec<E> {
 /// ([`RingChain::coriolis_matrix`](crate::chain::RingChain::coriolis_matrix), the runtime
 /// path's algorithm): the candidate for arms without structure.
 pub fn coriolis_spatial(chain: ChainRef<'_>) -> (SharedGraph, Vec<E>) {
-    let candidates = super::derivatives::coordinates(chain)
+    let candidates = super::coordinates(chain)
         .map(|at| {
             let graph = SharedGraph::default();
             let qd: Vec<E> = (0..chain.dof())

@@ -14,7 +14,7 @@
 //! its derivative is taken as 0 everywhere (the subgradient at 0 that is also the derivative
 //! at every other velocity), so these functions differentiate the smooth part of τ.
 
-use crate::chain::{Coordinates, RingChain};
+use crate::chain::RingChain;
 use crate::dual::{Dual, DualSymbols, RateSymbols};
 use crate::graph::{E, SharedGraph, Sym};
 use dhgen_model::ChainRef;
@@ -49,11 +49,12 @@ fn dual_rnea(chain: ChainRef<'_>, graph: &SharedGraph, lanes: usize) -> Vec<Dual
 /// `[∂τ/∂q row-major, ∂τ/∂q̇ row-major]`: `2n²` scalars, entry `(k, m)` = ∂τ_k/∂x_m; the
 /// cheapest of three kinds of candidate:
 /// - the Newton–Euler recursion on duals with 2n lanes (q and q̇ seeded), in its own graph;
-/// - for each derivation of C in `coriolis`, with ∂τ/∂q̇ = 2C + diag(viscous) (for the
-///   Christoffel-consistent C, ∂(C q̇)/∂q̇ = 2C), which shares what C already computes, and
-///   ∂τ/∂q in C's graph either by n lanes (q only) of duals over Newton–Euler or in closed
-///   form ([`RingChain::inverse_dynamics_derivatives`], Carpentier and Mansard's analytic
-///   derivatives in root coordinates, which share Echeandia and Wensing's terms with C).
+/// - for each derivation of C in `coriolis`, in C's graph: ∂τ/∂q̇ = 2C + diag(viscous) (for
+///   the Christoffel-consistent C, ∂(C q̇)/∂q̇ = 2C), which shares what C already computes,
+///   and ∂τ/∂q by n lanes (q only) of duals over Newton–Euler;
+/// - for each frame's coordinates ([`coordinates`](super::coordinates)), in its own graph:
+///   ∂τ/∂q in closed form ([`RingChain::inverse_dynamics_derivatives`], Carpentier and
+///   Mansard's analytic derivatives) with the C of Echeandia and Wensing's terms it shares.
 pub fn inverse_dynamics_derivatives(
     chain: ChainRef<'_>,
     coriolis: &[(SharedGraph, Vec<E>)],
@@ -94,7 +95,7 @@ pub fn inverse_dynamics_derivatives(
         candidates.push((graph.clone(), out));
     }
     // The closed form with the C of the same terms, in each coordinate frame.
-    for at in coordinates(chain) {
+    for at in super::coordinates(chain) {
         let graph = SharedGraph::default();
         let sym = |s: fn(usize) -> Sym| (0..n).map(|i| E::sym(&graph, s(i))).collect::<Vec<E>>();
         let [dq, c] = super::graph_chain(chain, &graph).inverse_dynamics_derivatives(
@@ -159,9 +160,4 @@ pub fn coriolis_transpose_qd(
         })
         .collect();
     super::cheapest(candidates)
-}
-
-/// The coordinates the spatial candidates are built in: the root frame and every joint frame.
-pub fn coordinates(chain: ChainRef<'_>) -> impl Iterator<Item = Coordinates> {
-    std::iter::once(Coordinates::Root).chain((0..chain.dof()).map(Coordinates::Joint))
 }

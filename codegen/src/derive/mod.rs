@@ -15,7 +15,7 @@ pub mod payload;
 pub mod regressor;
 pub mod singularity;
 
-use crate::chain::{JointSymbols, RingChain};
+use crate::chain::{Coordinates, JointSymbols, RingChain};
 use crate::graph::{E, SharedGraph, Sym, count};
 use crate::poly::{Basis, Budget, P, Poly, Var};
 use dhgen_model::{ChainRef, JointKind};
@@ -196,6 +196,14 @@ pub fn graph_chain<'c>(chain: ChainRef<'c>, graph: &SharedGraph) -> RingChain<'c
 /// The chain in normal-form arithmetic, drawing on `budget`.
 pub fn poly_chain<'c>(chain: ChainRef<'c>, budget: &Rc<Budget>) -> RingChain<'c, P> {
     RingChain::new(chain, &PolySymbols(vars(chain), budget.clone()))
+}
+
+/// The coordinates the spatial candidates (C, ∂τ/∂q) are built in: the root frame and every
+/// joint frame. Their outputs are dot products of spatial vectors, the same in any frame; how
+/// many operations they cost depends on how many joint variables lie between the bodies and
+/// the frame, so each is tried.
+pub fn coordinates(chain: ChainRef<'_>) -> impl Iterator<Item = Coordinates> {
+    std::iter::once(Coordinates::Root).chain((0..chain.dof()).map(Coordinates::Joint))
 }
 
 /// Of several candidate derivations of the same outputs, each in its own graph, the one
