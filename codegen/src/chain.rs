@@ -497,7 +497,7 @@ impl<'c, R: Ring> RingChain<'c, R> {
     /// The terms of Echeandia and Wensing's Coriolis algorithm at `qd`, in the coordinates
     /// `at`: every joint axis and body carried into that frame once, the velocities, the
     /// axes' rates, and the composites (inertias, İ_ωω, momenta) summed tip to base.
-    fn root_terms(&self, at: Coordinates, qd: &[R]) -> RootTerms<R> {
+    fn spatial_terms(&self, at: Coordinates, qd: &[R]) -> SpatialTerms<R> {
         let n = self.dof();
         let z = || k::<R>(0.0);
         let frames = self.joint_frames_in(at);
@@ -573,7 +573,7 @@ impl<'c, R: Ring> RingChain<'c, R> {
             let (ni, li) = momentum[i].clone();
             momentum[i - 1] = (add3(&momentum[i - 1].0, &ni), add3(&momentum[i - 1].1, &li));
         }
-        RootTerms {
+        SpatialTerms {
             axes,
             velocities,
             rates,
@@ -600,7 +600,7 @@ impl<'c, R: Ring> RingChain<'c, R> {
 
     /// [`coriolis_matrix`](RingChain::coriolis_matrix) computed in the coordinates `at`.
     pub fn coriolis_matrix_in(&self, at: Coordinates, qd: &[R]) -> Vec<Vec<R>> {
-        self.coriolis_from_terms(&self.root_terms(at, qd))
+        self.coriolis_from_terms(&self.spatial_terms(at, qd))
     }
 
     /// Every joint frame in the coordinates `at` (joint m moves about their z axis through
@@ -630,7 +630,7 @@ impl<'c, R: Ring> RingChain<'c, R> {
         }
     }
 
-    fn coriolis_from_terms(&self, t: &RootTerms<R>) -> Vec<Vec<R>> {
+    fn coriolis_from_terms(&self, t: &SpatialTerms<R>) -> Vec<Vec<R>> {
         let n = self.dof();
         let mut c = vec![vec![k::<R>(0.0); n]; n];
         for (j, s) in t.axes.iter().enumerate() {
@@ -650,10 +650,10 @@ impl<'c, R: Ring> RingChain<'c, R> {
     }
 
     /// `∂τ/∂q` row by row (entry `[i][j]` = ∂τ_i/∂q_j, gravity included) and C(q, q̇), in
-    /// closed form from the root-frame terms C already has (the analytic derivatives of
+    /// closed form from the spatial terms C already has (the analytic derivatives of
     /// Carpentier and Mansard, RSS 2018, in the form of Singh, Russell and Wensing, 2022).
     ///
-    /// Moving joint j turns every body after it rigidly about the screw `S_j`; in root
+    /// Moving joint j turns every body after it rigidly about the screw `S_j`; in world
     /// coordinates, with `Ψ̇_j = Ṡ_j = v_j × S_j`, `Ψ̈_j = a_{j−1} × S_j + v_{j−1} × Ψ̇_j`,
     /// each body's force `f_k = I_k a_k + v_k ×* I_k v_k` (k ≥ j) changes by `S_j ×* f_k +
     /// I_k Ψ̈_j + 2 B_k Ψ̇_j`. Summed over the bodies a joint carries, and with `S_i·(S_j ×*
@@ -674,7 +674,7 @@ impl<'c, R: Ring> RingChain<'c, R> {
     ) -> [Vec<Vec<R>>; 2] {
         let n = self.dof();
         let z = || k::<R>(0.0);
-        let t = self.root_terms(at, qd);
+        let t = self.spatial_terms(at, qd);
         let c = self.coriolis_from_terms(&t);
         // Accelerations (the base's upwards instead of gravity), Ψ̈, and the bodies' forces.
         let mut a: Sv<R> = ([z(), z(), z()], self.gravity_in(at).map(|x| -x));
@@ -884,7 +884,7 @@ fn motion_dot<R: Ring>(m: &Sv<R>, f: &Sv<R>) -> R {
 
 /// What [`RingChain::coriolis_matrix`] and [`RingChain::inverse_dynamics_derivatives`] share,
 /// per joint j, all in one frame's coordinates ([`Coordinates`]).
-struct RootTerms<R> {
+struct SpatialTerms<R> {
     /// `S_j`.
     axes: Vec<Sv<R>>,
     /// `v_j`, the velocity of body j.
@@ -903,7 +903,7 @@ struct RootTerms<R> {
     momentum: Vec<Sv<R>>,
 }
 
-impl<R: Ring> RootTerms<R> {
+impl<R: Ring> SpatialTerms<R> {
     /// `x B^C_j u` with `B = [[P, 0], [−l×, 0]]`, `P = ½(İ_ωω − n̂)`, `(n, l)` the composite
     /// momentum: `(½x(İ_ωω ω − n × ω), x ω × l)`.
     fn coriolis_action(&self, j: usize, (w, _): &Sv<R>, x: f64) -> Sv<R> {
