@@ -407,9 +407,8 @@ impl<'c, R: Ring> RingChain<'c, R> {
             .velocities(qd)
             .into_iter()
             .zip(&self.bodies)
-            .map(|((w, v), b)| {
-                let linear = add3(&scale3(&b.m, &v), &cross(&w, &b.h));
-                let angular = add3(&mat_vec(&b.i, &w), &cross(&b.h, &v));
+            .map(|(motion, b)| {
+                let (angular, linear) = b.momentum(&motion);
                 (linear, angular)
             })
             .collect();
@@ -600,7 +599,8 @@ impl<'c, R: Ring> RingChain<'c, R> {
 
     /// [`coriolis_matrix`](RingChain::coriolis_matrix) computed in the coordinates `at`.
     pub fn coriolis_matrix_in(&self, at: Coordinates, qd: &[R]) -> Vec<Vec<R>> {
-        self.coriolis_from_terms(&self.spatial_terms(at, qd))
+        let t = self.spatial_terms(at, qd);
+        self.coriolis_from_terms(&t, &t.coriolis_vectors())
     }
 
     /// Every joint frame in the coordinates `at` (joint m moves about their z axis through
@@ -630,20 +630,20 @@ impl<'c, R: Ring> RingChain<'c, R> {
         }
     }
 
-    fn coriolis_from_terms(&self, t: &SpatialTerms<R>) -> Vec<Vec<R>> {
+    /// C from the terms, by the dot products with each joint's vectors
+    /// ([`SpatialTerms::coriolis_vectors`]).
+    fn coriolis_from_terms(
+        &self,
+        t: &SpatialTerms<R>,
+        vectors: &[CoriolisVectors<R>],
+    ) -> Vec<Vec<R>> {
         let n = self.dof();
         let mut c = vec![vec![k::<R>(0.0); n]; n];
-        for (j, s) in t.axes.iter().enumerate() {
-            let f1 = add_sv(
-                &t.composite[j].momentum(&t.rates[j]),
-                &t.coriolis_action(j, s, 1.0),
-            );
-            let f2 = t.composite[j].momentum(s);
-            let f3 = t.coriolis_transpose_action(j, s);
-            c[j][j] = motion_dot(s, &f1);
+        for (j, (s, (f1, f2, f3))) in t.axes.iter().zip(vectors).enumerate() {
+            c[j][j] = motion_dot(s, f1);
             for (kk, (sk, rk)) in t.axes.iter().zip(&t.rates).take(j).enumerate() {
-                c[kk][j] = motion_dot(sk, &f1);
-                c[j][kk] = motion_dot(rk, &f2) + dot(&sk.0, &f3);
+                c[kk][j] = motion_dot(sk, f1);
+                c[j][kk] = motion_dot(rk, f2) + dot(&sk.0, f3);
             }
         }
         c
@@ -675,7 +675,8 @@ impl<'c, R: Ring> RingChain<'c, R> {
         let n = self.dof();
         let z = || k::<R>(0.0);
         let t = self.spatial_terms(at, qd);
-        let c = self.coriolis_from_terms(&t);
+        let vectors = t.coriolis_vectors();
+        let c = self.coriolis_from_terms(&t, &vectors);
         // Accelerations (the base's upwards instead of gravity), Ψ̈, and the bodies' forces.
         let mut a: Sv<R> = ([z(), z(), z()], self.gravity_in(at).map(|x| -x));
         let mut v: Sv<R> = ([z(), z(), z()], [z(), z(), z()]);
@@ -698,23 +699,13 @@ impl<'c, R: Ring> RingChain<'c, R> {
             let fj = forces[j].clone();
             forces[j - 1] = add_sv(&forces[j - 1], &fj);
         }
-        // Per joint i: I^C_i S_i and the angular part of B^C_iᵀ S_i (what C has too).
-        let (f2, f3): (Vec<Sv<R>>, Vec<V3<R>>) = (0..n)
-            .map(|i| {
-                let si = &t.axes[i];
-                (
-                    t.composite[i].momentum(si),
-                    t.coriolis_transpose_action(i, si),
-                )
-            })
-            .unzip();
         let mut dq = vec![vec![z(); n]; n];
         for j in 0..n {
             let s = &t.axes[j];
             let (pd, pdd) = (&t.rates[j], &psi_dd[j]);
             // i ≥ j: (I^C_i S_i)·Ψ̈_j + 2 (B^C_iᵀ S_i)·Ψ̇_j.
-            for (i, row) in dq.iter_mut().enumerate().skip(j) {
-                row[j] = motion_dot(pdd, &f2[i]) + k::<R>(2.0) * dot(&pd.0, &f3[i]);
+            for (row, (_, f2, f3)) in dq.iter_mut().zip(&vectors).skip(j) {
+                row[j] = motion_dot(pdd, f2) + k::<R>(2.0) * dot(&pd.0, f3);
             }
             // i < j: S_i·y_j.
             let y = add_sv(
@@ -903,7 +894,29 @@ struct SpatialTerms<R> {
     momentum: Vec<Sv<R>>,
 }
 
+/// Per joint j, `(I^C_j Ṡ_j + B^C_j S_j, I^C_j S_j, B^C_jᵀ S_j)` (the last's angular part;
+/// its linear part is zero): what row and column j of C are dot products with.
+type CoriolisVectors<R> = (Sv<R>, Sv<R>, V3<R>);
+
 impl<R: Ring> SpatialTerms<R> {
+    /// Every joint's [`CoriolisVectors`], computed once for C and for ∂τ/∂q.
+    fn coriolis_vectors(&self) -> Vec<CoriolisVectors<R>> {
+        self.axes
+            .iter()
+            .enumerate()
+            .map(|(j, s)| {
+                (
+                    add_sv(
+                        &self.composite[j].momentum(&self.rates[j]),
+                        &self.coriolis_action(j, s, 1.0),
+                    ),
+                    self.composite[j].momentum(s),
+                    self.coriolis_transpose_action(j, s),
+                )
+            })
+            .collect()
+    }
+
     /// `x B^C_j u` with `B = [[P, 0], [−l×, 0]]`, `P = ½(İ_ωω − n̂)`, `(n, l)` the composite
     /// momentum: `(½x(İ_ωω ω − n × ω), x ω × l)`.
     fn coriolis_action(&self, j: usize, (w, _): &Sv<R>, x: f64) -> Sv<R> {
