@@ -499,25 +499,7 @@ impl<'c, R: Ring> RingChain<'c, R> {
     fn spatial_terms(&self, at: Coordinates, qd: &[R]) -> SpatialTerms<R> {
         let n = self.dof();
         let z = || k::<R>(0.0);
-        let frames = self.joint_frames_in(at);
-        // Spatial axes (angular, linear at the origin).
-        let axes: Vec<Sv<R>> = frames
-            .iter()
-            .zip(&self.kinds)
-            .map(|(f, kind)| {
-                let dir = [f.r[0][2].clone(), f.r[1][2].clone(), f.r[2][2].clone()];
-                match kind {
-                    JointKind::Revolute => (dir.clone(), cross(&f.p, &dir)),
-                    JointKind::Prismatic => ([z(), z(), z()], dir),
-                }
-            })
-            .collect();
-        let bodies: Vec<MassMoments<R>> = self
-            .bodies
-            .iter()
-            .zip(&frames)
-            .map(|(b, f)| b.transformed(f))
-            .collect();
+        let (axes, bodies) = self.axes_and_bodies_in(at);
         let mut velocity: Sv<R> = ([z(), z(), z()], [z(), z(), z()]);
         let mut velocities = Vec::with_capacity(n);
         let mut rates = Vec::with_capacity(n);
@@ -582,6 +564,56 @@ impl<'c, R: Ring> RingChain<'c, R> {
             g,
             momentum,
         }
+    }
+
+    /// Every joint's spatial axis `S_j` (angular, linear at the origin) and every body, in
+    /// the coordinates `at`: each carried there once.
+    fn axes_and_bodies_in(&self, at: Coordinates) -> (Vec<Sv<R>>, Vec<MassMoments<R>>) {
+        let z = || k::<R>(0.0);
+        let frames = self.joint_frames_in(at);
+        let axes = frames
+            .iter()
+            .zip(&self.kinds)
+            .map(|(f, kind)| {
+                let dir = [f.r[0][2].clone(), f.r[1][2].clone(), f.r[2][2].clone()];
+                match kind {
+                    JointKind::Revolute => (dir.clone(), cross(&f.p, &dir)),
+                    JointKind::Prismatic => ([z(), z(), z()], dir),
+                }
+            })
+            .collect();
+        let bodies = self
+            .bodies
+            .iter()
+            .zip(&frames)
+            .map(|(b, f)| b.transformed(f))
+            .collect();
+        (axes, bodies)
+    }
+
+    /// The joint-space inertia matrix (armature not included) by the composite-rigid-body
+    /// algorithm in the coordinates `at`, the runtime path's algorithm when `at` is the root:
+    /// every axis and body carried into one frame, the composites summed tip to base, and
+    /// `D_ij = S_i·(I^C_j S_j)` for `i ≤ j` (mirrored). A pair costs one dot product, where
+    /// [`mass_matrix`](RingChain::mass_matrix) carries a wrench through a joint transform;
+    /// carrying the bodies costs more per joint, so this wins on long chains without
+    /// structure.
+    pub fn mass_matrix_in(&self, at: Coordinates) -> Vec<Vec<R>> {
+        let n = self.dof();
+        let (axes, mut composite) = self.axes_and_bodies_in(at);
+        for i in (1..n).rev() {
+            composite[i - 1] = composite[i - 1].plus(&composite[i]);
+        }
+        let mut d = vec![vec![k::<R>(0.0); n]; n];
+        for j in 0..n {
+            let f = composite[j].momentum(&axes[j]);
+            for i in 0..=j {
+                let v = motion_dot(&axes[i], &f);
+                d[i][j] = v.clone();
+                d[j][i] = v;
+            }
+        }
+        d
     }
 
     /// C(q, q̇) row by row, the Christoffel-consistent Coriolis matrix, by Echeandia and

@@ -225,6 +225,12 @@ fn batch_derivatives_and_regressor_equal_scalar() {
         f64,
         [inverse_dynamics_derivatives(qd, qdd), mass_matrix_inverse()]
     );
+    // The looped Cholesky factorisation (past the joints it is unrolled for).
+    check!(
+        snake17_derivatives,
+        f64,
+        [forward_dynamics(qd, tau), mass_matrix_inverse()]
+    );
 }
 
 /// Forward dynamics of a pack is lane by lane: a lane with a singular or non-finite case is

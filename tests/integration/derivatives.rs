@@ -4,12 +4,14 @@
 //! runtime path (C + Cᵀ); Cᵀq̇ against the runtime path; Coulomb friction contributing
 //! nothing, also at q̇ = 0.
 //!
-//! Robots: the PUMA 560, the SCARA (motors and friction) and the `odd` fixture (modified DH,
+//! Robots: the PUMA 560, the SCARA (motors and friction), the `odd` fixture (modified DH,
 //! a prismatic joint, base and tool poses, gravity off every axis, products of inertia,
-//! motors, friction).
+//! motors, friction) and the 17-joint `snake17` (forward dynamics and D⁻¹ by the looped
+//! Cholesky factorisation).
 
 use crate::catalogue::{
     odd_derivatives as odd, puma560_derivatives as puma, scara_derivatives as scara,
+    snake17_derivatives as snake17,
 };
 use crate::support::{fixture, max_abs, runtime};
 use dhgen::Robot;
@@ -84,6 +86,10 @@ macro_rules! derivative_laws {
                 assert!(e < 1e-12, "runtime ∂τ/∂q̇ against generated: {e:.1e}");
                 // Forward dynamics' derivatives, both paths, at τ from these (q, q̇, q̈).
                 let tau_here = $module::inverse_dynamics(&q, &qd, &qdd);
+                // Forward dynamics undoes inverse dynamics.
+                let back = $module::forward_dynamics(&q, &qd, &tau_here).unwrap();
+                let e = relative(back.iter().copied(), qdd);
+                assert!(e < 1e-9, "forward dynamics at τ(q̈) against q̈: {e:.1e}");
                 let (gq, gqd, gminv) =
                     $module::forward_dynamics_derivatives(&q, &qd, &tau_here).unwrap();
                 let (fq, fqd, fminv) = robot
@@ -130,6 +136,11 @@ macro_rules! derivative_laws {
 derivative_laws!(puma560_derivatives_obey_the_laws, puma, runtime("puma560"));
 derivative_laws!(scara_derivatives_obey_the_laws, scara, runtime("scara"));
 derivative_laws!(odd_derivatives_obey_the_laws, odd, fixture("odd"));
+derivative_laws!(
+    snake17_derivatives_obey_the_laws,
+    snake17,
+    fixture("snake17")
+);
 
 /// Coulomb friction is constant away from q̇ = 0 and not differentiable at it; the generated
 /// derivative takes its subgradient 0 there too, so ∂τ/∂q̇ at a joint at rest is the smooth

@@ -72,6 +72,31 @@ fn coriolis_recursion_equals_the_runtime() {
     println!("Echeandia–Wensing over the ring = runtime C to {worst:.1e}");
 }
 
+/// The composite-rigid-body algorithm in one frame's coordinates (with each joint's armature
+/// added, as the generated candidates do) and in joint frames against the runtime's CRBA.
+#[test]
+fn mass_matrix_recursions_equal_the_runtime() {
+    let mut worst = 0.0f64;
+    for (name, robot, q, _, _) in arms() {
+        let chain = robot.chain();
+        let want = robot.mass_matrix(&q[..]);
+        let rc = RingChain::new(chain, &Numbers(chain, &q));
+        let with_armature = |mut d: Vec<Vec<f64>>| {
+            for (i, b) in chain.bodies.iter().enumerate() {
+                d[i][i] += b.armature;
+            }
+            d
+        };
+        let d = with_armature(rc.mass_matrix());
+        worst = worst.max(matches(&format!("{name} in joint frames: D"), &d, &want));
+        for at in coordinates(robot.dof()) {
+            let d = with_armature(rc.mass_matrix_in(at));
+            worst = worst.max(matches(&format!("{name} in {at:?}: D"), &d, &want));
+        }
+    }
+    println!("composite-rigid-body recursions over the ring = runtime D to {worst:.1e}");
+}
+
 /// The closed-form ∂τ/∂q (Carpentier–Mansard in root coordinates) against the runtime's
 /// forward-mode tangents of Newton–Euler, a different algorithm; and the C it returns with it.
 #[test]

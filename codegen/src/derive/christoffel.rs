@@ -88,13 +88,24 @@ pub fn coriolis_from(n: usize, graph: &SharedGraph, c: &[E]) -> Vec<E> {
 /// ([`RingChain::coriolis_matrix`](crate::chain::RingChain::coriolis_matrix), the runtime
 /// path's algorithm): the candidate for arms without structure.
 pub fn coriolis_spatial(chain: ChainRef<'_>) -> (SharedGraph, Vec<E>) {
+    coriolis_spatial_with(chain, |_, _| {})
+}
+
+/// [`coriolis_spatial`] on the chain changed by `adjust` (the payload's derivation adds a
+/// body's worth of input symbols to its last link).
+pub(crate) fn coriolis_spatial_with<'c>(
+    chain: ChainRef<'c>,
+    adjust: impl Fn(&mut crate::chain::RingChain<'c, E>, &SharedGraph),
+) -> (SharedGraph, Vec<E>) {
     let candidates = super::coordinates(chain)
         .map(|at| {
             let graph = SharedGraph::default();
             let qd: Vec<E> = (0..chain.dof())
                 .map(|i| E::sym(&graph, crate::graph::Sym::Qd(i)))
                 .collect();
-            let c = super::graph_chain(chain, &graph)
+            let mut rc = super::graph_chain(chain, &graph);
+            adjust(&mut rc, &graph);
+            let c = rc
                 .coriolis_matrix_in(at, &qd)
                 .into_iter()
                 .flatten()

@@ -2,6 +2,7 @@
 //! expanded into the normal form and Horner-factored, or kept as the recursion.
 
 use super::Derivation;
+use crate::chain::{Coordinates, RingChain};
 use crate::graph::{E, SharedGraph};
 use crate::poly::{Budget, Poly};
 use dhgen_model::ChainRef;
@@ -30,18 +31,48 @@ pub(crate) fn add_armature<X>(chain: ChainRef<'_>, d: &mut [Vec<X>], add: impl F
 /// D(q) as expressions (row-major, n×n), whichever derivation is cheaper.
 pub fn mass_matrix(dv: &Derivation<'_>) -> (SharedGraph, Vec<E>) {
     let chain = dv.chain;
-    let n = chain.dof();
     let expanded = {
         let graph = SharedGraph::default();
         dv.mass_matrix_exprs(&graph).map(|e| (graph, e))
     };
-    let recursive = {
+    super::cheapest(
+        expanded
+            .into_iter()
+            .chain(recursive_candidates(chain, |_, _| {}))
+            .collect(),
+    )
+}
+
+/// D(q) by the composite-rigid-body recursion, armature included, on the chain changed by
+/// `adjust` (the payload's derivation adds a body's worth of input symbols to its last link):
+/// in joint frames, carrying each wrench down the chain, and in one frame's coordinates
+/// ([`RingChain::mass_matrix_in`](crate::chain::RingChain::mass_matrix_in), the runtime
+/// path's algorithm) for the root frame and the middle joint's (where the fewest joint
+/// variables separate the bodies from the frame; the other frames rarely win and cost
+/// generation time).
+pub(crate) fn recursive_candidates<'c>(
+    chain: ChainRef<'c>,
+    adjust: impl Fn(&mut RingChain<'c, E>, &SharedGraph),
+) -> Vec<(SharedGraph, Vec<E>)> {
+    let n = chain.dof();
+    [
+        None,
+        Some(Coordinates::Root),
+        Some(Coordinates::Joint(n / 2)),
+    ]
+    .into_iter()
+    .map(|at| {
         let graph = SharedGraph::default();
-        let mut d = super::graph_chain(chain, &graph).mass_matrix();
+        let mut rc = super::graph_chain(chain, &graph);
+        adjust(&mut rc, &graph);
+        let mut d = match at {
+            None => rc.mass_matrix(),
+            Some(at) => rc.mass_matrix_in(at),
+        };
         add_armature(chain, &mut d, |e, x| *e = e.clone() + E::K(x));
         let e: Vec<E> = d.into_iter().flatten().collect();
         debug_assert_eq!(e.len(), n * n);
         (graph, e)
-    };
-    super::cheapest(expanded.into_iter().chain([recursive]).collect())
+    })
+    .collect()
 }

@@ -1,5 +1,11 @@
-//! The unrolled Cholesky factorisation of D(q), without branches, and what is built on it:
+//! The Cholesky factorisation of D(q), without branches, and what is built on it:
 //! forward dynamics' solve `D x = rhs` and the inverse `D⁻¹`.
+//!
+//! Up to [`UNROLLED_UP_TO`] joints the factorisation is unrolled into straight-line code;
+//! above, it is emitted as loops over arrays (the same operations in the same order, so the
+//! same values bit for bit): its unrolled code grows as n³ and at 20 joints is already
+//! several times the size of the rest of forward dynamics, while a general arm's D has no
+//! zero entries for the unrolled form to exploit.
 //!
 //! Both values come with `ok`: lane by lane, whether every pivot is above
 //! `dhgen::cholesky_pivot_floor` (the rule both paths share) and the result is finite. The
@@ -19,9 +25,45 @@ fn inv(i: usize) -> Ident {
     format_ident!("inv{}", i)
 }
 
-/// The factor `L` of `dm` (`l{i}_{j}`, with `inv{j} = 1 / l{j}_{j}`) and `ok` over the
-/// pivots; its operation count (the floor's two products included).
-fn factor(n: usize) -> (Vec<TokenStream>, OpCount) {
+/// The most joints for which the factorisation and what is built on it are unrolled.
+pub const UNROLLED_UP_TO: usize = 12;
+
+/// The factor `L` of `dm` as loops: `l: [[T; DOF]; DOF]` (lower triangle), `inv: [T; DOF]`
+/// the pivots' reciprocals, and `ok` over the pivots; the same operations, in the same order,
+/// as [`factor`].
+fn factor_looped() -> TokenStream {
+    quote! {
+        let mut largest: T = dm[(0, 0)];
+        for j in 1..DOF {
+            largest = na::SimdPartialOrd::simd_max(largest, dm[(j, j)]);
+        }
+        let floor: T = ::dhgen::cholesky_pivot_floor(DOF, largest);
+        let mut l: [[T; DOF]; DOF] = [[T::zero(); DOF]; DOF];
+        let mut inv: [T; DOF] = [T::zero(); DOF];
+        let mut ok = na::SimdPartialOrd::simd_gt(dm[(0, 0)], floor);
+        for j in 0..DOF {
+            let mut diag: T = dm[(j, j)];
+            for k in 0..j {
+                diag = diag - l[j][k] * l[j][k];
+            }
+            ok = ok & na::SimdPartialOrd::simd_gt(diag, floor);
+            let ljj: T = na::SimdComplexField::simd_sqrt(diag);
+            l[j][j] = ljj;
+            inv[j] = T::one() / ljj;
+            for i in j + 1..DOF {
+                let mut e: T = dm[(i, j)];
+                for k in 0..j {
+                    e = e - l[i][k] * l[j][k];
+                }
+                l[i][j] = e * inv[j];
+            }
+        }
+    }
+}
+
+/// The operations of the factorisation, unrolled or looped (the floor's two products
+/// included).
+fn factor_ops(n: usize) -> OpCount {
     // Per pivot j: j squares subtracted, one sqrt, one reciprocal; per entry below it, j
     // products subtracted and one scaling.
     let mut ops = OpCount {
@@ -35,6 +77,12 @@ fn factor(n: usize) -> (Vec<TokenStream>, OpCount) {
         ops.sqrt += 1;
         ops.div += 1;
     }
+    ops
+}
+
+/// The factor `L` of `dm` unrolled (`l{i}_{j}`, with `inv{j} = 1 / l{j}_{j}`) and `ok` over
+/// the pivots.
+fn factor(n: usize) -> Vec<TokenStream> {
     let mut s = Vec::new();
     let mut largest = quote!(dm[(0, 0)]);
     for j in 1..n {
@@ -72,19 +120,47 @@ fn factor(n: usize) -> (Vec<TokenStream>, OpCount) {
             s.push(quote!(let #lij: T = (#e) * #invj;));
         }
     }
-    (s, ops)
+    s
 }
 
-/// Unrolled `D x = rhs` (`dm`, `rhs` in scope) as `(x, ok)`, with its operation count (the
+/// `D x = rhs` (`dm`, `rhs` in scope) as `(x, ok)`, with its operation count (the
 /// `n` subtractions forming `rhs = τ − bias` included).
 pub fn solve(n: usize) -> (TokenStream, OpCount) {
-    let (mut s, mut ops) = factor(n);
+    let mut ops = factor_ops(n);
     ops.add += n;
     // Forward and back substitution: a row's products and one scaling each.
     for i in 0..n {
         ops.mul += 2 * i + 2;
         ops.add += 2 * i;
     }
+    if n > UNROLLED_UP_TO {
+        let factor = factor_looped();
+        let solve = quote! {
+            #factor
+            let mut y: [T; DOF] = [T::zero(); DOF];
+            for i in 0..DOF {
+                let mut e: T = rhs[i];
+                for k in 0..i {
+                    e = e - l[i][k] * y[k];
+                }
+                y[i] = e * inv[i];
+            }
+            let mut x: [T; DOF] = [T::zero(); DOF];
+            for i in (0..DOF).rev() {
+                let mut e: T = y[i];
+                for k in i + 1..DOF {
+                    e = e - l[k][i] * x[k];
+                }
+                x[i] = e * inv[i];
+            }
+            for xi in x {
+                ok = ok & ::dhgen::Real::is_finite_lanes(xi);
+            }
+            (na::SVector::<T, DOF>::from(x), ok)
+        };
+        return (solve, ops);
+    }
+    let mut s = factor(n);
     let y = |i: usize| format_ident!("y{}", i);
     let x = |i: usize| format_ident!("x{}", i);
     for i in 0..n {
@@ -119,12 +195,59 @@ pub fn solve(n: usize) -> (TokenStream, OpCount) {
     (solve, ops)
 }
 
-/// Unrolled `D⁻¹` (`dm` in scope) as `(inverse, ok)`, with its operation count: `M = L⁻¹`
+/// `D⁻¹` (`dm` in scope) as `(inverse, ok)`, with its operation count: `M = L⁻¹`
 /// (lower triangular, its diagonal the pivots' reciprocals), then `D⁻¹ = Mᵀ M` on and above
 /// the diagonal, mirrored below.
 pub fn inverse(n: usize) -> (TokenStream, OpCount) {
-    let (mut s, mut ops) = factor(n);
+    let mut ops = factor_ops(n);
     let m = |i: usize, j: usize| format_ident!("m{}_{}", i, j);
+    // Row i of M below the diagonal, m_ij = −(Σ_{k=j}^{i−1} l_ik m_kj) · inv_i: i − j + 1
+    // products and i − j − 1 sums; (D⁻¹)_ab = Σ_{k ≥ b} m_ka m_kb for a ≤ b: n − b products
+    // and n − b − 1 sums, for each of the b + 1 rows a ≤ b.
+    for i in 0..n {
+        for j in 0..i {
+            ops.mul += i - j + 1;
+            ops.add += i - j - 1;
+        }
+    }
+    for b in 0..n {
+        ops.mul += (b + 1) * (n - b);
+        ops.add += (b + 1) * (n - b - 1);
+    }
+    if n > UNROLLED_UP_TO {
+        let factor = factor_looped();
+        let zeros = Shape::Square.init();
+        let inverse = quote! {
+            #factor
+            // m = L⁻¹, its diagonal the pivots' reciprocals.
+            let mut m: [[T; DOF]; DOF] = [[T::zero(); DOF]; DOF];
+            for i in 0..DOF {
+                m[i][i] = inv[i];
+                for j in 0..i {
+                    let mut e: T = l[i][j] * inv[j];
+                    for k in j + 1..i {
+                        e = e + l[i][k] * m[k][j];
+                    }
+                    m[i][j] = -e * inv[i];
+                }
+            }
+            let mut out: na::SMatrix<T, DOF, DOF> = #zeros;
+            for a in 0..DOF {
+                for b in a..DOF {
+                    let mut e: T = m[b][a] * m[b][b];
+                    for k in b + 1..DOF {
+                        e = e + m[k][a] * m[k][b];
+                    }
+                    ok = ok & ::dhgen::Real::is_finite_lanes(e);
+                    out[(a, b)] = e;
+                    out[(b, a)] = e;
+                }
+            }
+            (out, ok)
+        };
+        return (inverse, ops);
+    }
+    let mut s = factor(n);
     // Row i of M below the diagonal: m_ij = −(Σ_{k=j}^{i−1} l_ik m_kj) · inv_i.
     for i in 0..n {
         for j in 0..i {
@@ -139,11 +262,8 @@ pub fn inverse(n: usize) -> (TokenStream, OpCount) {
                     quote!(#lik * #mkj)
                 };
                 e = if k == j { term } else { quote!(#e + #term) };
-                ops.mul += 1;
-                ops.add += usize::from(k != j);
             }
             let (mij, invi) = (m(i, j), inv(i));
-            ops.mul += 1;
             s.push(quote!(let #mij: T = -(#e) * #invi;));
         }
     }
@@ -157,12 +277,9 @@ pub fn inverse(n: usize) -> (TokenStream, OpCount) {
                 quote!(#mka * #mkb)
             };
             let mut e = term(b);
-            ops.mul += 1;
             for k in b + 1..n {
                 let t = term(k);
                 e = quote!(#e + #t);
-                ops.mul += 1;
-                ops.add += 1;
             }
             let name = format_ident!("d{}_{}", a, b);
             s.push(quote!(let #name: T = #e;));

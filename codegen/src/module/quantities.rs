@@ -183,7 +183,7 @@ fn all_lanes(call: TokenStream, reads: &'static [&'static str]) -> Made {
     )
 }
 
-/// Forward dynamics `q̈ = D⁻¹(τ − h)` by the unrolled Cholesky solve, D and h the values of
+/// Forward dynamics `q̈ = D⁻¹(τ − h)` by the Cholesky solve, D and h the values of
 /// `mass_matrix` and `bias` (reading `reads`); the solve's own operations reported under
 /// `cholesky_solve` when `report` (once per module: every solve is the same).
 fn solved(
@@ -572,8 +572,7 @@ pub const QUANTITIES: &[Quantity] = &[
         available: Availability::Dynamics,
         public: true,
         make: |cx| {
-            let graph = SharedGraph::default();
-            let d = payload::mass_matrix(cx.chain, &graph);
+            let (graph, d) = payload::mass_matrix(cx.chain);
             derived(graph, d)
         },
         arm: None,
@@ -711,8 +710,8 @@ pub const QUANTITIES: &[Quantity] = &[
     },
     Quantity {
         name: "forward_dynamics_lanes",
-        doc: "Forward dynamics q̈ = D⁻¹(τ − C q̇ − g − friction) by an unrolled Cholesky \
-              solve without branches, and the mask of the lanes where it is an answer: a pivot \
+        doc: "Forward dynamics q̈ = D⁻¹(τ − C q̇ − g − friction) by a Cholesky solve \
+              without branches, and the mask of the lanes where it is an answer: a pivot \
               above `dhgen::cholesky_pivot_floor` and a finite q̈ (for a scalar, a `bool`). \
               What `forward_dynamics` returns as an `Option`, for SIMD packs (`dhgen::batch`) \
               whose lanes each get the scalar path's answer.",
@@ -734,8 +733,8 @@ pub const QUANTITIES: &[Quantity] = &[
     },
     Quantity {
         name: "forward_dynamics",
-        doc: "Forward dynamics q̈ = D⁻¹(τ − C q̇ − g − friction) by an unrolled Cholesky \
-              solve; `None` where D(q) is singular to working precision (a pivot at or below \
+        doc: "Forward dynamics q̈ = D⁻¹(τ − C q̇ − g − friction) by a Cholesky solve; \
+              `None` where D(q) is singular to working precision (a pivot at or below \
               `dhgen::cholesky_pivot_floor`, the runtime path's rule too) or the acceleration is \
               not finite (non-finite or overflowing inputs); for a SIMD pack, `None` unless \
               every lane has an answer (`forward_dynamics_lanes` gives them lane by lane).",
@@ -857,7 +856,7 @@ pub const QUANTITIES: &[Quantity] = &[
     },
     Quantity {
         name: "mass_matrix_inverse_lanes",
-        doc: "D(q)⁻¹ by the unrolled Cholesky factorisation of `forward_dynamics`, without \
+        doc: "D(q)⁻¹ by the Cholesky factorisation of `forward_dynamics`, without \
               branches, and the mask of the lanes where it is an answer (pivots above \
               `dhgen::cholesky_pivot_floor`, finite entries); for a scalar, a `bool`.",
         aliases: &[],
