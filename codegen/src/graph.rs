@@ -344,6 +344,31 @@ pub fn reachable(g: &Graph, roots: impl IntoIterator<Item = Id>) -> Vec<Id> {
         .collect()
 }
 
+/// The derivatives of the expressions `roots` of `graph` along the tangent that gives each
+/// input symbol the derivative `tangent(s)`: forward mode over the graph, every node's
+/// derivative built once, in `graph` (so it shares what the values, and other derivatives
+/// built in the same graph, already compute).
+pub fn derivative(graph: &SharedGraph, roots: &[E], tangent: impl Fn(Sym) -> E) -> Vec<E> {
+    let ids: Vec<Id> = roots.iter().map(|e| e.id_in(graph)).collect();
+    let order = reachable(&graph.borrow(), ids.iter().copied());
+    let mut d: HashMap<Id, E> = HashMap::with_capacity(order.len());
+    for id in order {
+        let node = graph.borrow().node(id);
+        let value = |x: Id| E::N(graph.clone(), x);
+        let dx = |x: Id| d[&x].clone();
+        let t = match node {
+            Node::Const(_) => E::K(0.0),
+            Node::Sym(s) => tangent(s),
+            Node::Neg(a) => -dx(a),
+            Node::Add(a, b) => dx(a) + dx(b),
+            Node::Sub(a, b) => dx(a) - dx(b),
+            Node::Mul(a, b) => dx(a) * value(b) + value(a) * dx(b),
+        };
+        d.insert(id, t);
+    }
+    ids.iter().map(|id| d[id].clone()).collect()
+}
+
 /// Counts the operations needed to evaluate `roots`, sharing common nodes.
 pub fn count(g: &Graph, roots: impl IntoIterator<Item = Id>) -> OpCount {
     let mut c = OpCount::default();

@@ -32,6 +32,9 @@ dhgen::robot!(pub mod snake17 = "tests/fixtures/snake17.toml");
 dhgen::robot!(pub mod puma560_derivatives = "robots/puma560.toml", derivatives, regressor);
 dhgen::robot!(pub mod scara_derivatives = "robots/scara.toml", derivatives, regressor);
 dhgen::robot!(pub mod odd_derivatives = "tests/fixtures/odd.toml", derivatives, regressor);
+// τ assembled from small normal forms and differentiated symbolically (the cheapest
+// derivation of its derivatives there).
+dhgen::robot!(pub mod stanford_derivatives = "robots/stanford.toml", derivatives);
 // Past the joints up to which the Cholesky factorisation is unrolled: its looped form, in
 // forward dynamics, D⁻¹ and their derivatives.
 dhgen::robot!(pub mod snake17_derivatives = "tests/fixtures/snake17.toml", derivatives);

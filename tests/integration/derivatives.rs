@@ -6,12 +6,12 @@
 //!
 //! Robots: the PUMA 560, the SCARA (motors and friction), the `odd` fixture (modified DH,
 //! a prismatic joint, base and tool poses, gravity off every axis, products of inertia,
-//! motors, friction) and the 17-joint `snake17` (forward dynamics and D⁻¹ by the looped
-//! Cholesky factorisation).
+//! motors, friction), the Stanford arm (derivatives of τ assembled from its normal forms) and the
+//! 17-joint `snake17` (forward dynamics and D⁻¹ by the looped Cholesky factorisation).
 
 use crate::catalogue::{
     odd_derivatives as odd, puma560_derivatives as puma, scara_derivatives as scara,
-    snake17_derivatives as snake17,
+    snake17_derivatives as snake17, stanford_derivatives as stanford,
 };
 use crate::support::{fixture, max_abs, runtime};
 use dhgen::Robot;
@@ -140,6 +140,11 @@ derivative_laws!(
     snake17_derivatives_obey_the_laws,
     snake17,
     fixture("snake17")
+);
+derivative_laws!(
+    stanford_derivatives_obey_the_laws,
+    stanford,
+    runtime("stanford")
 );
 
 /// Coulomb friction is constant away from q̇ = 0 and not differentiable at it; the generated

@@ -56,17 +56,24 @@ pub(crate) fn rnea_with<'c>(
         .collect()
 }
 
-/// τ without Coulomb friction, whichever derivation is cheaper.
+/// τ without Coulomb friction, whichever derivation is cheaper: the recursion, or (where the
+/// normal forms are small) τ assembled from them.
 pub fn inverse_dynamics(dv: &Derivation<'_>) -> (SharedGraph, Vec<E>) {
-    let chain = dv.chain;
-    let n = chain.dof();
     let recursive = {
         let graph = SharedGraph::default();
-        let e = rnea_exprs(chain, &graph, false, true);
+        let e = rnea_exprs(dv.chain, &graph, false, true);
         (graph, e)
     };
+    super::cheapest(std::iter::once(recursive).chain(assembled(dv)).collect())
+}
+
+/// τ without Coulomb friction assembled from the normal forms, `D q̈ + Σ c_ijk q̇_i q̇_j + g`
+/// plus viscous friction (armature is in D), where they are small enough to build.
+pub fn assembled(dv: &Derivation<'_>) -> Option<(SharedGraph, Vec<E>)> {
+    let chain = dv.chain;
+    let n = chain.dof();
     if !dv.normal_form_is_small() {
-        return recursive;
+        return None;
     }
     let graph = SharedGraph::default();
     let (Some(d), Some(c), Some(gr)) = (
@@ -74,7 +81,7 @@ pub fn inverse_dynamics(dv: &Derivation<'_>) -> (SharedGraph, Vec<E>) {
         dv.christoffel_exprs(&graph),
         dv.gravity_exprs(&graph),
     ) else {
-        return recursive;
+        return None;
     };
     let assembled = {
         let qd: Vec<E> = (0..n).map(|i| E::sym(&graph, Sym::Qd(i))).collect();
@@ -97,5 +104,5 @@ pub fn inverse_dynamics(dv: &Derivation<'_>) -> (SharedGraph, Vec<E>) {
             .collect();
         (graph, e)
     };
-    super::cheapest(vec![recursive, assembled])
+    Some(assembled)
 }

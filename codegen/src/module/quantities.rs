@@ -816,8 +816,10 @@ pub const QUANTITIES: &[Quantity] = &[
         available: Availability::Derivatives,
         public: true,
         make: |cx| {
-            let (graph, e) =
-                derivatives::inverse_dynamics_derivatives(cx.chain, cx.coriolis_derivations());
+            let (graph, e) = derivatives::inverse_dynamics_derivatives(
+                &cx.derivation,
+                cx.coriolis_derivations(),
+            );
             derived(graph, e)
         },
         arm: None,
