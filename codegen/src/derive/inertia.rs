@@ -1,5 +1,6 @@
 //! The joint-space inertia matrix D(q), by the composite-rigid-body algorithm, either
-//! expanded into the normal form and Horner-factored, or kept as the recursion.
+//! expanded into the normal form and Horner-factored, or kept as the recursion (in joint
+//! frames, or in one frame's coordinates as the runtime path computes it).
 
 use super::Derivation;
 use crate::chain::{Coordinates, RingChain};
