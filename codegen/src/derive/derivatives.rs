@@ -1,7 +1,7 @@
 //! Derivatives of the dynamics: ∂τ/∂q and ∂τ/∂q̇ (what MPC and trajectory optimisation
 //! linearise), Ḋ(q, q̇) and Cᵀ(q, q̇) q̇ (what a momentum observer needs every cycle).
 //!
-//! All by recursions, never by expanding a polynomial:
+//! By recursions, or by differentiating normal forms where they are small:
 //! - ∂τ/∂q, ∂τ/∂q̇: the Newton-Euler recursion on duals with 2n lanes (n seeded by the joint
 //!   angles, n by the joint velocities), or 2C + diag(viscous) for ∂τ/∂q̇ with ∂τ/∂q by n
 //!   lanes of duals or in closed form (Carpentier and Mansard's analytic derivatives), or
@@ -120,18 +120,18 @@ pub fn inverse_dynamics_derivatives(
     // (The recursion differentiated so never wins: the dual lanes above are the same
     // derivatives, built with more sharing.)
     if let Some((graph, tau)) = super::newton_euler::assembled(dv) {
-        let along = |x: Sym| {
-            crate::graph::derivative(&graph, &tau, |s| match (s, x) {
-                (Sym::Cos(i), Sym::Cos(j)) if i == j => -E::sym(&graph, Sym::Sin(j)),
-                (Sym::Sin(i), Sym::Cos(j)) if i == j => E::sym(&graph, Sym::Cos(j)),
-                (Sym::Len(i), Sym::Cos(j)) if i == j => E::K(1.0),
-                (Sym::Qd(i), Sym::Qd(j)) if i == j => E::K(1.0),
+        // Along q_j (`wrt_q`, the angle or the displacement) or along q̇_j.
+        let along = |wrt_q: bool, j: usize| {
+            crate::graph::derivative(&graph, &tau, |s| match s {
+                Sym::Cos(i) if wrt_q && i == j => -E::sym(&graph, Sym::Sin(j)),
+                Sym::Sin(i) if wrt_q && i == j => E::sym(&graph, Sym::Cos(j)),
+                Sym::Len(i) if wrt_q && i == j => E::K(1.0),
+                Sym::Qd(i) if !wrt_q && i == j => E::K(1.0),
                 _ => E::K(0.0),
             })
         };
-        // `Sym::Cos(j)` here names the direction along q_j (the angle or the displacement).
-        let dq: Vec<Vec<E>> = (0..n).map(|j| along(Sym::Cos(j))).collect();
-        let dqd: Vec<Vec<E>> = (0..n).map(|j| along(Sym::Qd(j))).collect();
+        let dq: Vec<Vec<E>> = (0..n).map(|j| along(true, j)).collect();
+        let dqd: Vec<Vec<E>> = (0..n).map(|j| along(false, j)).collect();
         // Row-major `(k, j)` = ∂τ_k/∂x_j from the columns `d[j][k]`.
         let out = [&dq, &dqd]
             .into_iter()
