@@ -543,10 +543,9 @@ impl<'c, R: Ring> RingChain<'c, R> {
             velocities.push(velocity.clone());
         }
         // Composites, tip to base: inertias, İ_ωω, angular and linear momenta.
-        let mut composite = bodies.clone();
+        let composite = summed_tip_to_base(&bodies);
         let mut momentum = momenta.clone();
         for i in (1..n).rev() {
-            composite[i - 1] = composite[i - 1].plus(&composite[i]);
             let gi = g[i].clone();
             g[i - 1] = core::array::from_fn(|r| {
                 core::array::from_fn(|c| g[i - 1][r][c].clone() + gi[r][c].clone())
@@ -600,10 +599,8 @@ impl<'c, R: Ring> RingChain<'c, R> {
     /// structure.
     pub fn mass_matrix_in(&self, at: Coordinates) -> Vec<Vec<R>> {
         let n = self.dof();
-        let (axes, mut composite) = self.axes_and_bodies_in(at);
-        for i in (1..n).rev() {
-            composite[i - 1] = composite[i - 1].plus(&composite[i]);
-        }
+        let (axes, bodies) = self.axes_and_bodies_in(at);
+        let composite = summed_tip_to_base(&bodies);
         let mut d = vec![vec![k::<R>(0.0); n]; n];
         for j in 0..n {
             let f = composite[j].momentum(&axes[j]);
@@ -898,6 +895,16 @@ fn motion_cross<R: Ring>((w, u): &Sv<R>, (a, b): &Sv<R>) -> Sv<R> {
 /// `m ×* f` of a motion on a force: `(ω × n + u × f, ω × f)`.
 fn force_cross<R: Ring>((w, u): &Sv<R>, (nn, f): &Sv<R>) -> Sv<R> {
     (add3(&cross(w, nn), &cross(u, f)), cross(w, f))
+}
+
+/// The composite bodies `Σ_{k ≥ j} bodies[k]` of bodies all in one frame's coordinates,
+/// summed tip to base.
+fn summed_tip_to_base<R: Ring>(bodies: &[MassMoments<R>]) -> Vec<MassMoments<R>> {
+    let mut composite = bodies.to_vec();
+    for i in (1..composite.len()).rev() {
+        composite[i - 1] = composite[i - 1].plus(&composite[i]);
+    }
+    composite
 }
 
 /// A motion applied to a force: `ω·n + u·f`.

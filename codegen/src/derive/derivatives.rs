@@ -48,7 +48,7 @@ fn dual_rnea(chain: ChainRef<'_>, graph: &SharedGraph, lanes: usize) -> Vec<Dual
 }
 
 /// `[∂τ/∂q row-major, ∂τ/∂q̇ row-major]`: `2n²` scalars, entry `(k, m)` = ∂τ_k/∂x_m; the
-/// cheapest of three kinds of candidate:
+/// cheapest of four kinds of candidate:
 /// - the Newton–Euler recursion on duals with 2n lanes (q and q̇ seeded), in its own graph;
 /// - for each derivation of C in `coriolis`, in C's graph: ∂τ/∂q̇ = 2C + diag(viscous) (for
 ///   the Christoffel-consistent C, ∂(C q̇)/∂q̇ = 2C), which shares what C already computes,
@@ -56,17 +56,17 @@ fn dual_rnea(chain: ChainRef<'_>, graph: &SharedGraph, lanes: usize) -> Vec<Dual
 /// - for each frame's coordinates ([`coordinates`](super::coordinates)), in its own graph:
 ///   ∂τ/∂q in closed form ([`RingChain::inverse_dynamics_derivatives`], Carpentier and
 ///   Mansard's analytic derivatives) with the C of Echeandia and Wensing's terms it shares;
-/// - where D, c_ijk and g have small normal forms, τ assembled from them
-///   ([`assembled`](super::newton_euler::assembled)) differentiated in its graph
+/// - where D, c_ijk and g have small normal forms, τ assembled from them (`assembled`, see
+///   [`newton_euler::assembled`](super::newton_euler::assembled)) differentiated in its graph
 ///   ([`derivative`](crate::graph::derivative)) along every q_j and q̇_j, which there costs
 ///   fewer operations than any recursion: Stanford arm 2,128 → 1,724, UR5 1,947 → 1,342,
 ///   SCARA 99 → 28 (the PUMA 560's dual lanes in the Christoffel symbols' graph, 2,143,
 ///   still beat its 2,282).
 pub fn inverse_dynamics_derivatives(
-    dv: &super::Derivation<'_>,
+    chain: ChainRef<'_>,
     coriolis: &[(SharedGraph, Vec<E>)],
+    assembled: Option<&(SharedGraph, Vec<E>)>,
 ) -> (SharedGraph, Vec<E>) {
-    let chain = dv.chain;
     let n = chain.dof();
     let viscous = |k: usize, m: usize| {
         E::K(if k == m {
@@ -119,12 +119,12 @@ pub fn inverse_dynamics_derivatives(
     // mode along each q_j (d cos θ_j = −sin θ_j, d sin θ_j = cos θ_j, d d_j = 1) and each q̇_j.
     // (The recursion differentiated so never wins: the dual lanes above are the same
     // derivatives, built with more sharing.)
-    if let Some((graph, tau)) = super::newton_euler::assembled(dv) {
+    if let Some((graph, tau)) = assembled {
         // Along q_j (`wrt_q`, the angle or the displacement) or along q̇_j.
         let along = |wrt_q: bool, j: usize| {
-            crate::graph::derivative(&graph, &tau, |s| match s {
-                Sym::Cos(i) if wrt_q && i == j => -E::sym(&graph, Sym::Sin(j)),
-                Sym::Sin(i) if wrt_q && i == j => E::sym(&graph, Sym::Cos(j)),
+            crate::graph::derivative(graph, tau, |s| match s {
+                Sym::Cos(i) if wrt_q && i == j => -E::sym(graph, Sym::Sin(j)),
+                Sym::Sin(i) if wrt_q && i == j => E::sym(graph, Sym::Cos(j)),
                 Sym::Len(i) if wrt_q && i == j => E::K(1.0),
                 Sym::Qd(i) if !wrt_q && i == j => E::K(1.0),
                 _ => E::K(0.0),
@@ -137,7 +137,7 @@ pub fn inverse_dynamics_derivatives(
             .into_iter()
             .flat_map(|d| (0..n).flat_map(move |k| d.iter().map(move |col| col[k].clone())))
             .collect();
-        candidates.push((graph, out));
+        candidates.push((graph.clone(), out));
     }
     super::cheapest(candidates)
 }

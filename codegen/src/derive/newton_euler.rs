@@ -56,15 +56,22 @@ pub(crate) fn rnea_with<'c>(
         .collect()
 }
 
-/// τ without Coulomb friction, whichever derivation is cheaper: the recursion, or (where the
-/// normal forms are small) τ assembled from them.
-pub fn inverse_dynamics(dv: &Derivation<'_>) -> (SharedGraph, Vec<E>) {
+/// τ without Coulomb friction, whichever derivation is cheaper: the recursion, or `assembled`
+/// (τ assembled from the normal forms, [`assembled`], where they are small).
+pub fn inverse_dynamics(
+    chain: ChainRef<'_>,
+    assembled: Option<&(SharedGraph, Vec<E>)>,
+) -> (SharedGraph, Vec<E>) {
     let recursive = {
         let graph = SharedGraph::default();
-        let e = rnea_exprs(dv.chain, &graph, false, true);
+        let e = rnea_exprs(chain, &graph, false, true);
         (graph, e)
     };
-    super::cheapest(std::iter::once(recursive).chain(assembled(dv)).collect())
+    super::cheapest(
+        std::iter::once(recursive)
+            .chain(assembled.cloned())
+            .collect(),
+    )
 }
 
 /// τ without Coulomb friction assembled from the normal forms, `D q̈ + Σ c_ijk q̇_i q̇_j + g`

@@ -15,7 +15,7 @@ pub mod state;
 pub mod structure;
 pub mod tidy;
 
-use crate::derive::{Derivation, christoffel, regressor};
+use crate::derive::{Derivation, christoffel, newton_euler, regressor};
 use crate::emit::{self, Output};
 use crate::graph::{E, OpCount, SharedGraph};
 use crate::limits::Unsupported;
@@ -90,6 +90,7 @@ pub struct Context<'c> {
     pub derivation: Derivation<'c>,
     christoffel: OnceCell<(SharedGraph, Vec<E>)>,
     coriolis: OnceCell<Vec<(SharedGraph, Vec<E>)>>,
+    assembled: OnceCell<Option<(SharedGraph, Vec<E>)>>,
     regressor: OnceCell<(SharedGraph, Vec<E>)>,
     base: OnceCell<BaseParameters>,
 }
@@ -104,6 +105,7 @@ impl<'c> Context<'c> {
             derivation: Derivation::new(chain),
             christoffel: OnceCell::new(),
             coriolis: OnceCell::new(),
+            assembled: OnceCell::new(),
             regressor: OnceCell::new(),
             base: OnceCell::new(),
         }
@@ -145,6 +147,14 @@ impl<'c> Context<'c> {
                 christoffel::coriolis_spatial(self.chain),
             ]
         })
+    }
+
+    /// τ assembled from the normal forms ([`newton_euler::assembled`]), where they are small,
+    /// built once: a candidate for τ and, differentiated, for its derivatives.
+    pub fn assembled_inverse_dynamics(&self) -> Option<&(SharedGraph, Vec<E>)> {
+        self.assembled
+            .get_or_init(|| newton_euler::assembled(&self.derivation))
+            .as_ref()
     }
 
     /// Coulomb friction added to `tau` (empty without Coulomb friction).

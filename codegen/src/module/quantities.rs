@@ -471,7 +471,8 @@ pub const QUANTITIES: &[Quantity] = &[
         available: Availability::Dynamics,
         public: false,
         make: |cx| {
-            let (graph, tau) = newton_euler::inverse_dynamics(&cx.derivation);
+            let (graph, tau) =
+                newton_euler::inverse_dynamics(cx.chain, cx.assembled_inverse_dynamics());
             derived(graph, tau)
         },
         arm: None,
@@ -817,8 +818,9 @@ pub const QUANTITIES: &[Quantity] = &[
         public: true,
         make: |cx| {
             let (graph, e) = derivatives::inverse_dynamics_derivatives(
-                &cx.derivation,
+                cx.chain,
                 cx.coriolis_derivations(),
+                cx.assembled_inverse_dynamics(),
             );
             derived(graph, e)
         },
