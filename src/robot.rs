@@ -5,7 +5,7 @@
 use crate::{Error, Joints};
 pub(crate) use dhgen_model::Rigid;
 use dhgen_model::{ChainRef, JointChain, JointKind, RobotModel};
-use nalgebra::{Matrix3, Vector3};
+use nalgebra::Vector3;
 use std::path::Path;
 
 /// The constants of one joint and the link it moves, in the runtime's working form (taken
@@ -28,8 +28,6 @@ pub(crate) struct BodyConstants {
     pub mass: f64,
     /// Centre of mass in the joint frame.
     pub com: Vector3<f64>,
-    /// Inertia about the centre of mass, joint-frame axes.
-    pub inertia: Matrix3<f64>,
     /// Reflected motor inertia `Jm·G²`, added to `D_ii`.
     pub armature: f64,
     /// Viscous friction coefficient.
@@ -100,13 +98,9 @@ impl Robot {
             .iter()
             .zip(view.placements)
             .map(|(b, placement)| {
-                let (mass, com, inertia) = match &b.inertial {
-                    Some(i) => (
-                        i.mass,
-                        Vector3::from(i.com),
-                        Matrix3::from_fn(|r, k| i.inertia[r][k]),
-                    ),
-                    None => (0.0, Vector3::zeros(), Matrix3::zeros()),
+                let (mass, com) = match &b.inertial {
+                    Some(i) => (i.mass, Vector3::from(i.com)),
+                    None => (0.0, Vector3::zeros()),
                 };
                 BodyConstants {
                     joint: b.joint,
@@ -116,7 +110,6 @@ impl Robot {
                         .then(|| Rigid::from_frame(&b.link)),
                     mass,
                     com,
-                    inertia,
                     armature: b.armature,
                     viscous: b.friction.viscous,
                     coulomb: b.friction.coulomb,

@@ -94,8 +94,16 @@ pub fn ops_report(model: &RobotModel, options: Options) -> Result<String, String
         sum.total().to_string(),
     ]);
     let statements = generated.tokens.to_string().matches(';').count();
+    let looped = if generated.looped.is_empty() {
+        String::new()
+    } else {
+        format!(
+            "looped (the runtime path's loops in dhgen::recursive, not counted): {}\n",
+            generated.looped.join(", ")
+        )
+    };
     Ok(format!(
-        "{} ({} DOF{}): generated in {:.1} ms, ~{statements} statements\n{}",
+        "{} ({} DOF{}): generated in {:.1} ms, ~{statements} statements\n{}{looped}",
         model.name,
         model.dof(),
         if model.has_dynamics() {

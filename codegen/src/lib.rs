@@ -27,5 +27,6 @@ pub use dhgen_model::RobotModel;
 pub use graph::OpCount;
 pub use limits::Unsupported;
 pub use module::{
-    Generated, Options, generate, generate_with, module_doc, op_counts, op_counts_with,
+    Generated, LOOPED_ABOVE, Options, generate, generate_with, module_doc, op_counts,
+    op_counts_with,
 };

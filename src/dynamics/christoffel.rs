@@ -1,9 +1,9 @@
 //! The Christoffel symbols from analytic derivatives of the mass matrix.
 
 use super::accumulate_composites;
-use super::spatial::{Force, Motion};
 use crate::Joints;
 use crate::robot::Robot;
+use crate::spatial::{Force, Motion};
 use core::ops::Index;
 
 /// The Christoffel symbols of the first kind of `D(q)`, in the textbook's index order

@@ -19,21 +19,12 @@ impl Robot {
         self.crba(&states)
     }
 
-    /// `D(q)` from body states whose composites are accumulated: with `F_j = I^C_j S_j` the
-    /// force needed to move joint j alone at unit acceleration, `D_ij = S_i · F_j` for
-    /// `i ≤ j` (joint i feels what moves beyond both joints).
+    /// `D(q)` from body states whose composites are accumulated ([`crate::recursive`]'s
+    /// CRBA, shared with generated modules of long arms).
     pub(crate) fn crba(&self, states: &[BodyState]) -> DMatrix<f64> {
         let n = states.len();
         let mut d = DMatrix::zeros(n, n);
-        for j in 0..n {
-            let f = states[j].composite.apply(&states[j].axis);
-            d[(j, j)] = states[j].axis.dot(&f) + self.bodies[j].armature;
-            for i in 0..j {
-                let dij = states[i].axis.dot(&f);
-                d[(i, j)] = dij;
-                d[(j, i)] = dij;
-            }
-        }
+        crate::recursive::crba(self.chain(), states, |i, j, v| d[(i, j)] = v);
         d
     }
 }

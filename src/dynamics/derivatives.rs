@@ -9,9 +9,9 @@
 //! column m of ∂τ/∂q exactly, with no finite differences: the algorithm of Carpentier and
 //! Mansard (RSS 2018) in its plainest, forward-mode form.
 
-use super::spatial::{Force, Motion};
 use crate::Joints;
 use crate::robot::Robot;
+use crate::spatial::{Force, Motion};
 use nalgebra::{DMatrix, DVector};
 
 impl Robot {

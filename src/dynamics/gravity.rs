@@ -1,9 +1,9 @@
 //! The gravity torques from composite mass moments.
 
 use super::joint_axis;
-use super::spatial::Motion;
 use crate::Joints;
 use crate::robot::Robot;
+use crate::spatial::Motion;
 use nalgebra::{DVector, Vector3};
 
 impl Robot {

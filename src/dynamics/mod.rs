@@ -28,42 +28,22 @@ mod gravity;
 mod rates;
 pub mod regressor;
 mod rnea;
-mod spatial;
 
 pub use christoffel::{Christoffel, ChristoffelPlane};
 
+use crate::recursive::body_states;
+pub(crate) use crate::recursive::{BodyState, accumulate_composites};
 use crate::robot::{Rigid, Robot};
+use crate::spatial::Motion;
 use dhgen_model::JointKind;
-use spatial::{Inertia, Motion};
-
-/// One body at one configuration, in world coordinates.
-#[derive(Clone, Copy, Debug)]
-pub(crate) struct BodyState {
-    /// The joint's unit motion `S_i`: `[z; p × z]` (revolute) or `[0; z]` (prismatic).
-    pub axis: Motion,
-    /// The body's own spatial inertia.
-    pub inertia: Inertia,
-    /// The composite inertia of this body and all bodies after it (filled by
-    /// [`accumulate_composites`]).
-    pub composite: Inertia,
-}
 
 impl Robot {
-    /// The world-frame joint axes and body inertias at `q` (length already checked).
+    /// The world-frame joint axes and body inertias at `q` (length already checked), by the
+    /// pass [`crate::recursive`] shares with generated modules of long arms.
     pub(crate) fn body_states(&self, q: &[f64]) -> Vec<BodyState> {
-        let mut states = Vec::with_capacity(self.dof());
-        self.walk_joint_frames(q, |i, frame| {
-            let body = &self.bodies[i];
-            let axis = joint_axis(body.joint, frame);
-            let com = frame.r * body.com + frame.p;
-            let i_com = frame.r * body.inertia * frame.r.transpose();
-            let inertia = Inertia::from_com(body.mass, &com, &i_com);
-            states.push(BodyState {
-                axis,
-                inertia,
-                composite: inertia,
-            });
-        });
+        let chain = self.chain();
+        let mut states = vec![BodyState::zero(); self.dof()];
+        body_states(chain, |i| chain.bodies[i].value(q[i]), &mut states);
         states
     }
 
@@ -75,29 +55,11 @@ impl Robot {
     }
 }
 
-/// The unit motion `S` of a joint carried by the z axis of `frame`: `[z; p × z]` for a
-/// revolute joint (rotation about the line through `p`), `[0; z]` for a prismatic one.
+/// The unit motion `S` of a joint carried by the z axis of `frame` (see
+/// [`crate::recursive`]'s `joint_axis`).
 #[inline]
 pub(crate) fn joint_axis(joint: JointKind, frame: &Rigid) -> Motion {
-    let z = frame.r.column(2).into_owned();
-    match joint {
-        JointKind::Revolute => Motion {
-            ang: z,
-            lin: frame.p.cross(&z),
-        },
-        JointKind::Prismatic => Motion {
-            ang: nalgebra::Vector3::zeros(),
-            lin: z,
-        },
-    }
-}
-
-/// Sums the inertias tip to base: `composite_i = Σ_{k ≥ i} inertia_k`.
-pub(crate) fn accumulate_composites(states: &mut [BodyState]) {
-    for i in (1..states.len()).rev() {
-        let after = states[i].composite;
-        states[i - 1].composite += &after;
-    }
+    crate::recursive::joint_axis(joint, &frame.r, &frame.p)
 }
 
 /// The sign of `x`, with `sign(0) = 0` (`f64::signum` gives ±1 for ±0).

@@ -2,9 +2,9 @@
 //! torque regressor `Y`, and the robot's own parameters `π`, in the order and frames of
 //! [`dhgen_model::parameters`] (the generated regressor's too).
 
-use super::spatial::{Force, Inertia, Motion};
 use crate::Joints;
 use crate::robot::{Rigid, Robot};
+use crate::spatial::{Force, Inertia, Motion};
 use nalgebra::{DMatrix, DVector, Matrix3, Vector3};
 
 use dhgen_model::parameters::BODY_PARAMETERS;

@@ -1,9 +1,9 @@
 //! Inverse dynamics by the recursive Newton–Euler algorithm.
 
 use super::BodyState;
-use super::spatial::{Force, Motion};
 use crate::Joints;
 use crate::robot::Robot;
+use crate::spatial::{Force, Motion};
 use nalgebra::DVector;
 
 impl Robot {

@@ -1,7 +1,7 @@
 //! The Cholesky factorisation of D(q), without branches, and what is built on it:
 //! forward dynamics' solve `D x = rhs` and the inverse `D⁻¹`.
 //!
-//! Up to [`UNROLLED_UP_TO`] joints the factorisation is unrolled into straight-line code;
+//! Up to [`LOOPED_ABOVE`] joints the factorisation is unrolled into straight-line code;
 //! above, it is emitted as loops over arrays (the same operations in the same order, so the
 //! same values bit for bit): its unrolled code grows as n³ and at 20 joints is already
 //! several times the size of the rest of forward dynamics, while a general arm's D has no
@@ -12,6 +12,7 @@
 //! code has no branch, so a SIMD pack's lanes each get the scalar path's answer, whatever the
 //! others'.
 
+use super::LOOPED_ABOVE;
 use super::shape::Shape;
 use crate::graph::OpCount;
 use proc_macro2::{Ident, TokenStream};
@@ -24,9 +25,6 @@ fn l(i: usize, j: usize) -> Ident {
 fn inv(i: usize) -> Ident {
     format_ident!("inv{}", i)
 }
-
-/// The most joints for which the factorisation and what is built on it are unrolled.
-pub const UNROLLED_UP_TO: usize = 12;
 
 /// The factor `L` of `dm` as loops: `l: [[T; DOF]; DOF]` (lower triangle), `inv: [T; DOF]`
 /// the pivots' reciprocals, and `ok` over the pivots; the same operations, in the same order,
@@ -133,7 +131,7 @@ pub fn solve(n: usize) -> (TokenStream, OpCount) {
         ops.mul += 2 * i + 2;
         ops.add += 2 * i;
     }
-    if n > UNROLLED_UP_TO {
+    if n > LOOPED_ABOVE {
         let factor = factor_looped();
         let solve = quote! {
             #factor
@@ -214,7 +212,7 @@ pub fn inverse(n: usize) -> (TokenStream, OpCount) {
         ops.mul += (b + 1) * (n - b);
         ops.add += (b + 1) * (n - b - 1);
     }
-    if n > UNROLLED_UP_TO {
+    if n > LOOPED_ABOVE {
         let factor = factor_looped();
         let zeros = Shape::Square.init();
         let inverse = quote! {

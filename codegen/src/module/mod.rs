@@ -34,7 +34,19 @@ pub struct Generated {
     pub tokens: TokenStream,
     /// Arithmetic operations per generated function.
     pub ops: Vec<(String, OpCount)>,
+    /// The functions that call the runtime path's loops in `dhgen::recursive` (arms of more
+    /// than [`LOOPED_ABOVE`] joints) instead of straight-line code, so have no count in `ops`.
+    pub looped: Vec<String>,
 }
+
+/// The most joints for which D(q), C(q, q̇) and the Cholesky factorisation are emitted as
+/// straight-line code. Above, forward dynamics' factorisation is emitted as loops
+/// ([`cholesky`]) and D and C call the runtime path's loops (`dhgen::recursive`): a general
+/// arm's straight-line D and C outgrow the instruction cache there (at 16 joints generated D
+/// took 0.78× the runtime's time, at 30 joints D 0.63× and C 0.72×, with thousands of
+/// instruction-cache misses per call against fewer than one), and the loops make the module
+/// as fast as the runtime path by construction.
+pub const LOOPED_ABOVE: usize = 12;
 
 /// What a module holds beyond the default set of functions, chosen where it is generated
 /// (`robot!(pub mod arm = "arm.toml", derivatives)`, `dhgen emit --derivatives`).
@@ -157,6 +169,11 @@ impl<'c> Context<'c> {
             .as_ref()
     }
 
+    /// True above [`LOOPED_ABOVE`] joints: D and C call the runtime path's loops.
+    pub fn looped(&self) -> bool {
+        self.chain.dof() > LOOPED_ABOVE
+    }
+
     /// Coulomb friction added to `tau` (empty without Coulomb friction).
     pub fn coulomb(&self) -> TokenStream {
         state::coulomb(self)
@@ -219,6 +236,7 @@ struct Items {
     arm: Vec<TokenStream>,
     dynamics: Vec<TokenStream>,
     ops: Vec<(String, OpCount)>,
+    looped: Vec<String>,
     /// The joints each quantity reads.
     joints: HashMap<&'static str, Vec<usize>>,
 }
@@ -250,6 +268,11 @@ impl Items {
         let inputs = idents(q.inputs);
         let body = match (q.make)(cx) {
             Made::Derived(graph, exprs) => self.straight_line(cx, q, &graph, exprs),
+            Made::Looped(body) => {
+                self.joints.insert(q.name, (0..cx.chain.dof()).collect());
+                self.looped.push(q.name.to_string());
+                body
+            }
             Made::Composed { body, reads, ops } => {
                 let mut joints: Vec<usize> = reads
                     .iter()
@@ -530,6 +553,7 @@ pub fn generate_with(
         arm,
         dynamics,
         ops,
+        looped,
         ..
     } = items;
 
@@ -661,6 +685,7 @@ pub fn generate_with(
     Ok(Generated {
         tokens: tidy::unsuffix_indices(tokens),
         ops,
+        looped,
     })
 }
 

@@ -76,6 +76,9 @@ pub enum Made {
         /// Arithmetic of its own, reported under a name (the Cholesky solve).
         ops: Option<(&'static str, crate::OpCount)>,
     },
+    /// A call of the runtime path's loop in `dhgen::recursive` (reading every joint), for
+    /// arms of more than [`LOOPED_ABOVE`](super::LOOPED_ABOVE) joints.
+    Looped(TokenStream),
 }
 
 /// The trait method a quantity implements, for `f64` and nalgebra joint vectors.
@@ -357,6 +360,11 @@ pub const QUANTITIES: &[Quantity] = &[
         available: Availability::Dynamics,
         public: true,
         make: |cx| {
+            if cx.looped() {
+                return Made::Looped(quote!(::dhgen::recursive::mass_matrix(
+                    CHAIN, &self.c, &self.s, &self.d
+                )));
+            }
             let (graph, d) = inertia::mass_matrix(&cx.derivation);
             derived(graph, d)
         },
@@ -399,6 +407,12 @@ pub const QUANTITIES: &[Quantity] = &[
             // Four candidates: C straight from the symbols (zero symbols fold away), the O(n²)
             // recursion on dual numbers, Echeandia and Wensing's O(n²) algorithm (the runtime
             // path's), or contracting the n³ symbols at run time; the fewest operations win.
+            // Above `LOOPED_ABOVE` joints, the runtime's loop.
+            if cx.looped() {
+                return Made::Looped(quote!(::dhgen::recursive::coriolis(
+                    CHAIN, &self.c, &self.s, &self.d, qd
+                )));
+            }
             let n = cx.chain.dof();
             let (graph, c) = cx.christoffel();
             let [

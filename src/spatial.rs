@@ -1,37 +1,51 @@
 //! Spatial (6-D) vectors and inertias in Plücker coordinates at the world origin, the
 //! common language of the dynamics algorithms (Featherstone, *Rigid Body Dynamics
-//! Algorithms*, ch. 2). Working in world coordinates lets every algorithm share one
-//! kinematic pass and makes the derivatives of `D(q)` simple screw products.
+//! Algorithms*, ch. 2), over any [`Real`] (`f64` for [`Robot`](crate::Robot); any scalar or
+//! pack for [`crate::recursive`]). Working in world coordinates lets every algorithm share
+//! one kinematic pass and makes the derivatives of `D(q)` simple screw products.
 
+use crate::Real;
 use core::ops::{Add, AddAssign, Mul, Sub};
 use nalgebra::{Matrix3, Vector3};
 
 /// A motion vector `[ω; v]`: angular velocity and the velocity of the body-fixed point at
 /// the world origin.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub(crate) struct Motion {
-    pub ang: Vector3<f64>,
-    pub lin: Vector3<f64>,
+pub(crate) struct Motion<T = f64> {
+    pub ang: Vector3<T>,
+    pub lin: Vector3<T>,
 }
 
 /// A force vector `[n; f]`: moment about the world origin and force (or the momentum
 /// equivalents).
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub(crate) struct Force {
-    pub ang: Vector3<f64>,
-    pub lin: Vector3<f64>,
+pub(crate) struct Force<T = f64> {
+    pub ang: Vector3<T>,
+    pub lin: Vector3<T>,
 }
 
-impl Motion {
+#[cfg_attr(not(feature = "std"), allow(dead_code))]
+impl Motion<f64> {
     pub const ZERO: Motion = Motion {
         ang: Vector3::new(0.0, 0.0, 0.0),
         lin: Vector3::new(0.0, 0.0, 0.0),
     };
+}
+
+impl<T: Real> Motion<T> {
+    /// The zero motion.
+    #[inline]
+    pub fn zero() -> Motion<T> {
+        Motion {
+            ang: Vector3::zeros(),
+            lin: Vector3::zeros(),
+        }
+    }
 
     /// The motion cross product `self × m` (how `m`, carried by a body moving with
     /// `self`, changes).
     #[inline]
-    pub fn cross(&self, m: &Motion) -> Motion {
+    pub fn cross(&self, m: &Motion<T>) -> Motion<T> {
         Motion {
             ang: self.ang.cross(&m.ang),
             lin: self.ang.cross(&m.lin) + self.lin.cross(&m.ang),
@@ -39,8 +53,9 @@ impl Motion {
     }
 
     /// The force cross product `self ×* f`.
+    #[cfg_attr(not(feature = "std"), allow(dead_code))]
     #[inline]
-    pub fn cross_force(&self, f: &Force) -> Force {
+    pub fn cross_force(&self, f: &Force<T>) -> Force<T> {
         Force {
             ang: self.ang.cross(&f.ang) + self.lin.cross(&f.lin),
             lin: self.ang.cross(&f.lin),
@@ -49,15 +64,15 @@ impl Motion {
 
     /// The power pairing `self · f`.
     #[inline]
-    pub fn dot(&self, f: &Force) -> f64 {
+    pub fn dot(&self, f: &Force<T>) -> T {
         self.ang.dot(&f.ang) + self.lin.dot(&f.lin)
     }
 }
 
-impl Add for Motion {
-    type Output = Motion;
+impl<T: Real> Add for Motion<T> {
+    type Output = Motion<T>;
     #[inline]
-    fn add(self, m: Motion) -> Motion {
+    fn add(self, m: Motion<T>) -> Motion<T> {
         Motion {
             ang: self.ang + m.ang,
             lin: self.lin + m.lin,
@@ -65,10 +80,10 @@ impl Add for Motion {
     }
 }
 
-impl Sub for Motion {
-    type Output = Motion;
+impl<T: Real> Sub for Motion<T> {
+    type Output = Motion<T>;
     #[inline]
-    fn sub(self, m: Motion) -> Motion {
+    fn sub(self, m: Motion<T>) -> Motion<T> {
         Motion {
             ang: self.ang - m.ang,
             lin: self.lin - m.lin,
@@ -76,10 +91,10 @@ impl Sub for Motion {
     }
 }
 
-impl Mul<f64> for Motion {
-    type Output = Motion;
+impl<T: Real> Mul<T> for Motion<T> {
+    type Output = Motion<T>;
     #[inline]
-    fn mul(self, s: f64) -> Motion {
+    fn mul(self, s: T) -> Motion<T> {
         Motion {
             ang: self.ang * s,
             lin: self.lin * s,
@@ -87,17 +102,18 @@ impl Mul<f64> for Motion {
     }
 }
 
-impl Force {
+#[cfg_attr(not(feature = "std"), allow(dead_code))]
+impl Force<f64> {
     pub const ZERO: Force = Force {
         ang: Vector3::new(0.0, 0.0, 0.0),
         lin: Vector3::new(0.0, 0.0, 0.0),
     };
 }
 
-impl Add for Force {
-    type Output = Force;
+impl<T: Real> Add for Force<T> {
+    type Output = Force<T>;
     #[inline]
-    fn add(self, f: Force) -> Force {
+    fn add(self, f: Force<T>) -> Force<T> {
         Force {
             ang: self.ang + f.ang,
             lin: self.lin + f.lin,
@@ -105,9 +121,9 @@ impl Add for Force {
     }
 }
 
-impl AddAssign for Force {
+impl<T: Real> AddAssign for Force<T> {
     #[inline]
-    fn add_assign(&mut self, f: Force) {
+    fn add_assign(&mut self, f: Force<T>) {
         self.ang += f.ang;
         self.lin += f.lin;
     }
@@ -117,17 +133,17 @@ impl AddAssign for Force {
 /// centre of mass) and rotational inertia `k` about the origin. As a 6×6 matrix it is
 /// `[[k, h×], [−h×, m·1]]`.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub(crate) struct Inertia {
-    pub mass: f64,
-    pub h: Vector3<f64>,
-    pub k: Matrix3<f64>,
+pub(crate) struct Inertia<T = f64> {
+    pub mass: T,
+    pub h: Vector3<T>,
+    pub k: Matrix3<T>,
 }
 
-impl Inertia {
+impl<T: Real> Inertia<T> {
     /// The inertia of a body of mass `mass` with centre of mass `com` and inertia `i_com`
     /// about it (all in world coordinates), by the parallel axis theorem.
     #[inline]
-    pub fn from_com(mass: f64, com: &Vector3<f64>, i_com: &Matrix3<f64>) -> Inertia {
+    pub fn from_com(mass: T, com: &Vector3<T>, i_com: &Matrix3<T>) -> Inertia<T> {
         let k = i_com
             + (Matrix3::from_diagonal_element(com.norm_squared()) - com * com.transpose()) * mass;
         Inertia {
@@ -139,7 +155,7 @@ impl Inertia {
 
     /// The momentum (or force) `I·v`.
     #[inline]
-    pub fn apply(&self, v: &Motion) -> Force {
+    pub fn apply(&self, v: &Motion<T>) -> Force<T> {
         Force {
             ang: self.k * v.ang + self.h.cross(&v.lin),
             lin: v.lin * self.mass - self.h.cross(&v.ang),
@@ -147,9 +163,9 @@ impl Inertia {
     }
 }
 
-impl AddAssign<&Inertia> for Inertia {
+impl<T: Real> AddAssign<&Inertia<T>> for Inertia<T> {
     #[inline]
-    fn add_assign(&mut self, o: &Inertia) {
+    fn add_assign(&mut self, o: &Inertia<T>) {
         self.mass += o.mass;
         self.h += o.h;
         self.k += o.k;

@@ -1,0 +1,333 @@
+//! The recursive rigid-body algorithms on caller-owned memory, over any [`Real`]: the
+//! composite rigid body algorithm for `D(q)` and the O(n²) Coriolis recursion for
+//! `C(q, q̇)`, without allocation and without `std`.
+//!
+//! They are the runtime path's algorithms — [`Robot`](crate::Robot) runs them on `f64` with
+//! its bodies in a `Vec` — and generated modules of more than 12 joints (the code generator's
+//! `LOOPED_ABOVE`) call them with their `CHAIN` and a stack array: there, the
+//! straight-line form of `D(q)` and `C(q, q̇)` outgrows the instruction cache (at 20 joints
+//! a general arm's unrolled `C` streams over 90 KB of code per call) and loses to these loops,
+//! so a generated module is never slower than the runtime path. Below it, the symbolic
+//! derivations win and are emitted; the symbolic engine checks these loops at every size
+//! (`tests/ring_algorithms.rs`).
+//!
+//! Everything is in world coordinates (Plücker coordinates at the world origin): one pass
+//! puts every joint axis and body inertia there ([`mass_matrix`] and [`coriolis`] start
+//! with it), the composite inertias are summed tip to base, and `D` and `C` are pairings of
+//! axes with forces.
+//!
+//! ```
+//! // A 2-joint planar arm, then its D(q) at q = (0.3, −0.5) both ways.
+//! let robot = dhgen::Robot::from_toml_str(r#"
+//!     name = "planar2"
+//!     [[links]]
+//!     a = 1.0
+//!     mass = 1.0
+//!     com = [-0.5, 0.0, 0.0]
+//!     [[links]]
+//!     a = 0.8
+//!     mass = 0.5
+//!     com = [-0.4, 0.0, 0.0]
+//! "#).unwrap();
+//! let q = [0.3_f64, -0.5];
+//! let (s, c) = (q.map(f64::sin), q.map(f64::cos));
+//! let d = dhgen::recursive::mass_matrix(robot.chain(), &c, &s, &[0.0; 2]);
+//! assert!((d - robot.mass_matrix(&q)).abs().max() < 1e-14);
+//! ```
+
+use crate::Real;
+use crate::spatial::{Force, Inertia, Motion};
+use dhgen_model::{ChainRef, JointKind, JointValue};
+use nalgebra::{Matrix3, SMatrix, Vector3, convert};
+
+/// One body at one configuration, in world coordinates.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct BodyState<T = f64> {
+    /// The joint's unit motion `S_i`: `[z; p × z]` (revolute) or `[0; z]` (prismatic).
+    pub axis: Motion<T>,
+    /// The body's own spatial inertia.
+    pub inertia: Inertia<T>,
+    /// The composite inertia of this body and all bodies after it (filled by
+    /// [`accumulate_composites`]).
+    pub composite: Inertia<T>,
+}
+
+impl<T: Real> BodyState<T> {
+    /// A body without mass on a zero axis: the value arrays start from.
+    pub fn zero() -> BodyState<T> {
+        let inertia = Inertia {
+            mass: T::zero(),
+            h: Vector3::zeros(),
+            k: Matrix3::zeros(),
+        };
+        BodyState {
+            axis: Motion::zero(),
+            inertia,
+            composite: inertia,
+        }
+    }
+}
+
+/// The unit motion `S` of a joint carried by the z axis of the frame `(r, p)`: `[z; p × z]`
+/// for a revolute joint (rotation about the line through `p`), `[0; z]` for a prismatic one.
+#[inline]
+pub(crate) fn joint_axis<T: Real>(joint: JointKind, r: &Matrix3<T>, p: &Vector3<T>) -> Motion<T> {
+    let z = r.column(2).into_owned();
+    match joint {
+        JointKind::Revolute => Motion {
+            ang: z,
+            lin: p.cross(&z),
+        },
+        JointKind::Prismatic => Motion {
+            ang: Vector3::zeros(),
+            lin: z,
+        },
+    }
+}
+
+/// `x` as a `T`.
+#[inline]
+fn k<T: Real>(x: f64) -> T {
+    convert::<f64, T>(x)
+}
+
+/// Fills `states` (one per body, base to tip) with the world-frame joint axes and body
+/// inertias at the joint values `value(k)` (offsets applied): `T(q) = P_0 Z_1 P_1 ⋯` walked
+/// as the runtime walks it (compose the placement, then turn the columns by the joint).
+/// A kinematics-only body has zero inertia.
+pub(crate) fn body_states<T: Real>(
+    chain: ChainRef<'_>,
+    mut value: impl FnMut(usize) -> JointValue<T>,
+    states: &mut [BodyState<T>],
+) {
+    let mut r: Matrix3<T> = Matrix3::identity();
+    let mut p: Vector3<T> = Vector3::zeros();
+    for (i, ((body, placement), state)) in chain
+        .bodies
+        .iter()
+        .zip(chain.placements)
+        .zip(states.iter_mut())
+        .enumerate()
+    {
+        let pr = Matrix3::from_fn(|a, b| k::<T>(placement.r[a][b]));
+        let pp = Vector3::from_fn(|a, _| k::<T>(placement.p[a]));
+        if i == 0 {
+            (r, p) = (pr, pp);
+        } else {
+            p += r * pp;
+            r *= pr;
+        }
+        match value(i) {
+            JointValue::Revolute { cos, sin } => {
+                let x = r.column(0).into_owned();
+                let y = r.column(1).into_owned();
+                r.set_column(0, &(x * cos + y * sin));
+                r.set_column(1, &(y * cos - x * sin));
+            }
+            JointValue::Prismatic(d) => p += r.column(2) * d,
+        }
+        let axis = joint_axis(body.joint, &r, &p);
+        let inertia = match &body.inertial {
+            Some(b) => {
+                let com = r * Vector3::from_fn(|a, _| k::<T>(b.com[a])) + p;
+                let i_com = r * Matrix3::from_fn(|a, c| k::<T>(b.inertia[a][c])) * r.transpose();
+                Inertia::from_com(k(b.mass), &com, &i_com)
+            }
+            None => BodyState::zero().inertia,
+        };
+        *state = BodyState {
+            axis,
+            inertia,
+            composite: inertia,
+        };
+    }
+}
+
+/// Sums the inertias tip to base: `composite_i = Σ_{k ≥ i} inertia_k`.
+pub(crate) fn accumulate_composites<T: Real>(states: &mut [BodyState<T>]) {
+    for i in (1..states.len()).rev() {
+        let after = states[i].composite;
+        states[i - 1].composite += &after;
+    }
+}
+
+/// `D(q)` from body states whose composites are accumulated, entry by entry into `set(i, j,
+/// value)`: with `F_j = I^C_j S_j` the force needed to move joint j alone at unit
+/// acceleration, `D_ij = S_i · F_j` for `i ≤ j` (joint i feels what moves beyond both joints),
+/// plus each joint's armature on the diagonal.
+pub(crate) fn crba<T: Real>(
+    chain: ChainRef<'_>,
+    states: &[BodyState<T>],
+    mut set: impl FnMut(usize, usize, T),
+) {
+    for (j, (state, body)) in states.iter().zip(chain.bodies).enumerate() {
+        let f = state.composite.apply(&state.axis);
+        set(j, j, state.axis.dot(&f) + k::<T>(body.armature));
+        for (i, before) in states[..j].iter().enumerate() {
+            let dij = before.axis.dot(&f);
+            set(i, j, dij);
+            set(j, i, dij);
+        }
+    }
+}
+
+/// What the Coriolis recursion keeps per body besides its [`BodyState`].
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct CoriolisBody<T = f64> {
+    /// `Ṡ_i = v_i × S_i`.
+    axis_rate: Motion<T>,
+    /// `P = ½(İ_ωω − n×)` of this body, then summed tip to base.
+    p: Matrix3<T>,
+    /// The linear momentum, then summed tip to base.
+    l: Vector3<T>,
+}
+
+impl<T: Real> CoriolisBody<T> {
+    /// The value arrays start from.
+    pub fn zero() -> CoriolisBody<T> {
+        CoriolisBody {
+            axis_rate: Motion::zero(),
+            p: Matrix3::zeros(),
+            l: Vector3::zeros(),
+        }
+    }
+}
+
+/// The cross-product matrix `x̂` with `x̂ y = x × y`.
+#[inline]
+fn hat<T: Real>(x: &Vector3<T>) -> Matrix3<T> {
+    let o = T::zero();
+    Matrix3::new(o, -x.z, x.y, x.z, o, -x.x, -x.y, x.x, o)
+}
+
+/// `C(q, q̇)` (Echeandia & Wensing 2021) from body states (composites not yet accumulated:
+/// this accumulates them) and the joint velocities `qd`, entry by entry into `set(k, j,
+/// value)`, with `scratch` one entry per body. Each body contributes
+/// `B = ½(v×* I − I v× + (I v)×̄)`, summed tip to base into `B^C`; with `Ṡ_j = v_j × S_j`,
+/// `C_kj = S_k·(I^C_j Ṡ_j + B^C_j S_j)` for `k ≤ j` and
+/// `C_kj = Ṡ_j·I^C_k S_k + S_j·B^C_kᵀ S_k` for `k > j`. In world coordinates
+/// `B = [[P, 0], [−l×, 0]]` with `P = ½(İ_ωω − n×)`, where `İ_ωω` is the rate of change of the
+/// rotational inertia about the origin and `[n; l] = I v` the momentum; so `B` composes from
+/// a 3×3 matrix and a vector per body.
+pub(crate) fn coriolis_into<T: Real>(
+    states: &mut [BodyState<T>],
+    qd: &[T],
+    scratch: &mut [CoriolisBody<T>],
+    mut set: impl FnMut(usize, usize, T),
+) {
+    let half: T = k(0.5);
+    let two: T = k(2.0);
+    let mut velocity = Motion::zero();
+    for ((state, &qdi), body) in states.iter().zip(qd).zip(scratch.iter_mut()) {
+        velocity = velocity + state.axis * qdi;
+        let inertia = &state.inertia;
+        let momentum = inertia.apply(&velocity);
+        let (w, u) = (&velocity.ang, &velocity.lin);
+        let w_hat = hat(w);
+        let k_rate = w_hat * inertia.k - inertia.k * w_hat
+            + Matrix3::from_diagonal_element(two * inertia.h.dot(u))
+            - u * inertia.h.transpose()
+            - inertia.h * u.transpose();
+        *body = CoriolisBody {
+            axis_rate: velocity.cross(&state.axis),
+            p: (k_rate - hat(&momentum.ang)) * half,
+            l: momentum.lin,
+        };
+    }
+    accumulate_composites(states);
+    for i in (1..scratch.len()).rev() {
+        let (p, l) = (scratch[i].p, scratch[i].l);
+        scratch[i - 1].p += p;
+        scratch[i - 1].l += l;
+    }
+    for (j, (state, body)) in states.iter().zip(scratch.iter()).enumerate() {
+        let s = &state.axis;
+        let composite = &state.composite;
+        let rate = composite.apply(&body.axis_rate);
+        let f1 = Force {
+            ang: rate.ang + body.p * s.ang,
+            lin: rate.lin + s.ang.cross(&body.l),
+        };
+        let f2 = composite.apply(s);
+        let f3 = Force {
+            ang: body.p.transpose() * s.ang + body.l.cross(&s.lin),
+            lin: Vector3::zeros(),
+        };
+        set(j, j, s.dot(&f1));
+        for (kk, (before, before_body)) in states[..j].iter().zip(scratch.iter()).enumerate() {
+            // Row k < j: C_kj; column k < j of row j: C_jk.
+            set(kk, j, before.axis.dot(&f1));
+            set(j, kk, before_body.axis_rate.dot(&f2) + before.axis.dot(&f3));
+        }
+    }
+}
+
+/// The joint values of the prepared configuration `(cos, sin, d)`, as generated modules'
+/// `State` holds it: the cosine and sine of each revolute joint's full angle, the full
+/// displacement of each prismatic joint.
+fn prepared<'a, T: Real>(
+    chain: ChainRef<'a>,
+    cos: &'a [T],
+    sin: &'a [T],
+    d: &'a [T],
+) -> impl FnMut(usize) -> JointValue<T> + 'a {
+    // Every index is below N (one per body); `get` keeps the code free of panics.
+    let at = |v: &[T], i: usize| v.get(i).copied().unwrap_or_else(T::zero);
+    move |i| match chain.bodies.get(i).map(|b| b.joint) {
+        Some(JointKind::Prismatic) => JointValue::Prismatic(at(d, i)),
+        _ => JointValue::Revolute {
+            cos: at(cos, i),
+            sin: at(sin, i),
+        },
+    }
+}
+
+/// `out[(i, j)] = v` (every index is below N; `get_mut` keeps the code free of panics).
+#[inline]
+fn set<T: Real, const N: usize>(out: &mut SMatrix<T, N, N>, i: usize, j: usize, v: T) {
+    if let Some(e) = out.get_mut((i, j)) {
+        *e = v;
+    }
+}
+
+/// The joint-space inertia matrix `D(q)` of `chain` (armature included) by the composite
+/// rigid body algorithm, at the configuration given by each revolute joint's cosine and sine
+/// and each prismatic joint's displacement (offsets applied; the other entries are not
+/// read). `chain` has `N` bodies (a generated module's `CHAIN` and `DOF`); a kinematics-only
+/// chain gives its armatures alone.
+#[must_use]
+pub fn mass_matrix<T: Real, const N: usize>(
+    chain: ChainRef<'_>,
+    cos: &[T; N],
+    sin: &[T; N],
+    d: &[T; N],
+) -> SMatrix<T, N, N> {
+    let mut states = [BodyState::zero(); N];
+    body_states(chain, prepared(chain, cos, sin, d), &mut states);
+    accumulate_composites(&mut states);
+    let mut out = SMatrix::<T, N, N>::zeros();
+    crba(chain, &states, |i, j, v| set(&mut out, i, j, v));
+    out
+}
+
+/// The Coriolis and centrifugal matrix `C(q, q̇)` of `chain`, Christoffel-consistent
+/// (`C_kj = Σ_i c_ijk q̇_i`, so `Ḋ − 2C` is skew-symmetric), by the O(n²) recursion of
+/// Echeandia and Wensing, at the configuration given as for [`mass_matrix`] and the joint
+/// velocities `qd`.
+#[must_use]
+pub fn coriolis<T: Real, const N: usize>(
+    chain: ChainRef<'_>,
+    cos: &[T; N],
+    sin: &[T; N],
+    d: &[T; N],
+    qd: &[T; N],
+) -> SMatrix<T, N, N> {
+    let mut states = [BodyState::zero(); N];
+    body_states(chain, prepared(chain, cos, sin, d), &mut states);
+    let mut scratch = [CoriolisBody::zero(); N];
+    let mut out = SMatrix::<T, N, N>::zeros();
+    coriolis_into(&mut states, qd, &mut scratch, |i, j, v| {
+        set(&mut out, i, j, v)
+    });
+    out
+}
