@@ -189,6 +189,12 @@ fn batch_lanes_equal_scalar_f64() {
     dynamics!(ur5, f64);
     dynamics!(planar_elbow, f64);
     dynamics!(odd, f64);
+    // D and C by the runtime's loops (`dhgen::recursive`), past 12 joints.
+    check!(
+        snake17,
+        f64,
+        [mass_matrix(), coriolis(qd), forward_dynamics(qd, tau)]
+    );
     kinematics!(craig, f64);
     dynamics!(weightless_wrist, f64);
     dynamics!(kinova_urdf, f64);
@@ -202,6 +208,7 @@ fn batch_lanes_equal_scalar_f32() {
     dynamics!(puma560, f32);
     dynamics!(panda, f32);
     dynamics!(odd, f32);
+    check!(snake17, f32, [mass_matrix(), coriolis(qd)]);
     dynamics!(weightless_wrist, f32);
     kinematics!(gantry, f32);
 }

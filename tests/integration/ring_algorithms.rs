@@ -1,8 +1,10 @@
 //! The generator's recursions, written once over any `Ring`, evaluated in `f64` on random arms
-//! (general and industrial, 2 to 12 joints, prismatic joints among them) against the runtime
-//! path's independent implementations: the algorithm that a generated module emits as
-//! straight-line code whenever it is the cheapest candidate, checked on arms where the
-//! catalogue would never select it.
+//! (general and industrial, 2 to 12 joints and 16, 20 and 30, prismatic joints among them)
+//! against the runtime path's independent implementations: the algorithm that a generated
+//! module emits as straight-line code whenever it is the cheapest candidate, checked on arms
+//! where the catalogue would never select it; and, past 12 joints, the symbolic engine's
+//! recursions checking the runtime's loops that generated modules call there
+//! (`dhgen::recursive`).
 
 use dhgen::Robot;
 use dhgen::model::random::{ArmStyle, random_arm};
@@ -15,8 +17,8 @@ type Case = (String, Robot, Vec<f64>, Vec<f64>, Vec<f64>);
 fn arms() -> Vec<Case> {
     let mut out = Vec::new();
     for style in [ArmStyle::General, ArmStyle::Industrial] {
-        for n in 2..=12 {
-            for seed in 0..3u64 {
+        for n in (2..=12).chain([16, 20, 30]) {
+            for seed in 0..if n <= 12 { 3u64 } else { 1 } {
                 let robot = Robot::from_model(random_arm(n, style, seed));
                 let f = |k: usize, a: f64| {
                     (0..n)
