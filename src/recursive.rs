@@ -17,21 +17,11 @@
 //! axes with forces.
 //!
 //! ```
-//! // A 2-joint planar arm, then its D(q) at q = (0.3, −0.5) both ways.
-//! let robot = dhgen::Robot::from_toml_str(r#"
-//!     name = "planar2"
-//!     [[links]]
-//!     a = 1.0
-//!     mass = 1.0
-//!     com = [-0.5, 0.0, 0.0]
-//!     [[links]]
-//!     a = 0.8
-//!     mass = 0.5
-//!     com = [-0.4, 0.0, 0.0]
-//! "#).unwrap();
+//! // The planar elbow arm's D(q) at q = (0.3, −0.5), here and by the runtime path.
+//! let robot = dhgen::Robot::from_file("robots/planar_elbow.toml").unwrap();
 //! let q = [0.3_f64, -0.5];
-//! let (s, c) = (q.map(f64::sin), q.map(f64::cos));
-//! let d = dhgen::recursive::mass_matrix(robot.chain(), &c, &s, &[0.0; 2]);
+//! let (sin, cos) = (q.map(f64::sin), q.map(f64::cos));
+//! let d = dhgen::recursive::mass_matrix(robot.chain(), &cos, &sin, &[0.0; 2]);
 //! assert!((d - robot.mass_matrix(&q)).abs().max() < 1e-14);
 //! ```
 
