@@ -7,25 +7,22 @@ use nalgebra::{Isometry3, Matrix6xX};
 
 impl Robot {
     /// Walks the chain base to tip, calling `visit(i, frame)` with the world pose of each
-    /// body's joint frame (whose z axis and origin carry joint i), and returns the last one.
-    /// The caller has checked the length of `q`.
+    /// body's joint frame (whose z axis and origin carry joint i), and returns the last one:
+    /// [`crate::recursive`]'s walk, which the dynamics share. The caller has checked the
+    /// length of `q`.
     #[inline]
     pub(crate) fn walk_joint_frames(
         &self,
         q: &[f64],
         mut visit: impl FnMut(usize, &Rigid),
     ) -> Rigid {
-        let mut frame = Rigid::IDENTITY;
-        for (i, (body, &qi)) in self.bodies.iter().zip(q).enumerate() {
-            frame = if i == 0 {
-                body.placement
-            } else {
-                frame.compose(&body.placement)
-            };
-            frame.apply_joint(body.joint, qi + body.offset);
-            visit(i, &frame);
-        }
-        frame
+        let chain = self.chain();
+        let (r, p) = crate::recursive::walk(
+            chain,
+            |i| chain.bodies[i].value(q[i]),
+            |i, &r, &p| visit(i, &Rigid { r, p }),
+        );
+        Rigid { r, p }
     }
 
     /// Forward kinematics: the tool pose `base · A_1(q_1) ⋯ A_n(q_n) · tool` in the world

@@ -81,24 +81,18 @@ fn k<T: Real>(x: f64) -> T {
     convert::<f64, T>(x)
 }
 
-/// Fills `states` (one per body, base to tip) with the world-frame joint axes and body
-/// inertias at the joint values `value(k)` (offsets applied): `T(q) = P_0 Z_1 P_1 ⋯` walked
-/// as the runtime walks it (compose the placement, then turn the columns by the joint).
-/// A kinematics-only body has zero inertia.
-pub(crate) fn body_states<T: Real>(
+/// Walks the chain at the joint values `value(k)` (offsets applied): `T(q) = P_0 Z_1 P_1 ⋯`
+/// by composing each placement, then turning the frame's columns by the joint (or moving it
+/// along its z axis), calling `visit(k, r, p)` with joint frame k in the world frame and
+/// returning the last one (the runtime path's walk for kinematics and dynamics alike).
+pub(crate) fn walk<T: Real>(
     chain: ChainRef<'_>,
     mut value: impl FnMut(usize) -> JointValue<T>,
-    states: &mut [BodyState<T>],
-) {
+    mut visit: impl FnMut(usize, &Matrix3<T>, &Vector3<T>),
+) -> (Matrix3<T>, Vector3<T>) {
     let mut r: Matrix3<T> = Matrix3::identity();
     let mut p: Vector3<T> = Vector3::zeros();
-    for (i, ((body, placement), state)) in chain
-        .bodies
-        .iter()
-        .zip(chain.placements)
-        .zip(states.iter_mut())
-        .enumerate()
-    {
+    for (i, (placement, _)) in chain.placements.iter().zip(chain.bodies).enumerate() {
         let pr = Matrix3::from_fn(|a, b| k::<T>(placement.r[a][b]));
         let pp = Vector3::from_fn(|a, _| k::<T>(placement.p[a]));
         if i == 0 {
@@ -116,7 +110,24 @@ pub(crate) fn body_states<T: Real>(
             }
             JointValue::Prismatic(d) => p += r.column(2) * d,
         }
-        let axis = joint_axis(body.joint, &r, &p);
+        visit(i, &r, &p);
+    }
+    (r, p)
+}
+
+/// Fills `states` (one per body, base to tip) with the world-frame joint axes and body
+/// inertias at the joint values `value(k)` (offsets applied), by [`walk`]. A kinematics-only
+/// body has zero inertia.
+pub(crate) fn body_states<T: Real>(
+    chain: ChainRef<'_>,
+    value: impl FnMut(usize) -> JointValue<T>,
+    states: &mut [BodyState<T>],
+) {
+    walk(chain, value, |i, r, p| {
+        let (Some(body), Some(state)) = (chain.bodies.get(i), states.get_mut(i)) else {
+            return;
+        };
+        let axis = joint_axis(body.joint, r, p);
         let inertia = match &body.inertial {
             Some(b) => {
                 let com = r * Vector3::from_fn(|a, _| k::<T>(b.com[a])) + p;
@@ -130,7 +141,7 @@ pub(crate) fn body_states<T: Real>(
             inertia,
             composite: inertia,
         };
-    }
+    });
 }
 
 /// Sums the inertias tip to base: `composite_i = Σ_{k ≥ i} inertia_k`.

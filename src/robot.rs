@@ -17,11 +17,6 @@ use std::path::Path;
 pub(crate) struct BodyConstants {
     /// Revolute or prismatic.
     pub joint: JointKind,
-    /// Added to the joint value.
-    pub offset: f64,
-    /// `P_k`: the joint frame at rest in the previous body's joint frame (in the world frame
-    /// for the first body, so the base pose is folded in).
-    pub placement: Rigid,
     /// The link frame in the joint frame; `None` for the identity.
     pub link: Option<Rigid>,
     /// Mass, kg (0 for a kinematics-only robot).
@@ -96,16 +91,13 @@ impl Robot {
         let bodies = view
             .bodies
             .iter()
-            .zip(view.placements)
-            .map(|(b, placement)| {
+            .map(|b| {
                 let (mass, com) = match &b.inertial {
                     Some(i) => (i.mass, Vector3::from(i.com)),
                     None => (0.0, Vector3::zeros()),
                 };
                 BodyConstants {
                     joint: b.joint,
-                    offset: b.offset,
-                    placement: Rigid::from_frame(placement),
                     link: (!(b.link.rotation_is_identity() && b.link.p == [0.0; 3]))
                         .then(|| Rigid::from_frame(&b.link)),
                     mass,
