@@ -27,7 +27,7 @@
 
 use crate::Real;
 use crate::spatial::{Force, Inertia, Motion};
-use dhgen_model::{ChainRef, JointKind, JointValue};
+use dhgen_model::{Body, ChainRef, JointKind, JointValue};
 use nalgebra::{Matrix3, SMatrix, Vector3, convert};
 
 /// One body at one configuration, in world coordinates.
@@ -263,6 +263,86 @@ pub(crate) fn coriolis_into<T: Real>(
     }
 }
 
+/// One body in the Newton–Euler forward pass, world frame.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct BodyMotion<T = f64> {
+    /// Spatial velocity.
+    pub velocity: Motion<T>,
+    /// Spatial acceleration, gravity included (the base accelerates upwards).
+    pub acceleration: Motion<T>,
+    /// Momentum `I v`.
+    pub momentum: Force<T>,
+    /// Net force `I a + v ×* I v`.
+    pub force: Force<T>,
+}
+
+impl<T: Real> BodyMotion<T> {
+    /// The value arrays start from.
+    pub fn zero() -> BodyMotion<T> {
+        BodyMotion {
+            velocity: Motion::zero(),
+            acceleration: Motion::zero(),
+            momentum: Force::zero(),
+            force: Force::zero(),
+        }
+    }
+}
+
+/// The forward pass of the recursive Newton–Euler algorithm (Featherstone, RBDA §5.3, in
+/// world coordinates): each body's velocity, acceleration and net force into `out`, with
+/// gravity entering as an upward acceleration of the base (so every body's force includes its
+/// weight); `qdd = None` means zero acceleration.
+pub(crate) fn rnea_forward<T: Real>(
+    chain: ChainRef<'_>,
+    states: &[BodyState<T>],
+    qd: &[T],
+    qdd: Option<&[T]>,
+    out: &mut [BodyMotion<T>],
+) {
+    let mut velocity = Motion::zero();
+    let mut acceleration = Motion {
+        ang: Vector3::zeros(),
+        lin: -Vector3::from_fn(|a, _| k::<T>(chain.gravity[a])),
+    };
+    for (i, ((state, &qdi), body)) in states.iter().zip(qd).zip(out.iter_mut()).enumerate() {
+        let s = &state.axis;
+        velocity = velocity + *s * qdi;
+        // The axis moves with the body before it: dS/dt = v × S.
+        acceleration = acceleration + velocity.cross(s) * qdi;
+        if let Some(qddi) = qdd.and_then(|a| a.get(i)) {
+            acceleration = acceleration + *s * *qddi;
+        }
+        let momentum = state.inertia.apply(&velocity);
+        *body = BodyMotion {
+            velocity,
+            acceleration,
+            momentum,
+            force: state.inertia.apply(&acceleration) + velocity.cross_force(&momentum),
+        };
+    }
+}
+
+/// The backward pass: `τ_i = S_i · Σ_{k ≥ i} f_k` into `set(i, τ_i)` (rigid-body torques
+/// only: no armature, no friction).
+pub(crate) fn rnea_backward<T: Real>(
+    states: &[BodyState<T>],
+    bodies: &[BodyMotion<T>],
+    mut set: impl FnMut(usize, T),
+) {
+    let mut transmitted = Force::zero();
+    for (i, (state, body)) in states.iter().zip(bodies).enumerate().rev() {
+        transmitted += body.force;
+        set(i, state.axis.dot(&transmitted));
+    }
+}
+
+/// The joint-side friction torque of `body` at velocity `qd`: `viscous·q̇ + coulomb·sign(q̇)`
+/// with `sign(0) = 0`.
+#[inline]
+pub(crate) fn friction<T: Real>(body: &Body, qd: T) -> T {
+    k::<T>(body.friction.viscous) * qd + k::<T>(body.friction.coulomb) * qd.sign()
+}
+
 /// The joint values of the prepared configuration `(cos, sin, d)`, as generated modules'
 /// `State` holds it: the cosine and sine of each revolute joint's full angle, the full
 /// displacement of each prismatic joint.
@@ -331,4 +411,32 @@ pub fn coriolis<T: Real, const N: usize>(
         set(&mut out, i, j, v)
     });
     out
+}
+
+/// `D(q)` (as [`mass_matrix`]) and the bias torques `C(q, q̇) q̇ + g(q) + friction` (inverse
+/// dynamics at zero acceleration, by recursive Newton–Euler) from one pass over the bodies:
+/// what forward dynamics `q̈ = D⁻¹(τ − bias)` needs.
+#[must_use]
+pub fn mass_matrix_and_bias<T: Real, const N: usize>(
+    chain: ChainRef<'_>,
+    cos: &[T; N],
+    sin: &[T; N],
+    d: &[T; N],
+    qd: &[T; N],
+) -> (SMatrix<T, N, N>, [T; N]) {
+    let mut states = [BodyState::zero(); N];
+    body_states(chain, prepared(chain, cos, sin, d), &mut states);
+    let mut motions = [BodyMotion::zero(); N];
+    rnea_forward(chain, &states, qd, None, &mut motions);
+    let mut bias = [T::zero(); N];
+    rnea_backward(&states, &motions, |i, t| {
+        if let (Some(b), Some(body), Some(&qdi)) = (bias.get_mut(i), chain.bodies.get(i), qd.get(i))
+        {
+            *b = t + friction(body, qdi);
+        }
+    });
+    accumulate_composites(&mut states);
+    let mut out = SMatrix::<T, N, N>::zeros();
+    crba(chain, &states, |i, j, v| set(&mut out, i, j, v));
+    (out, bias)
 }

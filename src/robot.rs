@@ -27,8 +27,6 @@ pub(crate) struct BodyConstants {
     pub armature: f64,
     /// Viscous friction coefficient.
     pub viscous: f64,
-    /// Coulomb friction.
-    pub coulomb: f64,
 }
 
 /// A serial robot arm built at run time from a description, with its kinematics and rigid
@@ -104,7 +102,6 @@ impl Robot {
                     com,
                     armature: b.armature,
                     viscous: b.friction.viscous,
-                    coulomb: b.friction.coulomb,
                 }
             })
             .collect();

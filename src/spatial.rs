@@ -110,6 +110,17 @@ impl Force<f64> {
     };
 }
 
+impl<T: Real> Force<T> {
+    /// The zero force.
+    #[inline]
+    pub fn zero() -> Force<T> {
+        Force {
+            ang: Vector3::zeros(),
+            lin: Vector3::zeros(),
+        }
+    }
+}
+
 impl<T: Real> Add for Force<T> {
     type Output = Force<T>;
     #[inline]

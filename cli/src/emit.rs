@@ -98,7 +98,9 @@ pub fn ops_report(model: &RobotModel, options: Options) -> Result<String, String
         String::new()
     } else {
         format!(
-            "looped (the runtime path's loops in dhgen::recursive, not counted): {}\n",
+            "looped (the runtime path's loops in dhgen::recursive, not counted): {}; forward \
+             dynamics takes D and the bias torques from one pass of them, then the Cholesky \
+             solve above\n",
             generated.looped.join(", ")
         )
     };

@@ -50,8 +50,7 @@ impl Robot {
     /// The joint-side friction torque of joint `i` at velocity `qd`.
     #[inline]
     pub(crate) fn friction(&self, i: usize, qd: f64) -> f64 {
-        let body = &self.bodies[i];
-        body.viscous * qd + body.coulomb * sign(qd)
+        crate::recursive::friction(&self.chain().bodies[i], qd)
     }
 }
 

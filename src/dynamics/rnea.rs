@@ -2,8 +2,9 @@
 
 use super::BodyState;
 use crate::Joints;
+pub(crate) use crate::recursive::BodyMotion;
+use crate::recursive::{rnea_backward, rnea_forward};
 use crate::robot::Robot;
-use crate::spatial::{Force, Motion};
 use nalgebra::DVector;
 
 impl Robot {
@@ -57,7 +58,8 @@ impl Robot {
     }
 
     /// The rigid-body part of inverse dynamics, with gravity, in world coordinates
-    /// (Featherstone, RBDA §5.3): no motor inertia, no friction; `qdd = None` means zero.
+    /// ([`crate::recursive`]'s Newton–Euler passes): no motor inertia, no friction;
+    /// `qdd = None` means zero.
     pub(crate) fn rnea(
         &self,
         states: &[BodyState],
@@ -66,11 +68,7 @@ impl Robot {
     ) -> DVector<f64> {
         let bodies = self.rnea_forward(states, qd, qdd);
         let mut tau = DVector::zeros(states.len());
-        let mut transmitted = Force::ZERO;
-        for i in (0..states.len()).rev() {
-            transmitted += bodies[i].force;
-            tau[i] = states[i].axis.dot(&transmitted);
-        }
+        rnea_backward(states, &bodies, |i, t| tau[i] = t);
         tau
     }
 
@@ -82,45 +80,8 @@ impl Robot {
         qd: &[f64],
         qdd: Option<&[f64]>,
     ) -> Vec<BodyMotion> {
-        // Gravity enters as an upward acceleration of the base, so that every body's force
-        // includes its weight.
-        let mut velocity = Motion::ZERO;
-        let mut acceleration = Motion {
-            ang: nalgebra::Vector3::zeros(),
-            lin: -self.gravity,
-        };
-        states
-            .iter()
-            .enumerate()
-            .map(|(i, state)| {
-                let s = &state.axis;
-                velocity = velocity + *s * qd[i];
-                // The axis moves with the body before it: dS/dt = v × S.
-                acceleration = acceleration + velocity.cross(s) * qd[i];
-                if let Some(qdd) = qdd {
-                    acceleration = acceleration + *s * qdd[i];
-                }
-                let momentum = state.inertia.apply(&velocity);
-                BodyMotion {
-                    velocity,
-                    acceleration,
-                    momentum,
-                    force: state.inertia.apply(&acceleration) + velocity.cross_force(&momentum),
-                }
-            })
-            .collect()
+        let mut out = vec![BodyMotion::zero(); states.len()];
+        rnea_forward(self.chain(), states, qd, qdd, &mut out);
+        out
     }
-}
-
-/// One body in the Newton–Euler forward pass, world frame.
-#[derive(Clone, Copy, Debug)]
-pub(crate) struct BodyMotion {
-    /// Spatial velocity.
-    pub velocity: Motion,
-    /// Spatial acceleration, gravity included (the base accelerates upwards).
-    pub acceleration: Motion,
-    /// Momentum `I v`.
-    pub momentum: Force,
-    /// Net force `I a + v ×* I v`.
-    pub force: Force,
 }

@@ -186,21 +186,20 @@ fn all_lanes(call: TokenStream, reads: &'static [&'static str]) -> Made {
     )
 }
 
-/// Forward dynamics `q̈ = D⁻¹(τ − h)` by the Cholesky solve, D and h the values of
-/// `mass_matrix` and `bias` (reading `reads`); the solve's own operations reported under
-/// `cholesky_solve` when `report` (once per module: every solve is the same).
+/// Forward dynamics `q̈ = D⁻¹(τ − h)` by the Cholesky solve, `operands` binding D and h
+/// (`dm`, `h`: the values of `mass_matrix` and `bias`, reading `reads`); the solve's own
+/// operations reported under `cholesky_solve` when `report` (once per module: every solve is
+/// the same).
 fn solved(
     cx: &Context<'_>,
-    mass_matrix: TokenStream,
-    bias: TokenStream,
+    operands: TokenStream,
     reads: &'static [&'static str],
     report: bool,
 ) -> Made {
     let (solve, ops) = cholesky::solve(cx.chain.dof());
     Made::Composed {
         body: quote! {
-            let dm = #mass_matrix;
-            let h = #bias;
+            #operands
             let rhs: [T; DOF] = ::core::array::from_fn(|i| tau[i] - h[i]);
             #solve
         },
@@ -736,10 +735,22 @@ pub const QUANTITIES: &[Quantity] = &[
         available: Availability::Dynamics,
         public: true,
         make: |cx| {
+            if cx.looped() {
+                // D and the bias torques from one pass of the runtime's loops.
+                return solved(
+                    cx,
+                    quote! {
+                        let (dm, h) = ::dhgen::recursive::mass_matrix_and_bias(
+                            CHAIN, &self.c, &self.s, &self.d, qd,
+                        );
+                    },
+                    &["mass_matrix"],
+                    true,
+                );
+            }
             solved(
                 cx,
-                quote!(self.mass_matrix()),
-                quote!(self.bias(qd)),
+                quote!(let dm = self.mass_matrix(); let h = self.bias(qd);),
                 &["mass_matrix", "bias"],
                 true,
             )
@@ -778,8 +789,10 @@ pub const QUANTITIES: &[Quantity] = &[
         make: |cx| {
             solved(
                 cx,
-                quote!(self.mass_matrix_with_payload(payload)),
-                quote!(self.bias_with_payload(qd, payload)),
+                quote! {
+                    let dm = self.mass_matrix_with_payload(payload);
+                    let h = self.bias_with_payload(qd, payload);
+                },
                 &["mass_matrix_with_payload", "bias_with_payload"],
                 false,
             )
