@@ -97,10 +97,14 @@ pub fn ops_report(model: &RobotModel, options: Options) -> Result<String, String
     let looped = if generated.looped.is_empty() {
         String::new()
     } else {
+        let forward = if generated.looped.iter().any(|f| f == "mass_matrix") {
+            "; forward dynamics takes D and the bias torques from one pass of them, then the \
+             Cholesky solve above"
+        } else {
+            ""
+        };
         format!(
-            "looped (the runtime path's loops in dhgen::recursive, not counted): {}; forward \
-             dynamics takes D and the bias torques from one pass of them, then the Cholesky \
-             solve above\n",
+            "looped (the runtime path's loops in dhgen::recursive, not counted): {}{forward}\n",
             generated.looped.join(", ")
         )
     };

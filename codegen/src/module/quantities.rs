@@ -9,9 +9,7 @@
 
 use super::shape::Shape;
 use super::{Context, cholesky};
-use crate::derive::{
-    derivatives, energy, gravity, inertia, kinematics, newton_euler, payload, singularity,
-};
+use crate::derive::{derivatives, energy, gravity, kinematics, newton_euler, payload, singularity};
 use crate::graph::{E, SharedGraph};
 use crate::poly::Poly;
 use dhgen_model::parameters::Column;
@@ -358,14 +356,11 @@ pub const QUANTITIES: &[Quantity] = &[
         shape: Shape::Square,
         available: Availability::Dynamics,
         public: true,
-        make: |cx| {
-            if cx.looped() {
-                return Made::Looped(quote!(::dhgen::recursive::mass_matrix(
-                    CHAIN, &self.c, &self.s, &self.d
-                )));
-            }
-            let (graph, d) = inertia::mass_matrix(&cx.derivation);
-            derived(graph, d)
+        make: |cx| match cx.mass_matrix() {
+            Some((graph, d)) => derived(graph.clone(), d.clone()),
+            None => Made::Looped(quote!(::dhgen::recursive::mass_matrix(
+                CHAIN, &self.c, &self.s, &self.d
+            ))),
         },
         arm: Some(ArmMethod::Dynamics),
     },
@@ -406,11 +401,15 @@ pub const QUANTITIES: &[Quantity] = &[
             // Four candidates: C straight from the symbols (zero symbols fold away), the O(n²)
             // recursion on dual numbers, Echeandia and Wensing's O(n²) algorithm (the runtime
             // path's), or contracting the n³ symbols at run time; the fewest operations win.
-            // Above `LOOPED_ABOVE` joints, the runtime's loop.
-            if cx.looped() {
-                return Made::Looped(quote!(::dhgen::recursive::coriolis(
+            // Above `LOOPED_ABOVE` joints, or where the cheapest costs more than
+            // `LOOP_C_ABOVE_PER_JOINT` operations per joint, the runtime's loop.
+            let looped_coriolis = || {
+                Made::Looped(quote!(::dhgen::recursive::coriolis(
                     CHAIN, &self.c, &self.s, &self.d, qd
-                )));
+                )))
+            };
+            if cx.looped() {
+                return looped_coriolis();
             }
             let n = cx.chain.dof();
             let (graph, c) = cx.christoffel();
@@ -433,6 +432,9 @@ pub const QUANTITIES: &[Quantity] = &[
                 cost(graph, c) + 2 * n * n * n,
             ];
             let best = (0..4).min_by_key(|&i| costs[i]).unwrap_or(0);
+            if costs[best] > super::LOOP_C_ABOVE_PER_JOINT * n {
+                return looped_coriolis();
+            }
             match best {
                 0 => derived(graph.clone(), direct.clone()),
                 1 => derived(recursive_graph.clone(), recursive.clone()),
@@ -735,7 +737,7 @@ pub const QUANTITIES: &[Quantity] = &[
         available: Availability::Dynamics,
         public: true,
         make: |cx| {
-            if cx.looped() {
+            if cx.mass_matrix().is_none() {
                 // D and the bias torques from one pass of the runtime's loops.
                 return solved(
                     cx,
