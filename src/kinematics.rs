@@ -19,10 +19,28 @@ impl Robot {
         let chain = self.chain();
         let (r, p) = crate::recursive::walk(
             chain,
-            |i| chain.bodies[i].value(q[i]),
+            |i| self.joint_value(i, q[i]),
             |i, &r, &p| visit(i, &Rigid { r, p }),
         );
         Rigid { r, p }
+    }
+
+    /// Joint `i`'s variable at `q` (offset applied): the cosine and sine of a revolute
+    /// joint's full angle, the full displacement of a prismatic one. (Not
+    /// `Body::value`, whose exact quarter turns are for the description's constants: a joint
+    /// value that happens to be a multiple of π/2 gains nothing from them, and the test costs
+    /// a division and a rounding per joint and call.)
+    #[inline]
+    pub(crate) fn joint_value(&self, i: usize, q: f64) -> dhgen_model::JointValue<f64> {
+        let body = &self.bodies[i];
+        let v = q + body.offset;
+        match body.joint {
+            JointKind::Revolute => {
+                let (sin, cos) = v.sin_cos();
+                dhgen_model::JointValue::Revolute { cos, sin }
+            }
+            JointKind::Prismatic => dhgen_model::JointValue::Prismatic(v),
+        }
     }
 
     /// Forward kinematics: the tool pose `base · A_1(q_1) ⋯ A_n(q_n) · tool` in the world

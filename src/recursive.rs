@@ -115,16 +115,16 @@ pub(crate) fn walk<T: Real>(
     (r, p)
 }
 
-/// Fills `states` (one per body, base to tip) with the world-frame joint axes and body
-/// inertias at the joint values `value(k)` (offsets applied), by [`walk`]. A kinematics-only
-/// body has zero inertia.
+/// The world-frame joint axes and body inertias at the joint values `value(k)` (offsets
+/// applied), by [`walk`], passed base to tip to `put(k, state)`. A kinematics-only body has
+/// zero inertia.
 pub(crate) fn body_states<T: Real>(
     chain: ChainRef<'_>,
     value: impl FnMut(usize) -> JointValue<T>,
-    states: &mut [BodyState<T>],
+    mut put: impl FnMut(usize, BodyState<T>),
 ) {
     walk(chain, value, |i, r, p| {
-        let (Some(body), Some(state)) = (chain.bodies.get(i), states.get_mut(i)) else {
+        let Some(body) = chain.bodies.get(i) else {
             return;
         };
         let axis = joint_axis(body.joint, r, p);
@@ -136,12 +136,26 @@ pub(crate) fn body_states<T: Real>(
             }
             None => BodyState::zero().inertia,
         };
-        *state = BodyState {
-            axis,
-            inertia,
-            composite: inertia,
-        };
+        put(
+            i,
+            BodyState {
+                axis,
+                inertia,
+                composite: inertia,
+            },
+        );
     });
+}
+
+/// `put` for a fixed-size array: `out[i] = v` (every index is below N; `get_mut` keeps the
+/// code free of panics).
+#[inline]
+fn into<V, const N: usize>(out: &mut [V; N]) -> impl FnMut(usize, V) + '_ {
+    move |i, v| {
+        if let Some(e) = out.get_mut(i) {
+            *e = v;
+        }
+    }
 }
 
 /// Sums the inertias tip to base: `composite_i = Σ_{k ≥ i} inertia_k`.
@@ -289,7 +303,7 @@ impl<T: Real> BodyMotion<T> {
 }
 
 /// The forward pass of the recursive Newton–Euler algorithm (Featherstone, RBDA §5.3, in
-/// world coordinates): each body's velocity, acceleration and net force into `out`, with
+/// world coordinates): each body's velocity, acceleration and net force into `put(i, ·)`, with
 /// gravity entering as an upward acceleration of the base (so every body's force includes its
 /// weight); `qdd = None` means zero acceleration.
 pub(crate) fn rnea_forward<T: Real>(
@@ -297,14 +311,14 @@ pub(crate) fn rnea_forward<T: Real>(
     states: &[BodyState<T>],
     qd: &[T],
     qdd: Option<&[T]>,
-    out: &mut [BodyMotion<T>],
+    mut put: impl FnMut(usize, BodyMotion<T>),
 ) {
     let mut velocity = Motion::zero();
     let mut acceleration = Motion {
         ang: Vector3::zeros(),
         lin: -Vector3::from_fn(|a, _| k::<T>(chain.gravity[a])),
     };
-    for (i, ((state, &qdi), body)) in states.iter().zip(qd).zip(out.iter_mut()).enumerate() {
+    for (i, (state, &qdi)) in states.iter().zip(qd).enumerate() {
         let s = &state.axis;
         velocity = velocity + *s * qdi;
         // The axis moves with the body before it: dS/dt = v × S.
@@ -313,12 +327,15 @@ pub(crate) fn rnea_forward<T: Real>(
             acceleration = acceleration + *s * *qddi;
         }
         let momentum = state.inertia.apply(&velocity);
-        *body = BodyMotion {
-            velocity,
-            acceleration,
-            momentum,
-            force: state.inertia.apply(&acceleration) + velocity.cross_force(&momentum),
-        };
+        put(
+            i,
+            BodyMotion {
+                velocity,
+                acceleration,
+                momentum,
+                force: state.inertia.apply(&acceleration) + velocity.cross_force(&momentum),
+            },
+        );
     }
 }
 
@@ -384,7 +401,7 @@ pub fn mass_matrix<T: Real, const N: usize>(
     d: &[T; N],
 ) -> SMatrix<T, N, N> {
     let mut states = [BodyState::zero(); N];
-    body_states(chain, prepared(chain, cos, sin, d), &mut states);
+    body_states(chain, prepared(chain, cos, sin, d), into(&mut states));
     accumulate_composites(&mut states);
     let mut out = SMatrix::<T, N, N>::zeros();
     crba(chain, &states, |i, j, v| set(&mut out, i, j, v));
@@ -404,7 +421,7 @@ pub fn coriolis<T: Real, const N: usize>(
     qd: &[T; N],
 ) -> SMatrix<T, N, N> {
     let mut states = [BodyState::zero(); N];
-    body_states(chain, prepared(chain, cos, sin, d), &mut states);
+    body_states(chain, prepared(chain, cos, sin, d), into(&mut states));
     let mut scratch = [CoriolisBody::zero(); N];
     let mut out = SMatrix::<T, N, N>::zeros();
     coriolis_into(&mut states, qd, &mut scratch, |i, j, v| {
@@ -425,9 +442,9 @@ pub fn mass_matrix_and_bias<T: Real, const N: usize>(
     qd: &[T; N],
 ) -> (SMatrix<T, N, N>, [T; N]) {
     let mut states = [BodyState::zero(); N];
-    body_states(chain, prepared(chain, cos, sin, d), &mut states);
+    body_states(chain, prepared(chain, cos, sin, d), into(&mut states));
     let mut motions = [BodyMotion::zero(); N];
-    rnea_forward(chain, &states, qd, None, &mut motions);
+    rnea_forward(chain, &states, qd, None, into(&mut motions));
     let mut bias = [T::zero(); N];
     rnea_backward(&states, &motions, |i, t| {
         if let (Some(b), Some(body), Some(&qdi)) = (bias.get_mut(i), chain.bodies.get(i), qd.get(i))

@@ -17,6 +17,8 @@ use std::path::Path;
 pub(crate) struct BodyConstants {
     /// Revolute or prismatic.
     pub joint: JointKind,
+    /// Added to the joint value.
+    pub offset: f64,
     /// The link frame in the joint frame; `None` for the identity.
     pub link: Option<Rigid>,
     /// Mass, kg (0 for a kinematics-only robot).
@@ -96,6 +98,7 @@ impl Robot {
                 };
                 BodyConstants {
                     joint: b.joint,
+                    offset: b.offset,
                     link: (!(b.link.rotation_is_identity() && b.link.p == [0.0; 3]))
                         .then(|| Rigid::from_frame(&b.link)),
                     mass,

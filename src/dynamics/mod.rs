@@ -42,8 +42,8 @@ impl Robot {
     /// pass [`crate::recursive`] shares with generated modules of long arms.
     pub(crate) fn body_states(&self, q: &[f64]) -> Vec<BodyState> {
         let chain = self.chain();
-        let mut states = vec![BodyState::zero(); self.dof()];
-        body_states(chain, |i| chain.bodies[i].value(q[i]), &mut states);
+        let mut states = Vec::with_capacity(self.dof());
+        body_states(chain, |i| self.joint_value(i, q[i]), |_, s| states.push(s));
         states
     }
 

@@ -80,8 +80,8 @@ impl Robot {
         qd: &[f64],
         qdd: Option<&[f64]>,
     ) -> Vec<BodyMotion> {
-        let mut out = vec![BodyMotion::zero(); states.len()];
-        rnea_forward(self.chain(), states, qd, qdd, &mut out);
+        let mut out = Vec::with_capacity(states.len());
+        rnea_forward(self.chain(), states, qd, qdd, |_, b| out.push(b));
         out
     }
 }
