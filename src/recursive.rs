@@ -4,12 +4,14 @@
 //!
 //! They are the runtime path's algorithms — [`Robot`](crate::Robot) runs them on `f64` with
 //! its bodies in a `Vec` — and generated modules of more than 12 joints (the code generator's
-//! `LOOPED_ABOVE`) call them with their `CHAIN` and a stack array: there, the
-//! straight-line form of `D(q)` and `C(q, q̇)` outgrows the instruction cache (at 20 joints
-//! a general arm's unrolled `C` streams over 90 KB of code per call) and loses to these loops,
-//! so a generated module is never slower than the runtime path. Below it, the symbolic
-//! derivations win and are emitted; the symbolic engine checks these loops at every size
-//! (`tests/ring_algorithms.rs`).
+//! `LOOPED_ABOVE`) call them with their `CHAIN` and stack arrays: there, the straight-line
+//! form of `D(q)` and `C(q, q̇)` outgrows the instruction cache (a general 12-joint arm's
+//! unrolled `C` already streams about 90 KB of code per call) and loses to these loops, so a
+//! generated module is never slower than the runtime path. Smaller modules call them only
+//! where the cheapest symbolic derivation of D or C costs more operations per joint than the
+//! loops take time for (the generator's `LOOP_D_ABOVE_PER_JOINT` and
+//! `LOOP_C_ABOVE_PER_JOINT`); elsewhere the symbolic derivations win and are emitted. The
+//! symbolic engine checks these loops at 2 to 30 joints (`tests/integration/ring_algorithms.rs`).
 //!
 //! Everything is in world coordinates (Plücker coordinates at the world origin): one pass
 //! puts every joint axis and body inertia there ([`mass_matrix`] and [`coriolis`] start
