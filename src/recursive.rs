@@ -1,6 +1,6 @@
 //! The recursive rigid-body algorithms on caller-owned memory, over any [`Real`]: the
-//! composite rigid body algorithm for `D(q)` and the O(n²) Coriolis recursion for
-//! `C(q, q̇)`, without allocation and without `std`.
+//! composite rigid body algorithm for `D(q)`, the O(n²) Coriolis recursion for `C(q, q̇)` and
+//! recursive Newton–Euler for the bias torques, without allocation and without `std`.
 //!
 //! They are the runtime path's algorithms — [`Robot`](crate::Robot) runs them on `f64` with
 //! its bodies in a `Vec` — and generated modules of more than 12 joints (the code generator's
