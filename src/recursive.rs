@@ -279,8 +279,10 @@ pub(crate) fn coriolis_into<T: Real>(
     }
 }
 
-/// One body in the Newton–Euler forward pass, world frame.
+/// One body in the Newton–Euler forward pass, world frame (all of it read by the runtime's
+/// derivatives and regressor; without `std`, only the force).
 #[derive(Clone, Copy, Debug)]
+#[cfg_attr(not(feature = "std"), allow(dead_code))]
 pub(crate) struct BodyMotion<T = f64> {
     /// Spatial velocity.
     pub velocity: Motion<T>,
