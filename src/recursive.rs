@@ -294,18 +294,6 @@ pub(crate) struct BodyMotion<T = f64> {
     pub force: Force<T>,
 }
 
-impl<T: Real> BodyMotion<T> {
-    /// The value arrays start from.
-    pub fn zero() -> BodyMotion<T> {
-        BodyMotion {
-            velocity: Motion::zero(),
-            acceleration: Motion::zero(),
-            momentum: Force::zero(),
-            force: Force::zero(),
-        }
-    }
-}
-
 /// The forward pass of the recursive Newton–Euler algorithm (Featherstone, RBDA §5.3, in
 /// world coordinates): each body's velocity, acceleration and net force into `put(i, ·)`, with
 /// gravity entering as an upward acceleration of the base (so every body's force includes its
@@ -343,16 +331,16 @@ pub(crate) fn rnea_forward<T: Real>(
     }
 }
 
-/// The backward pass: `τ_i = S_i · Σ_{k ≥ i} f_k` into `set(i, τ_i)` (rigid-body torques
-/// only: no armature, no friction).
+/// The backward pass: `τ_i = S_i · Σ_{k ≥ i} f_k` into `set(i, τ_i)`, `forces` the bodies'
+/// net forces `f_k` base to tip (rigid-body torques only: no armature, no friction).
 pub(crate) fn rnea_backward<T: Real>(
     states: &[BodyState<T>],
-    bodies: &[BodyMotion<T>],
+    forces: impl DoubleEndedIterator<Item = Force<T>> + ExactSizeIterator,
     mut set: impl FnMut(usize, T),
 ) {
     let mut transmitted = Force::zero();
-    for (i, (state, body)) in states.iter().zip(bodies).enumerate().rev() {
-        transmitted += body.force;
+    for (i, (state, force)) in states.iter().zip(forces).enumerate().rev() {
+        transmitted += force;
         set(i, state.axis.dot(&transmitted));
     }
 }
@@ -447,10 +435,14 @@ pub fn mass_matrix_and_bias<T: Real, const N: usize>(
 ) -> (SMatrix<T, N, N>, [T; N]) {
     let mut states = [BodyState::zero(); N];
     body_states(chain, prepared(chain, cos, sin, d), into(&mut states));
-    let mut motions = [BodyMotion::zero(); N];
-    rnea_forward(chain, &states, qd, None, into(&mut motions));
+    let mut forces = [Force::zero(); N];
+    rnea_forward(chain, &states, qd, None, |i, b| {
+        if let Some(f) = forces.get_mut(i) {
+            *f = b.force;
+        }
+    });
     let mut bias = [T::zero(); N];
-    rnea_backward(&states, &motions, |i, t| {
+    rnea_backward(&states, forces.into_iter(), |i, t| {
         if let (Some(b), Some(body), Some(&qdi)) = (bias.get_mut(i), chain.bodies.get(i), qd.get(i))
         {
             *b = t + friction(body, qdi);

@@ -27,6 +27,6 @@ pub use dhgen_model::RobotModel;
 pub use graph::OpCount;
 pub use limits::Unsupported;
 pub use module::{
-    Generated, LOOPED_ABOVE, Options, generate, generate_with, module_doc, op_counts,
-    op_counts_with,
+    Generated, LOOP_C_ABOVE_PER_JOINT, LOOP_D_ABOVE_PER_JOINT, LOOPED_ABOVE, Options, generate,
+    generate_with, module_doc, op_counts, op_counts_with,
 };

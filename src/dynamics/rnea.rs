@@ -68,7 +68,7 @@ impl Robot {
     ) -> DVector<f64> {
         let bodies = self.rnea_forward(states, qd, qdd);
         let mut tau = DVector::zeros(states.len());
-        rnea_backward(states, &bodies, |i, t| tau[i] = t);
+        rnea_backward(states, bodies.iter().map(|b| b.force), |i, t| tau[i] = t);
         tau
     }
 

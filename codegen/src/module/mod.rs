@@ -34,8 +34,9 @@ pub struct Generated {
     pub tokens: TokenStream,
     /// Arithmetic operations per generated function.
     pub ops: Vec<(String, OpCount)>,
-    /// The functions that call the runtime path's loops in `dhgen::recursive` (arms of more
-    /// than [`LOOPED_ABOVE`] joints) instead of straight-line code, so have no count in `ops`.
+    /// The functions that call the runtime path's loops in `dhgen::recursive` instead of
+    /// straight-line code (see [`LOOPED_ABOVE`] and [`LOOP_D_ABOVE_PER_JOINT`]), so have no
+    /// count in `ops`.
     pub looped: Vec<String>,
 }
 

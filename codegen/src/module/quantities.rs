@@ -74,8 +74,10 @@ pub enum Made {
         /// Arithmetic of its own, reported under a name (the Cholesky solve).
         ops: Option<(&'static str, crate::OpCount)>,
     },
-    /// A call of the runtime path's loop in `dhgen::recursive` (reading every joint), for
-    /// arms of more than [`LOOPED_ABOVE`](super::LOOPED_ABOVE) joints.
+    /// A call of the runtime path's loop in `dhgen::recursive` (reading every joint): for
+    /// arms of more than [`LOOPED_ABOVE`](super::LOOPED_ABOVE) joints, and where the loop
+    /// takes less time than the cheapest derivation (see
+    /// [`LOOP_D_ABOVE_PER_JOINT`](super::LOOP_D_ABOVE_PER_JOINT)).
     Looped(TokenStream),
 }
 
