@@ -279,31 +279,17 @@ pub(crate) fn coriolis_into<T: Real>(
     }
 }
 
-/// One body in the Newton–Euler forward pass, world frame (all of it read by the runtime's
-/// derivatives and regressor; without `std`, only the force).
-#[derive(Clone, Copy, Debug)]
-#[cfg_attr(not(feature = "std"), allow(dead_code))]
-pub(crate) struct BodyMotion<T = f64> {
-    /// Spatial velocity.
-    pub velocity: Motion<T>,
-    /// Spatial acceleration, gravity included (the base accelerates upwards).
-    pub acceleration: Motion<T>,
-    /// Momentum `I v`.
-    pub momentum: Force<T>,
-    /// Net force `I a + v ×* I v`.
-    pub force: Force<T>,
-}
-
 /// The forward pass of the recursive Newton–Euler algorithm (Featherstone, RBDA §5.3, in
-/// world coordinates): each body's velocity, acceleration and net force into `put(i, ·)`, with
-/// gravity entering as an upward acceleration of the base (so every body's force includes its
-/// weight); `qdd = None` means zero acceleration.
+/// world coordinates): for each body i, `put(i, velocity, acceleration, momentum, force)`:
+/// its spatial velocity, its acceleration with gravity entering as an upward acceleration of
+/// the base (so every body's force includes its weight), its momentum `I v` and its net force
+/// `I a + v ×* I v`; `qdd = None` means zero acceleration.
 pub(crate) fn rnea_forward<T: Real>(
     chain: ChainRef<'_>,
     states: &[BodyState<T>],
     qd: &[T],
     qdd: Option<&[T]>,
-    mut put: impl FnMut(usize, BodyMotion<T>),
+    mut put: impl FnMut(usize, Motion<T>, Motion<T>, Force<T>, Force<T>),
 ) {
     let mut velocity = Motion::zero();
     let mut acceleration = Motion {
@@ -319,15 +305,8 @@ pub(crate) fn rnea_forward<T: Real>(
             acceleration = acceleration + *s * *qddi;
         }
         let momentum = state.inertia.apply(&velocity);
-        put(
-            i,
-            BodyMotion {
-                velocity,
-                acceleration,
-                momentum,
-                force: state.inertia.apply(&acceleration) + velocity.cross_force(&momentum),
-            },
-        );
+        let force = state.inertia.apply(&acceleration) + velocity.cross_force(&momentum);
+        put(i, velocity, acceleration, momentum, force);
     }
 }
 
@@ -372,6 +351,19 @@ fn prepared<'a, T: Real>(
     }
 }
 
+/// The body states of `chain` at the prepared configuration `(cos, sin, d)` (see
+/// [`mass_matrix`]), composites not yet accumulated, in a stack array.
+fn states_at<T: Real, const N: usize>(
+    chain: ChainRef<'_>,
+    cos: &[T; N],
+    sin: &[T; N],
+    d: &[T; N],
+) -> [BodyState<T>; N] {
+    let mut states = [BodyState::zero(); N];
+    body_states(chain, prepared(chain, cos, sin, d), into(&mut states));
+    states
+}
+
 /// `out[(i, j)] = v` (every index is below N; `get_mut` keeps the code free of panics).
 #[inline]
 fn set<T: Real, const N: usize>(out: &mut SMatrix<T, N, N>, i: usize, j: usize, v: T) {
@@ -392,8 +384,7 @@ pub fn mass_matrix<T: Real, const N: usize>(
     sin: &[T; N],
     d: &[T; N],
 ) -> SMatrix<T, N, N> {
-    let mut states = [BodyState::zero(); N];
-    body_states(chain, prepared(chain, cos, sin, d), into(&mut states));
+    let mut states = states_at(chain, cos, sin, d);
     accumulate_composites(&mut states);
     let mut out = SMatrix::<T, N, N>::zeros();
     crba(chain, &states, |i, j, v| set(&mut out, i, j, v));
@@ -412,8 +403,7 @@ pub fn coriolis<T: Real, const N: usize>(
     d: &[T; N],
     qd: &[T; N],
 ) -> SMatrix<T, N, N> {
-    let mut states = [BodyState::zero(); N];
-    body_states(chain, prepared(chain, cos, sin, d), into(&mut states));
+    let mut states = states_at(chain, cos, sin, d);
     let mut scratch = [CoriolisBody::zero(); N];
     let mut out = SMatrix::<T, N, N>::zeros();
     coriolis_into(&mut states, qd, &mut scratch, |i, j, v| {
@@ -433,12 +423,11 @@ pub fn mass_matrix_and_bias<T: Real, const N: usize>(
     d: &[T; N],
     qd: &[T; N],
 ) -> (SMatrix<T, N, N>, [T; N]) {
-    let mut states = [BodyState::zero(); N];
-    body_states(chain, prepared(chain, cos, sin, d), into(&mut states));
+    let mut states = states_at(chain, cos, sin, d);
     let mut forces = [Force::zero(); N];
-    rnea_forward(chain, &states, qd, None, |i, b| {
+    rnea_forward(chain, &states, qd, None, |i, _, _, _, force| {
         if let Some(f) = forces.get_mut(i) {
-            *f = b.force;
+            *f = force;
         }
     });
     let mut bias = [T::zero(); N];

@@ -24,14 +24,6 @@ pub(crate) struct Force<T = f64> {
     pub lin: Vector3<T>,
 }
 
-#[cfg_attr(not(feature = "std"), allow(dead_code))]
-impl Motion<f64> {
-    pub const ZERO: Motion = Motion {
-        ang: Vector3::new(0.0, 0.0, 0.0),
-        lin: Vector3::new(0.0, 0.0, 0.0),
-    };
-}
-
 impl<T: Real> Motion<T> {
     /// The zero motion.
     #[inline]
@@ -53,7 +45,6 @@ impl<T: Real> Motion<T> {
     }
 
     /// The force cross product `self ×* f`.
-    #[cfg_attr(not(feature = "std"), allow(dead_code))]
     #[inline]
     pub fn cross_force(&self, f: &Force<T>) -> Force<T> {
         Force {
@@ -100,14 +91,6 @@ impl<T: Real> Mul<T> for Motion<T> {
             lin: self.lin * s,
         }
     }
-}
-
-#[cfg_attr(not(feature = "std"), allow(dead_code))]
-impl Force<f64> {
-    pub const ZERO: Force = Force {
-        ang: Vector3::new(0.0, 0.0, 0.0),
-        lin: Vector3::new(0.0, 0.0, 0.0),
-    };
 }
 
 impl<T: Real> Force<T> {

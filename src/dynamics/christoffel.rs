@@ -83,8 +83,8 @@ impl Robot {
         let mut states = self.body_states(q);
         accumulate_composites(&mut states);
         // moved[l * n + j] = I^C_l S_j for j ≤ l; screw[a * n + l] = S_a × S_l for a < l.
-        let mut moved = vec![Force::ZERO; n * n];
-        let mut screw = vec![Motion::ZERO; n * n];
+        let mut moved = vec![Force::zero(); n * n];
+        let mut screw = vec![Motion::zero(); n * n];
         for l in 0..n {
             for j in 0..=l {
                 moved[l * n + j] = states[l].composite.apply(&states[j].axis);

@@ -54,15 +54,15 @@ impl Robot {
         // The nominal recursion, keeping what the tangents need.
         let bodies = self.rnea_forward(&states, qd, Some(qdd));
         // Transmitted forces F_k = Σ_{j ≥ k} f_j.
-        let mut transmitted = vec![Force::ZERO; n];
-        let mut sum = Force::ZERO;
+        let mut transmitted = vec![Force::zero(); n];
+        let mut sum = Force::zero();
         for k in (0..n).rev() {
             sum += bodies[k].force;
             transmitted[k] = sum;
         }
         let mut dq = DMatrix::zeros(n, n);
         // δf_k for the current joint m: zero before m (nothing there moves).
-        let mut df = vec![Force::ZERO; n];
+        let mut df = vec![Force::zero(); n];
         for m in 0..n {
             let sm = states[m].axis;
             // δI_k y = S_m ×* (I_k y) − I_k (S_m × y), for bodies k ≥ m.
@@ -70,9 +70,9 @@ impl Robot {
                 sm.cross_force(&states[k].inertia.apply(y))
                     + states[k].inertia.apply(&(sm.cross(y) * -1.0))
             };
-            let mut dv = Motion::ZERO;
-            let mut da = Motion::ZERO;
-            df[..m].fill(Force::ZERO);
+            let mut dv = Motion::zero();
+            let mut da = Motion::zero();
+            df[..m].fill(Force::zero());
             for k in m..n {
                 let state = &states[k];
                 let ds = sm.cross(&state.axis);
@@ -88,7 +88,7 @@ impl Robot {
             }
             // δτ_k = δS_k · F_k + S_k · δF_k, with δF_k = Σ_{j ≥ k} δf_j (zero before m but
             // for what the bodies after m transmit).
-            let mut d_sum = Force::ZERO;
+            let mut d_sum = Force::zero();
             for k in (0..n).rev() {
                 d_sum += df[k];
                 let mut d_tau = states[k].axis.dot(&d_sum);

@@ -60,15 +60,3 @@ impl Robot {
 pub(crate) fn joint_axis(joint: JointKind, frame: &Rigid) -> Motion {
     crate::recursive::joint_axis(joint, &frame.r, &frame.p)
 }
-
-/// The sign of `x`, with `sign(0) = 0` (`f64::signum` gives ±1 for ±0).
-#[inline]
-pub(crate) fn sign(x: f64) -> f64 {
-    if x > 0.0 {
-        1.0
-    } else if x < 0.0 {
-        -1.0
-    } else {
-        0.0
-    }
-}

@@ -113,7 +113,7 @@ impl Robot {
                 Column::Body { .. } => {}
                 Column::Armature(i) => y[(i, c)] = qdd[i],
                 Column::Viscous(i) => y[(i, c)] = qd[i],
-                Column::Coulomb(i) => y[(i, c)] = super::sign(qd[i]),
+                Column::Coulomb(i) => y[(i, c)] = crate::Real::sign(qd[i]),
             }
         }
         y

@@ -2,9 +2,9 @@
 
 use super::BodyState;
 use crate::Joints;
-pub(crate) use crate::recursive::BodyMotion;
 use crate::recursive::{rnea_backward, rnea_forward};
 use crate::robot::Robot;
+use crate::spatial::{Force, Motion};
 use nalgebra::DVector;
 
 impl Robot {
@@ -81,7 +81,33 @@ impl Robot {
         qdd: Option<&[f64]>,
     ) -> Vec<BodyMotion> {
         let mut out = Vec::with_capacity(states.len());
-        rnea_forward(self.chain(), states, qd, qdd, |_, b| out.push(b));
+        rnea_forward(
+            self.chain(),
+            states,
+            qd,
+            qdd,
+            |_, velocity, acceleration, momentum, force| {
+                out.push(BodyMotion {
+                    velocity,
+                    acceleration,
+                    momentum,
+                    force,
+                });
+            },
+        );
         out
     }
+}
+
+/// One body in the Newton–Euler forward pass, world frame.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct BodyMotion {
+    /// Spatial velocity.
+    pub velocity: Motion,
+    /// Spatial acceleration, gravity included (the base accelerates upwards).
+    pub acceleration: Motion,
+    /// Momentum `I v`.
+    pub momentum: Force,
+    /// Net force `I a + v ×* I v`.
+    pub force: Force,
 }
