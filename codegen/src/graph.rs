@@ -102,6 +102,18 @@ impl Graph {
         }
     }
 
+    /// `(l, x)` where node `id` is the product `l · x` of a constant and a non-constant.
+    fn scaled(&self, id: Id) -> Option<(f64, Id)> {
+        match self.nodes[id as usize] {
+            Node::Mul(a, b) => match (self.constant(a), self.constant(b)) {
+                (Some(l), None) => Some((l, b)),
+                (None, Some(l)) => Some((l, a)),
+                _ => None,
+            },
+            _ => None,
+        }
+    }
+
     /// The constant `x` (negative zero is normalised to zero).
     pub fn konst(&mut self, x: f64) -> Id {
         let x = if x == 0.0 { 0.0 } else { x };
@@ -187,6 +199,13 @@ impl Graph {
                 return self.neg(m);
             }
             _ => {}
+        }
+        // k · (l · x) = (k·l) · x: one multiplication, not two.
+        for (k, other) in [(a, b), (b, a)] {
+            if let (Some(k), Some((l, x))) = (self.constant(k), self.scaled(other)) {
+                let kl = self.konst(k * l);
+                return self.mul(kl, x);
+            }
         }
         match (self.negated(a), self.negated(b)) {
             (Some(x), Some(y)) => self.mul(x, y),

@@ -15,6 +15,7 @@
 //! its derivative is taken as 0 everywhere (the subgradient at 0 that is also the derivative
 //! at every other velocity), so these functions differentiate the smooth part of τ.
 
+use super::Derivation;
 use crate::chain::RingChain;
 use crate::dual::{Dual, DualSymbols, RateSymbols};
 use crate::graph::{E, SharedGraph, Sym};
@@ -63,10 +64,11 @@ fn dual_rnea(chain: ChainRef<'_>, graph: &SharedGraph, lanes: usize) -> Vec<Dual
 ///   SCARA 99 → 28 (the PUMA 560's dual lanes in the Christoffel symbols' graph, 2,143,
 ///   still beat its 2,282).
 pub fn inverse_dynamics_derivatives(
-    chain: ChainRef<'_>,
+    dv: &Derivation<'_>,
     coriolis: &[(SharedGraph, Vec<E>)],
     assembled: Option<&(SharedGraph, Vec<E>)>,
 ) -> (SharedGraph, Vec<E>) {
+    let chain = dv.chain;
     let n = chain.dof();
     let viscous = |k: usize, m: usize| {
         E::K(if k == m {
@@ -116,8 +118,11 @@ pub fn inverse_dynamics_derivatives(
         candidates.push((graph, out));
     }
     // τ assembled from the normal forms differentiated symbolically, in its graph: forward
-    // mode along each q_j (d cos θ_j = −sin θ_j, d sin θ_j = cos θ_j, d d_j = 1) and each q̇_j.
-    // (The recursion differentiated so never wins: the dual lanes above are the same
+    // mode along each q_j (d cos θ_j = −sin θ_j, d sin θ_j = cos θ_j, d d_j = 1) and each q̇_j;
+    // each column of ∂τ/∂q taken from that or from a dual lane over Newton–Euler built in
+    // the same graph, each column of ∂τ/∂q̇ from that or from 2C + diag(viscous) with C
+    // contracted from the symbols in the same graph, whichever mix costs least. (The
+    // recursion differentiated symbolically never wins: the dual lanes are the same
     // derivatives, built with more sharing.)
     if let Some((graph, tau)) = assembled {
         // Along q_j (`wrt_q`, the angle or the displacement) or along q̇_j.
@@ -130,12 +135,31 @@ pub fn inverse_dynamics_derivatives(
                 _ => E::K(0.0),
             })
         };
-        let dq: Vec<Vec<E>> = (0..n).map(|j| along(true, j)).collect();
-        let dqd: Vec<Vec<E>> = (0..n).map(|j| along(false, j)).collect();
-        // Row-major `(k, j)` = ∂τ_k/∂x_j from the columns `d[j][k]`.
-        let out = [&dq, &dqd]
-            .into_iter()
-            .flat_map(|d| (0..n).flat_map(move |k| d.iter().map(move |col| col[k].clone())))
+        let lanes = dual_rnea(chain, graph, n);
+        let c = dv
+            .christoffel_exprs(graph)
+            .map(|c| super::christoffel::coriolis_from(n, graph, &c));
+        let mut columns: Vec<Vec<Vec<E>>> = (0..n)
+            .map(|j| vec![along(true, j), lanes.iter().map(|t| t.partial(j)).collect()])
+            .collect();
+        columns.extend((0..n).map(|j| {
+            let mut options = vec![along(false, j)];
+            if let Some(c) = &c {
+                options.push(
+                    (0..n)
+                        .map(|k| E::K(2.0) * c[k * n + j].clone() + viscous(k, j))
+                        .collect(),
+                );
+            }
+            options
+        }));
+        // Row-major `(k, j)` = ∂τ_k/∂x_j from the columns: ∂τ/∂q's, then ∂τ/∂q̇'s.
+        let chosen = super::cheapest_mix(graph, &columns);
+        let out = (0..2 * n * n)
+            .map(|idx| {
+                let (half, k, j) = (idx / (n * n), idx % (n * n) / n, idx % n);
+                chosen[half * n + j][k].clone()
+            })
             .collect();
         candidates.push((graph.clone(), out));
     }

@@ -218,6 +218,44 @@ pub fn cheapest(candidates: Vec<(SharedGraph, Vec<E>)>) -> (SharedGraph, Vec<E>)
         .expect("at least one candidate")
 }
 
+/// For outputs in groups, each group with several derivations in one `graph` (`options[g]`,
+/// the outputs of group g as built by each), one derivation per group: the mix with the
+/// fewest operations after sharing, found greedily (starting from every group's first
+/// option, switching any one group while that lowers the total).
+pub fn cheapest_mix(graph: &SharedGraph, options: &[Vec<Vec<E>>]) -> Vec<Vec<E>> {
+    let cost = |choice: &[usize]| {
+        let roots: Vec<_> = choice
+            .iter()
+            .zip(options)
+            .flat_map(|(&c, o)| o[c].iter().map(|e| e.id_in(graph)))
+            .collect();
+        count(&graph.borrow(), roots).total()
+    };
+    let mut choice = vec![0; options.len()];
+    let mut best = cost(&choice);
+    let mut improved = true;
+    while improved {
+        improved = false;
+        for g in 0..options.len() {
+            for o in 0..options[g].len() {
+                let old = std::mem::replace(&mut choice[g], o);
+                let c = cost(&choice);
+                if c < best {
+                    best = c;
+                    improved = true;
+                } else {
+                    choice[g] = old;
+                }
+            }
+        }
+    }
+    choice
+        .iter()
+        .zip(options)
+        .map(|(&c, o)| o[c].clone())
+        .collect()
+}
+
 /// Runs of consecutive revolute joints with parallel axes (no constant rotation between
 /// them): their angles add up, and `cos(θ2 + θ3)` is one variable instead of four terms.
 pub fn parallel_runs(chain: ChainRef<'_>) -> Basis {

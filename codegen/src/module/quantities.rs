@@ -849,7 +849,7 @@ pub const QUANTITIES: &[Quantity] = &[
         public: true,
         make: |cx| {
             let (graph, e) = derivatives::inverse_dynamics_derivatives(
-                cx.chain,
+                &cx.derivation,
                 cx.coriolis_derivations(),
                 cx.assembled_inverse_dynamics(),
             );
