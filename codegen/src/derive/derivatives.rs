@@ -59,10 +59,12 @@ fn dual_rnea(chain: ChainRef<'_>, graph: &SharedGraph, lanes: usize) -> Vec<Dual
 ///   Mansard's analytic derivatives) with the C of Echeandia and Wensing's terms it shares;
 /// - where D, c_ijk and g have small normal forms, τ assembled from them (`assembled`, see
 ///   [`newton_euler::assembled`](super::newton_euler::assembled)) differentiated in its graph
-///   ([`derivative`](crate::graph::derivative)) along every q_j and q̇_j, which there costs
-///   fewer operations than any recursion: Stanford arm 2,128 → 1,724, UR5 1,947 → 1,342,
-///   SCARA 99 → 28 (the PUMA 560's dual lanes in the Christoffel symbols' graph, 2,143,
-///   still beat its 2,282).
+///   ([`derivative`](crate::graph::derivative)) along every q_j and q̇_j, each column mixed
+///   with a dual lane over Newton–Euler (∂τ/∂q) or 2C (∂τ/∂q̇) built in the same graph,
+///   whichever mix costs least ([`cheapest_mix`](super::cheapest_mix)); with structure this
+///   wins: Stanford arm 2,128 → 1,701, UR5 1,947 → 1,336, SCARA 99 → 26, PUMA 560 2,143 →
+///   1,951 (the normal forms for ∂τ/∂q̇ and for ∂τ/∂q along q1–q3 and q6, dual lanes along
+///   q4 and q5).
 pub fn inverse_dynamics_derivatives(
     dv: &Derivation<'_>,
     coriolis: &[(SharedGraph, Vec<E>)],

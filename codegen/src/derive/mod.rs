@@ -231,24 +231,32 @@ pub fn cheapest_mix(graph: &SharedGraph, options: &[Vec<Vec<E>>]) -> Vec<Vec<E>>
             .collect();
         count(&graph.borrow(), roots).total()
     };
-    let mut choice = vec![0; options.len()];
-    let mut best = cost(&choice);
-    let mut improved = true;
-    while improved {
-        improved = false;
-        for g in 0..options.len() {
-            for o in 0..options[g].len() {
-                let old = std::mem::replace(&mut choice[g], o);
-                let c = cost(&choice);
-                if c < best {
-                    best = c;
-                    improved = true;
-                } else {
-                    choice[g] = old;
+    let starts = options.iter().map(Vec::len).max().unwrap_or(0);
+    let mut overall: Option<(usize, Vec<usize>)> = None;
+    for s in 0..starts {
+        let mut choice: Vec<usize> = options.iter().map(|o| s.min(o.len() - 1)).collect();
+        let mut best = cost(&choice);
+        let mut improved = true;
+        while improved {
+            improved = false;
+            for g in 0..options.len() {
+                for o in 0..options[g].len() {
+                    let old = std::mem::replace(&mut choice[g], o);
+                    let c = cost(&choice);
+                    if c < best {
+                        best = c;
+                        improved = true;
+                    } else {
+                        choice[g] = old;
+                    }
                 }
             }
         }
+        if overall.as_ref().is_none_or(|(b, _)| best < *b) {
+            overall = Some((best, choice));
+        }
     }
+    let choice = overall.map(|(_, c)| c).unwrap_or_default();
     choice
         .iter()
         .zip(options)
