@@ -7,10 +7,12 @@
 //!
 //! Pinocchio 4.1.0 on the same models and machine (`scripts/pinocchio_bench.sh`: its templates
 //! compiled with `-O3 -march=native`, medians of three rounds alternating with this benchmark,
-//! 2026-11-30): PUMA 560 `rnea` 0.93–1.10 µs, `computeRNEADerivatives` 3.61–4.62 µs,
-//! `computeABADerivatives` 4.62–5.71 µs; Panda 1.13–1.24, 4.58–5.19 and 6.36–6.69 µs.
-//! Generated here, the same rounds: PUMA 560 ∂τ 0.76–0.95 µs, ∂q̈ 1.27–1.81 µs; Panda
-//! 1.64–2.26 and 2.33–3.52 µs (τ alone: 0.14 and 0.22 µs).
+//! 2026-11-30): PUMA 560 `rnea` 0.81–0.90 µs, `computeRNEADerivatives` 2.88–3.28 µs,
+//! `computeABADerivatives` 4.27–4.30 µs; Panda 0.99–1.12, 3.37–3.78 and 4.67–5.33 µs.
+//! Generated here, the same rounds: PUMA 560 ∂τ 0.39–0.54 µs, ∂q̈ 1.00–1.19 µs; Panda
+//! 1.16–1.24 and 1.68–1.80 µs (τ alone: 0.11–0.14 and 0.17–0.20 µs). Instructions per call
+//! (`scripts/pinocchio_bench.sh --callgrind`, `examples/instructions.rs`): Pinocchio 24,364 and
+//! 33,754 (PUMA 560), 29,094 and 40,623 (Panda); generated 4,867 and 8,274, 10,579 and 16,185.
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use dhgen::Robot;

@@ -4,6 +4,9 @@
 # with `cargo bench --bench derivatives`. Needs `pip install pin cmeel-eigen` (Pinocchio's
 # headers and libraries come with the wheel); compiles benches/pinocchio/derivatives.cpp with
 # -O3 -march=native and Pinocchio's templates instantiated here (about 4 minutes).
+# `--callgrind` instead counts instructions per call (exact, load-independent): compiled for
+# baseline x86-64 like `cargo build --release` (valgrind has no AVX-512), each function called
+# 1,000 times under callgrind, its inclusive count divided by its calls.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 out="${TMPDIR:-/tmp}/dhgen-pinocchio-bench"
@@ -18,10 +21,30 @@ for name in ["puma560", "panda"]:
     pd.model_of(robot).saveToBinary(f"{sys.argv[1]}/{name}.bin")
 PY
 prefix="$(python3 -c 'import pinocchio, pathlib; print(pathlib.Path(pinocchio.__file__).parents[4])')"
-g++ -O3 -march=native -DNDEBUG -std=c++17 \
+march=-march=native
+[[ "${1:-}" == --callgrind ]] && march=
+g++ -O3 $march -DNDEBUG -std=c++17 \
     -DBOOST_MPL_LIMIT_LIST_SIZE=30 -DBOOST_MPL_LIMIT_VECTOR_SIZE=30 \
     -DBOOST_MPL_CFG_NO_PREPROCESSED_HEADERS -DBOOST_FUSION_INVOKE_MAX_ARITY=12 \
     -I"$prefix/include" -I"$prefix/include/eigen3" benches/pinocchio/derivatives.cpp \
     -o "$out/bench" -L"$prefix/lib" -lpinocchio_default -lboost_serialization \
     -lboost_filesystem -Wl,-rpath,"$prefix/lib"
-"$out/bench" "$out/puma560.bin" "$out/panda.bin"
+if [[ "${1:-}" != --callgrind ]]; then
+    "$out/bench" "$out/puma560.bin" "$out/panda.bin"
+    exit
+fi
+for name in puma560 panda; do
+    DHGEN_PIN_CALLS=1000 valgrind --tool=callgrind --callgrind-out-file="$out/$name.callgrind" \
+        "$out/bench" "$out/$name.bin" > /dev/null 2>&1
+    callgrind_annotate --inclusive=yes "$out/$name.callgrind" | python3 -c '
+import re, sys
+name = sys.argv[1]
+# rnea also runs 64 times to make the torques computeABADerivatives starts from.
+calls = {"rnea": 1064, "computeRNEADerivatives": 1000, "computeABADerivatives": 1000}
+for line in sys.stdin:
+    m = re.match(r"\s*([\d,]+) .*pinocchio::impl::(\w+)<", line)
+    if m and m.group(2) in calls:
+        n = int(m.group(1).replace(",", "")) / calls.pop(m.group(2))
+        print(f"{name}: {m.group(2)} {n:,.0f} instructions per call")
+' "$name"
+done
