@@ -218,10 +218,11 @@ pub fn cheapest(candidates: Vec<(SharedGraph, Vec<E>)>) -> (SharedGraph, Vec<E>)
         .expect("at least one candidate")
 }
 
-/// For outputs in groups, each group with several derivations in one `graph` (`options[g]`,
-/// the outputs of group g as built by each), one derivation per group: the mix with the
-/// fewest operations after sharing, found greedily (starting from every group's first
-/// option, switching any one group while that lowers the total).
+/// For outputs in groups, each group with one or more derivations in one `graph`
+/// (`options[g]`, the outputs of group g as built by each), one derivation per group: the mix
+/// with the fewest operations after sharing, found greedily (from each uniform start, every
+/// group on its s-th option or its last, switching any one group while that lowers the
+/// total). A group without options is an error of the caller's: it panics.
 pub fn cheapest_mix(graph: &SharedGraph, options: &[Vec<Vec<E>>]) -> Vec<Vec<E>> {
     let cost = |choice: &[usize]| {
         let roots: Vec<_> = choice
