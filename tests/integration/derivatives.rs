@@ -415,3 +415,27 @@ fn runtime_derivatives_are_central_differences_on_every_robot() {
     // Only the UR5 as published (links without inertia about their axes) may be singular.
     assert!(singular.iter().all(|s| s == "ur5"), "{singular:?}");
 }
+
+/// Issue 15's operation budget: the PUMA 560's ∂τ/∂q and ∂τ/∂q̇ together in under 2,000
+/// operations (1,951 when written: the normal forms mixed column by column with dual lanes;
+/// 2,143 by the best single derivation).
+#[test]
+fn puma560_derivatives_of_tau_cost_under_2000_operations() {
+    let model = dhgen::RobotModel::from_toml_file(format!(
+        "{}/robots/puma560.toml",
+        env!("CARGO_MANIFEST_DIR")
+    ))
+    .unwrap();
+    let options = dhgen_codegen::Options {
+        derivatives: true,
+        ..Default::default()
+    };
+    let ops = dhgen_codegen::op_counts_with(&model, options).unwrap();
+    let derivatives = ops
+        .iter()
+        .find(|(name, _)| name == "inverse_dynamics_derivatives")
+        .expect("generated with derivatives")
+        .1
+        .total();
+    assert!(derivatives < 2000, "{derivatives} operations");
+}
