@@ -388,6 +388,13 @@ pub fn derivative(graph: &SharedGraph, roots: &[E], tangent: impl Fn(Sym) -> E) 
     ids.iter().map(|id| d[id].clone()).collect()
 }
 
+/// All arithmetic operations needed to evaluate the expressions `outs` of `graph`, shared
+/// nodes counted once: what derivations are compared by.
+pub fn cost<'a>(graph: &SharedGraph, outs: impl IntoIterator<Item = &'a E>) -> usize {
+    let roots: Vec<Id> = outs.into_iter().map(|e| e.id_in(graph)).collect();
+    count(&graph.borrow(), roots).total()
+}
+
 /// Counts the operations needed to evaluate `roots`, sharing common nodes.
 pub fn count(g: &Graph, roots: impl IntoIterator<Item = Id>) -> OpCount {
     let mut c = OpCount::default();

@@ -91,10 +91,10 @@ pub fn inverse_dynamics_derivatives(
         }
         (graph, out)
     };
-    let twice_c = |c: &[E], out: &mut Vec<E>| {
-        for k in 0..n {
-            out.extend((0..n).map(|m| E::K(2.0) * c[k * n + m].clone() + viscous(k, m)));
-        }
+    // Entry (k, m) of ∂τ/∂q̇ = 2C + diag(viscous), C row-major.
+    let twice_c = |c: &[E], k: usize, m: usize| E::K(2.0) * c[k * n + m].clone() + viscous(k, m);
+    let twice_c_rows = |c: &[E], out: &mut Vec<E>| {
+        out.extend((0..n * n).map(|idx| twice_c(c, idx / n, idx % n)));
     };
     let mut candidates = vec![both_lanes];
     for (graph, c) in coriolis {
@@ -103,7 +103,7 @@ pub fn inverse_dynamics_derivatives(
         for t in &tau {
             out.extend((0..n).map(|m| t.partial(m)));
         }
-        twice_c(c, &mut out);
+        twice_c_rows(c, &mut out);
         candidates.push((graph.clone(), out));
     }
     // The closed form with the C of the same terms, in each coordinate frame.
@@ -116,7 +116,7 @@ pub fn inverse_dynamics_derivatives(
             &sym(Sym::Qdd),
         );
         let mut out: Vec<E> = dq.into_iter().flatten().collect();
-        twice_c(&c.concat(), &mut out);
+        twice_c_rows(&c.concat(), &mut out);
         candidates.push((graph, out));
     }
     // τ assembled from the normal forms differentiated symbolically, in its graph: forward
@@ -147,11 +147,7 @@ pub fn inverse_dynamics_derivatives(
         columns.extend((0..n).map(|j| {
             let mut options = vec![along(false, j)];
             if let Some(c) = &c {
-                options.push(
-                    (0..n)
-                        .map(|k| E::K(2.0) * c[k * n + j].clone() + viscous(k, j))
-                        .collect(),
-                );
+                options.push((0..n).map(|k| twice_c(c, k, j)).collect());
             }
             options
         }));

@@ -7,7 +7,7 @@
 //! dense `P_0` is cheaper last, a sparse one first. Both are built; the cheaper is kept.
 
 use crate::chain::{V3, cross};
-use crate::graph::{E, SharedGraph, count};
+use crate::graph::{E, SharedGraph, cost};
 use dhgen_model::{ChainRef, Frame, JointKind};
 
 /// The joint frames in the world frame, `P_0` multiplied in first or last.
@@ -34,12 +34,9 @@ fn cheaper_order<T>(
         let out = build(&graph, first);
         (graph, out)
     });
-    let cost = |(graph, out): &(SharedGraph, T)| {
-        let ids: Vec<_> = roots(out).iter().map(|e| e.id_in(graph)).collect();
-        count(&graph.borrow(), ids).total()
-    };
+    let total = |(graph, out): &(SharedGraph, T)| cost(graph, &roots(out));
     let [a, b] = candidates;
-    if cost(&b) < cost(&a) { b } else { a }
+    if total(&b) < total(&a) { b } else { a }
 }
 
 /// The n link frames in the world frame (base applied, tool not), in a new graph.

@@ -16,7 +16,7 @@ pub mod regressor;
 pub mod singularity;
 
 use crate::chain::{Coordinates, JointSymbols, RingChain};
-use crate::graph::{E, SharedGraph, Sym, count};
+use crate::graph::{E, SharedGraph, Sym, cost};
 use crate::poly::{Basis, Budget, P, Poly, Var};
 use dhgen_model::{ChainRef, JointKind};
 use std::cell::OnceCell;
@@ -211,10 +211,7 @@ pub fn coordinates(chain: ChainRef<'_>) -> impl Iterator<Item = Coordinates> {
 pub fn cheapest(candidates: Vec<(SharedGraph, Vec<E>)>) -> (SharedGraph, Vec<E>) {
     candidates
         .into_iter()
-        .min_by_key(|(graph, outs)| {
-            let roots: Vec<_> = outs.iter().map(|e| e.id_in(graph)).collect();
-            count(&graph.borrow(), roots).total()
-        })
+        .min_by_key(|(graph, outs)| cost(graph, outs))
         .expect("at least one candidate")
 }
 
@@ -224,26 +221,20 @@ pub fn cheapest(candidates: Vec<(SharedGraph, Vec<E>)>) -> (SharedGraph, Vec<E>)
 /// group on its s-th option or its last, switching any one group while that lowers the
 /// total). A group without options is an error of the caller's: it panics.
 pub fn cheapest_mix(graph: &SharedGraph, options: &[Vec<Vec<E>>]) -> Vec<Vec<E>> {
-    let cost = |choice: &[usize]| {
-        let roots: Vec<_> = choice
-            .iter()
-            .zip(options)
-            .flat_map(|(&c, o)| o[c].iter().map(|e| e.id_in(graph)))
-            .collect();
-        count(&graph.borrow(), roots).total()
-    };
+    let total =
+        |choice: &[usize]| cost(graph, choice.iter().zip(options).flat_map(|(&c, o)| &o[c]));
     let starts = options.iter().map(Vec::len).max().unwrap_or(0);
     let mut overall: Option<(usize, Vec<usize>)> = None;
     for s in 0..starts {
         let mut choice: Vec<usize> = options.iter().map(|o| s.min(o.len() - 1)).collect();
-        let mut best = cost(&choice);
+        let mut best = total(&choice);
         let mut improved = true;
         while improved {
             improved = false;
             for g in 0..options.len() {
                 for o in 0..options[g].len() {
                     let old = std::mem::replace(&mut choice[g], o);
-                    let c = cost(&choice);
+                    let c = total(&choice);
                     if c < best {
                         best = c;
                         improved = true;
@@ -321,14 +312,11 @@ mod tests {
             vec![vec![ab.clone()], vec![cd.clone()]],
             vec![vec![cd + a.clone()], vec![ab + c]],
         ];
-        let cost = |outs: &[Vec<E>]| {
-            let roots: Vec<_> = outs.iter().flatten().map(|e| e.id_in(&graph)).collect();
-            count(&graph.borrow(), roots).total()
-        };
+        let total = |outs: &[Vec<E>]| cost(&graph, outs.iter().flatten());
         let uniform: Vec<usize> = (0..2)
-            .map(|o| cost(&[options[0][o].clone(), options[1][o].clone()]))
+            .map(|o| total(&[options[0][o].clone(), options[1][o].clone()]))
             .collect();
         assert_eq!(uniform, [3, 3]);
-        assert_eq!(cost(&cheapest_mix(&graph, &options)), 2);
+        assert_eq!(total(&cheapest_mix(&graph, &options)), 2);
     }
 }

@@ -201,8 +201,7 @@ impl<'c> Context<'c> {
                     return None;
                 }
                 let (graph, d) = inertia::mass_matrix(&self.derivation);
-                let roots: Vec<_> = d.iter().map(|e| e.id_in(&graph)).collect();
-                let ops = crate::graph::count(&graph.borrow(), roots).total();
+                let ops = crate::graph::cost(&graph, &d);
                 (ops <= LOOP_D_ABOVE_PER_JOINT * self.chain.dof()).then_some((graph, d))
             })
             .as_ref()

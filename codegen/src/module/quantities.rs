@@ -423,15 +423,11 @@ pub const QUANTITIES: &[Quantity] = &[
             else {
                 unreachable!("three derivations of C")
             };
-            let cost = |graph: &SharedGraph, exprs: &[E]| {
-                let roots: Vec<_> = exprs.iter().map(|e| e.id_in(graph)).collect();
-                crate::graph::count(&graph.borrow(), roots).total()
-            };
             let costs = [
-                cost(graph, direct),
-                cost(recursive_graph, recursive),
-                cost(spatial_graph, spatial),
-                cost(graph, c) + 2 * n * n * n,
+                crate::graph::cost(graph, direct),
+                crate::graph::cost(recursive_graph, recursive),
+                crate::graph::cost(spatial_graph, spatial),
+                crate::graph::cost(graph, c) + 2 * n * n * n,
             ];
             let best = (0..4).min_by_key(|&i| costs[i]).unwrap_or(0);
             if costs[best] > super::LOOP_C_ABOVE_PER_JOINT * n {
