@@ -34,6 +34,8 @@ pub struct Emitted {
     pub part_inputs: Vec<Vec<&'static str>>,
     /// Per part, whether it stores outputs and whether it touches the scratch array.
     pub part_uses: Vec<PartUse>,
+    /// The first part of the late stage ([`emit_staged`]); `parts.len()` for [`emit`].
+    pub late_part: usize,
 }
 
 /// What one part of a split function touches besides its inputs.
@@ -91,6 +93,19 @@ pub fn constant(x: f64) -> TokenStream {
 /// statements. A value that a later part needs is passed through a scratch array
 /// (`w[slot]`), so every node is computed exactly once however the function is split.
 pub fn emit(graph: &SharedGraph, outputs: Vec<Output>) -> Emitted {
+    emit_staged(graph, outputs, None)
+}
+
+/// [`emit`] in two stages when `late` is given: the outputs that do not read a symbol for
+/// which `late` holds, with everything they need, in parts `..late_part`; the rest in parts
+/// `late_part..` (at least one part each, possibly empty). Between the two, the caller may
+/// compute the late symbols from the early outputs (the bias torques from ∂τ/∂q̇, then q̈,
+/// before ∂τ/∂q at that q̈). Constant outputs are stored in part 0, with the early ones.
+pub fn emit_staged(
+    graph: &SharedGraph,
+    outputs: Vec<Output>,
+    late: Option<&dyn Fn(Sym) -> bool>,
+) -> Emitted {
     let graph = graph.borrow();
     let size = graph.nodes().len();
     let ids: Vec<Option<Id>> = outputs
@@ -100,7 +115,32 @@ pub fn emit(graph: &SharedGraph, outputs: Vec<Output>) -> Emitted {
             E::N(_, id) => Some(*id),
         })
         .collect();
-    let order = postorder(&graph, ids.iter().flatten().copied());
+    // Per node, whether it reads a late symbol: operands have smaller ids than the operations
+    // reading them, so one pass in id order settles it.
+    let mut reads_late = vec![false; size];
+    if let Some(late) = late {
+        for id in 0..size {
+            let node = graph.node(id as Id);
+            reads_late[id] = match node {
+                Node::Sym(s) => late(s),
+                _ => children(node).iter().any(|&c| reads_late[c as usize]),
+            };
+        }
+    }
+    let is_late = |id: &Option<Id>| id.is_some_and(|id| reads_late[id as usize]);
+    let early_roots: Vec<Id> = ids
+        .iter()
+        .filter(|i| !is_late(i))
+        .flatten()
+        .copied()
+        .collect();
+    let early_count = postorder(&graph, early_roots.iter().copied()).len();
+    let order = postorder(
+        &graph,
+        early_roots
+            .into_iter()
+            .chain(ids.iter().filter(|i| is_late(i)).flatten().copied()),
+    );
     let ops = count(&graph, ids.iter().flatten().copied());
     let is_op = |id: Id| !matches!(graph.node(id), Node::Sym(_) | Node::Const(_));
     // Per node, dense by id: the outputs its part stores, its part, the last later part that
@@ -117,7 +157,13 @@ pub fn emit(graph: &SharedGraph, outputs: Vec<Output>) -> Emitted {
     let mut part_of = vec![NONE; size];
     let mut parts_nodes: Vec<Vec<Id>> = vec![Vec::new()];
     let mut budget = 0usize;
-    for &id in &order {
+    let mut late_part = None;
+    for (i, &id) in order.iter().enumerate() {
+        if late.is_some() && i >= early_count && late_part.is_none() {
+            parts_nodes.push(Vec::new());
+            budget = 0;
+            late_part = Some(parts_nodes.len() - 1);
+        }
         if !is_op(id) {
             continue;
         }
@@ -130,6 +176,18 @@ pub fn emit(graph: &SharedGraph, outputs: Vec<Output>) -> Emitted {
         part_of[id as usize] = (parts_nodes.len() - 1) as u32;
         parts_nodes.last_mut().expect("non-empty").push(id);
     }
+    if late.is_some() && late_part.is_none() {
+        parts_nodes.push(Vec::new());
+    }
+    let late_part = late_part.unwrap_or(parts_nodes.len() - usize::from(late.is_some()));
+    // The part storing an output that is a bare symbol: the first of its stage.
+    let bare_part = |id: Id| {
+        if reads_late[id as usize] {
+            late_part
+        } else {
+            0
+        }
+    };
     // Values crossing parts get scratch slots, reused once their last reader has run (like
     // registers), so the array stays as small as the most values alive between two parts.
     let mut last_use = vec![NONE; size];
@@ -196,11 +254,14 @@ pub fn emit(graph: &SharedGraph, outputs: Vec<Output>) -> Emitted {
             .flat_map(|&id| children(graph.node(id)))
             .filter(|c| !is_op(*c) || part_of[*c as usize] != p as u32)
             .collect();
-        if p == 0 {
-            // Outputs that are bare symbols or constants have no operation of their own: part 0
-            // loads them and stores them.
-            needed.extend(ids.iter().flatten().copied().filter(|id| !is_op(*id)));
-        }
+        // Outputs that are bare symbols or constants have no operation of their own: the first
+        // part of their stage loads and stores them.
+        needed.extend(
+            ids.iter()
+                .flatten()
+                .copied()
+                .filter(|&id| !is_op(id) && bare_part(id) == p),
+        );
         needed.sort_unstable();
         needed.dedup();
         for id in needed {
@@ -261,22 +322,20 @@ pub fn emit(graph: &SharedGraph, outputs: Vec<Output>) -> Emitted {
                 stmts.push(quote!(#target = #n;));
             }
         }
-        if p == 0 {
-            for (i, o) in outputs.iter().enumerate() {
-                let target = &o.target;
-                match (&o.value, ids[i]) {
-                    (E::K(x), _) => {
-                        let c = constant(*x);
-                        uses.out = true;
-                        stmts.push(quote!(#target = #c;));
-                    }
-                    (_, Some(id)) if !is_op(id) => {
-                        let value = name(id);
-                        uses.out = true;
-                        stmts.push(quote!(#target = #value;));
-                    }
-                    _ => {}
+        for (i, o) in outputs.iter().enumerate() {
+            let target = &o.target;
+            match (&o.value, ids[i]) {
+                (E::K(x), _) if p == 0 => {
+                    let c = constant(*x);
+                    uses.out = true;
+                    stmts.push(quote!(#target = #c;));
                 }
+                (_, Some(id)) if !is_op(id) && bare_part(id) == p => {
+                    let value = name(id);
+                    uses.out = true;
+                    stmts.push(quote!(#target = #value;));
+                }
+                _ => {}
             }
         }
         parts.push(stmts);
@@ -300,6 +359,7 @@ pub fn emit(graph: &SharedGraph, outputs: Vec<Output>) -> Emitted {
         joints,
         part_inputs,
         part_uses,
+        late_part,
     }
 }
 
@@ -338,4 +398,66 @@ fn postorder(graph: &crate::graph::Graph, roots: impl IntoIterator<Item = Id>) -
         }
     }
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Where each output is stored: the index of the part whose statements assign `target`.
+    fn stored_in(emitted: &Emitted, target: &str) -> Vec<usize> {
+        emitted
+            .parts
+            .iter()
+            .enumerate()
+            .filter(|(_, stmts)| {
+                stmts.iter().any(|s| {
+                    s.to_string()
+                        .replace(' ', "")
+                        .starts_with(&format!("{target}="))
+                })
+            })
+            .map(|(p, _)| p)
+            .collect()
+    }
+
+    #[test]
+    fn staged_emission_computes_what_the_late_input_does_not_reach_first() {
+        let graph = SharedGraph::default();
+        let qd = E::sym(&graph, Sym::Qd(0));
+        let qdd = E::sym(&graph, Sym::Qdd(0));
+        let shared = qd.clone() * qd.clone() + qd.clone();
+        let output = |name: &str, value: E| Output {
+            target: name.parse().expect("an lvalue"),
+            value,
+        };
+        // Late outputs first in the list, early ones after, a bare late symbol and a constant.
+        let outputs = vec![
+            output("out[0]", shared.clone() * qdd.clone()),
+            output("out[1]", shared.clone() * shared.clone()),
+            output("out[2]", qdd),
+            output("out[3]", E::K(2.5)),
+        ];
+        let late = |s: Sym| matches!(s, Sym::Qdd(_));
+        let emitted = emit_staged(&graph, outputs, Some(&late));
+        let l = emitted.late_part;
+        assert!(
+            l >= 1 && l < emitted.parts.len(),
+            "two stages: {l} of {}",
+            emitted.parts.len()
+        );
+        // No early part reads q̈; the early output and the constant are stored before the late
+        // stage, the outputs reading q̈ in it, each exactly once.
+        assert!(emitted.part_inputs[..l].iter().all(|i| !i.contains(&"qdd")));
+        assert_eq!(stored_in(&emitted, "out[1]"), vec![0]);
+        assert_eq!(stored_in(&emitted, "out[3]"), vec![0]);
+        assert_eq!(stored_in(&emitted, "out[0]"), vec![l]);
+        assert_eq!(stored_in(&emitted, "out[2]"), vec![l]);
+        // The value both stages need is computed once, in the early stage, and passed on.
+        assert_eq!(emitted.ops.total(), 4);
+        assert!(emitted.scratch >= 1);
+        // Without a late input: one part, as `emit` makes it.
+        let plain = emit(&graph, vec![output("out[0]", shared.clone() * shared)]);
+        assert_eq!((plain.parts.len(), plain.late_part), (1, 1));
+    }
 }

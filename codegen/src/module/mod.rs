@@ -17,7 +17,7 @@ pub mod tidy;
 
 use crate::derive::{Derivation, christoffel, inertia, newton_euler, regressor};
 use crate::emit::{self, Output};
-use crate::graph::{E, OpCount, SharedGraph};
+use crate::graph::{E, OpCount, SharedGraph, Sym};
 use crate::limits::Unsupported;
 use dhgen_model::parameters::{BaseParameters, Column};
 use dhgen_model::{ChainRef, JointKind, RobotModel};
@@ -300,7 +300,10 @@ impl Items {
         let ty = q.shape.ty(&t);
         let inputs = idents(q.inputs);
         let body = match (q.make)(cx) {
-            Made::Derived(graph, exprs) => self.straight_line(cx, q, &graph, exprs),
+            Made::Derived(graph, exprs) => self.straight_line(cx, q, &graph, exprs, None),
+            Made::Staged(graph, exprs, late) => {
+                self.straight_line(cx, q, &graph, exprs, Some(late))
+            }
             Made::Looped(body) => {
                 self.joints.insert(q.name, (0..cx.chain.dof()).collect());
                 self.looped.push(q.name.to_string());
@@ -461,12 +464,19 @@ impl Items {
     /// The body of a derived quantity's method: its outputs computed inline when small,
     /// otherwise by private part methods called in turn, sharing values through a scratch
     /// array.
+    ///
+    /// With a `late` input ([`Made::Staged`]), the body calls a private method
+    /// `<name>_then(&self, <other inputs>, late: impl FnOnce(&Out) -> [T; DOF], out: &mut
+    /// Out) -> [T; DOF]`, which computes the outputs that do not read `late` into `out`, then
+    /// `late` from them by the closure, then the rest, and returns the value of `late` it
+    /// used.
     fn straight_line(
         &mut self,
         cx: &Context<'_>,
         q: &Quantity,
         graph: &SharedGraph,
         exprs: Vec<E>,
+        late: Option<Input>,
     ) -> TokenStream {
         let t = quote!(T);
         let outputs = |targets: Vec<TokenStream>| -> Vec<Output> {
@@ -483,7 +493,18 @@ impl Items {
                 .collect()
         };
         let mut ty = q.shape.ty(&t);
-        let mut emitted = emit::emit(graph, outputs(q.shape.targets(cx.chain.dof(), exprs.len())));
+        let late_sym = |s: Sym| match late {
+            Some(Input::Qd) => matches!(s, Sym::Qd(_)),
+            Some(Input::Qdd) => matches!(s, Sym::Qdd(_)),
+            Some(Input::Tau) => matches!(s, Sym::Tau(_)),
+            Some(Input::Payload) => matches!(s, Sym::Payload(_)),
+            None => false,
+        };
+        let mut emitted = emit::emit_staged(
+            graph,
+            outputs(q.shape.targets(cx.chain.dof(), exprs.len())),
+            late.is_some().then_some(&late_sym as &dyn Fn(Sym) -> bool),
+        );
         // A scalar split into parts is passed between them as a one-element array.
         let scalar_in_parts = q.shape == Shape::Scalar && emitted.parts.len() > 1;
         if scalar_in_parts {
@@ -499,13 +520,43 @@ impl Items {
         self.ops.push((q.name.to_string(), ops));
         self.joints.insert(q.name, emitted.joints.clone());
         let names: Vec<&str> = q.inputs.iter().map(|i| i.name()).collect();
-        let computed = if emitted.parts.len() == 1 {
-            let stmts = &emitted.parts[0];
+        // Between the stages, the late input from the closure of the same name.
+        let hook = late.map(|i| {
+            let l = format_ident!("{}", i.name());
+            assert!(
+                emitted.part_inputs[..emitted.late_part]
+                    .iter()
+                    .all(|used| !used.contains(&i.name())),
+                "{}: an early part reads {}",
+                q.name,
+                i.name()
+            );
+            quote!(let #l = &#l(&*out);)
+        });
+        let computed = if emitted.parts.len() == 1 || (hook.is_some() && emitted.parts.len() == 2) {
+            // Inline, the stages (if any) in turn; values crossing them pass through `w`.
+            let mut stmts = Vec::new();
+            if emitted.part_uses.iter().any(|u| u.scratch) {
+                let w = emitted.scratch;
+                stmts.push(quote!(let mut w = [T::zero(); #w];));
+            }
+            for (i, part) in emitted.parts.iter().enumerate() {
+                if i == emitted.late_part {
+                    stmts.extend(hook.clone());
+                }
+                stmts.extend(part.iter().cloned());
+            }
             quote!(#(#stmts)*)
         } else {
             let w = emitted.scratch.max(1);
             let mut calls = vec![quote!(let mut w = [T::zero(); #w];)];
             for (i, stmts) in emitted.parts.iter().enumerate() {
+                if i == emitted.late_part {
+                    calls.extend(hook.clone());
+                }
+                if stmts.is_empty() {
+                    continue;
+                }
                 let part = format_ident!("{}_part{}", q.name, i);
                 // Each part takes only the joint vectors it reads.
                 let used: Vec<Ident> = names
@@ -527,10 +578,50 @@ impl Items {
                         #(#stmts)*
                     }
                 });
-                calls.push(quote!(self.#part(#(#used,)* &mut w, &mut out);));
+                // The staged method has `out` by reference already.
+                let out = if late.is_some() {
+                    quote!(out)
+                } else {
+                    quote!(&mut out)
+                };
+                calls.push(quote!(self.#part(#(#used,)* &mut w, #out);));
             }
             quote!(#(#calls)*)
         };
+        if let Some(late) = late {
+            // The staged method, and the quantity's own body calling it with the late input
+            // given.
+            let l = format_ident!("{}", late.name());
+            let then = format_ident!("{}_then", q.name);
+            let early: Vec<Ident> = names
+                .iter()
+                .filter(|&&n| n != late.name())
+                .map(|n| format_ident!("{}", n))
+                .collect();
+            let early_tys: Vec<TokenStream> =
+                early.iter().map(|n| array_ty(&n.to_string())).collect();
+            let init = q
+                .shape
+                .init()
+                .expect("a staged quantity has an initial value");
+            self.private.push(quote! {
+                #[inline]
+                fn #then(
+                    &self,
+                    #(#early: #early_tys,)*
+                    #l: impl FnOnce(&#ty) -> [T; DOF],
+                    out: &mut #ty,
+                ) -> [T; DOF] {
+                    #computed
+                    *#l
+                }
+            });
+            return quote! {
+                let mut out: #ty = #init;
+                self.#then(#(#early,)* |_| *#l, &mut out);
+                out
+            };
+        }
         // A scalar is assigned exactly once: declare it without a dead initial value.
         let (declare, value) = match q.shape.init() {
             _ if scalar_in_parts => (quote!(let mut out: #ty = [T::zero()];), quote!(out[0])),

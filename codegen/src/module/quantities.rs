@@ -79,6 +79,10 @@ pub enum Made {
     /// takes less time than the cheapest derivation (see
     /// [`LOOP_D_ABOVE_PER_JOINT`](super::LOOP_D_ABOVE_PER_JOINT)).
     Looped(TokenStream),
+    /// [`Derived`](Made::Derived) in two stages: the outputs that do not read the input first,
+    /// then the input from a closure given them, then the rest (the quantity also gets a
+    /// private `<name>_then` method taking that closure).
+    Staged(SharedGraph, Vec<E>, Input),
 }
 
 /// The trait method a quantity implements, for `f64` and nalgebra joint vectors.
@@ -849,7 +853,9 @@ pub const QUANTITIES: &[Quantity] = &[
                 cx.coriolis_derivations(),
                 cx.assembled_inverse_dynamics(),
             );
-            derived(graph, e)
+            // ∂τ/∂q̇ does not read q̈: `forward_dynamics_derivatives` takes the bias torques
+            // from it before q̈ is known.
+            Made::Staged(graph, e, Input::Qdd)
         },
         arm: None,
     },
@@ -939,13 +945,44 @@ pub const QUANTITIES: &[Quantity] = &[
         public: true,
         make: |cx| {
             let joints = 0..cx.chain.dof();
+            // ½ viscous_j q̇_j where the joint has viscous friction.
+            let viscous = cx
+                .chain
+                .bodies
+                .iter()
+                .enumerate()
+                .filter(|(_, b)| b.friction.viscous != 0.0)
+                .map(|(j, b)| {
+                    let half = crate::emit::constant(0.5 * b.friction.viscous);
+                    quote!(tau[#j] += #half * qd[#j];)
+                });
+            let coulomb = cx.coulomb();
             composed(
                 quote! {
                     // D⁻¹ once: q̈ = D⁻¹(τ − h), then the derivatives at it.
                     let (inverse, ok) = self.mass_matrix_inverse_lanes();
-                    let qdd = inverse * (na::SVector::<T, DOF>::from(*tau) - self.bias(qd));
+                    let g = self.gravity();
+                    let applied = na::SVector::<T, DOF>::from(*tau);
+                    // The bias h from ∂τ/∂q̇, which does not depend on q̈: the velocity terms
+                    // of τ are quadratic in q̇ (so Σ_j q̇_j ∂/∂q̇_j doubles them) and viscous
+                    // friction is linear, so h = g + ½ (∂τ/∂q̇ + diag(viscous)) q̇ + Coulomb.
+                    let mut derivatives = (na::SMatrix::zeros(), na::SMatrix::zeros());
+                    let qdd = self.inverse_dynamics_derivatives_then(qd, |(_, dqd)| {
+                        let half = ::dhgen::nalgebra::convert::<f64, T>(0.5);
+                        let mut tau: [T; DOF] = ::core::array::from_fn(|k| {
+                            let s = dqd
+                                .row(k)
+                                .iter()
+                                .zip(qd)
+                                .fold(T::zero(), |s, (&d, &v)| s + d * v);
+                            g[k] + half * s
+                        });
+                        #(#viscous)*
+                        #coulomb
+                        (inverse * (applied - na::SVector::<T, DOF>::from(tau))).into()
+                    }, &mut derivatives);
+                    let (dq, dqd) = derivatives;
                     let ok = ok #(& ::dhgen::Real::is_finite_lanes(qdd[#joints]))*;
-                    let (dq, dqd) = self.inverse_dynamics_derivatives(qd, &qdd);
                     // −D⁻¹ X column by column in plain loops, which the compiler unrolls:
                     // 40 % fewer instructions than nalgebra's general product at 6 × 6.
                     let columns: [[T; DOF]; DOF] = inverse.into();
@@ -966,7 +1003,7 @@ pub const QUANTITIES: &[Quantity] = &[
                 },
                 &[
                     "mass_matrix_inverse_lanes",
-                    "bias",
+                    "gravity",
                     "inverse_dynamics_derivatives",
                 ],
             )
