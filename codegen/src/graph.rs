@@ -388,6 +388,38 @@ pub fn derivative(graph: &SharedGraph, roots: &[E], tangent: impl Fn(Sym) -> E) 
     ids.iter().map(|id| d[id].clone()).collect()
 }
 
+/// The expressions `roots` of `graph` with input symbols replaced where `value` gives one
+/// (constants fold as the expressions are rebuilt, in `graph`, each node once).
+pub fn substitute(graph: &SharedGraph, roots: &[E], value: impl Fn(Sym) -> Option<E>) -> Vec<E> {
+    let ids: Vec<Option<Id>> = roots
+        .iter()
+        .map(|e| match e {
+            E::K(_) => None,
+            E::N(_, id) => Some(*id),
+        })
+        .collect();
+    let order = reachable(&graph.borrow(), ids.iter().flatten().copied());
+    let mut v: HashMap<Id, E> = HashMap::with_capacity(order.len());
+    for id in order {
+        let node = graph.borrow().node(id);
+        let x = |a: Id| v[&a].clone();
+        let e = match node {
+            Node::Const(c) => E::K(f64::from_bits(c)),
+            Node::Sym(s) => value(s).unwrap_or_else(|| E::N(graph.clone(), id)),
+            Node::Neg(a) => -x(a),
+            Node::Add(a, b) => x(a) + x(b),
+            Node::Sub(a, b) => x(a) - x(b),
+            Node::Mul(a, b) => x(a) * x(b),
+        };
+        v.insert(id, e);
+    }
+    roots
+        .iter()
+        .zip(&ids)
+        .map(|(e, id)| id.map_or_else(|| e.clone(), |id| v[&id].clone()))
+        .collect()
+}
+
 /// All arithmetic operations needed to evaluate the expressions `outs` of `graph`, shared
 /// nodes counted once: what derivations are compared by.
 pub fn cost<'a>(graph: &SharedGraph, outs: impl IntoIterator<Item = &'a E>) -> usize {

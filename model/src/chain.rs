@@ -328,6 +328,43 @@ impl<'a> ChainRef<'a> {
             && self.placements[k].rotation_is_identity()
     }
 
+    /// True when moving joint `k` (0-based) is a symmetry of the dynamics, so that D(q),
+    /// C(q, q̇), g(q) and τ(q, q̇, q̈) do not depend on q_k (∂τ/∂q_k = 0) and may be evaluated
+    /// at any value of it:
+    /// - joint 1, prismatic (it translates the whole arm, and gravity is uniform), or
+    ///   revolute about an axis (the root frame's z) exactly parallel to gravity, or without
+    ///   gravity: the base is fixed, so nothing else tells the arm's positions about it apart;
+    /// - the last joint, revolute, when its link's mass is symmetric about its axis (centre of
+    ///   mass on the axis, inertia tensor `diag(a, a, c)` in the joint frame; to 1e-14 of the
+    ///   tensor's trace and of [`length_scale`](Self::length_scale)): turning it moves no mass.
+    ///
+    /// The code generator drops these joints from the dynamics' derivations.
+    pub fn dynamics_ignore(&self, k: usize) -> bool {
+        let n = self.dof();
+        if k >= n {
+            return false;
+        }
+        let body = &self.bodies[k];
+        let first = k == 0 && {
+            let g = self.gravity_in_root();
+            body.joint == JointKind::Prismatic || (g[0] == 0.0 && g[1] == 0.0)
+        };
+        let last = k == n - 1
+            && body.joint == JointKind::Revolute
+            && body.inertial.as_ref().is_some_and(|m| {
+                let i = &m.inertia;
+                let tiny = 1e-14 * math::abs(i[0][0] + i[1][1] + i[2][2]);
+                let near = 1e-14 * self.length_scale();
+                math::abs(i[0][0] - i[1][1]) <= tiny
+                    && [i[0][1], i[0][2], i[1][2]]
+                        .iter()
+                        .all(|&x| math::abs(x) <= tiny)
+                    && math::abs(m.com[0]) <= near
+                    && math::abs(m.com[1]) <= near
+            });
+        first || last
+    }
+
     /// Whether the last three joints are revolute and their axes meet in one point (a
     /// spherical wrist), with that point. The three axes are tested at `q = 0`, which decides
     /// every configuration: each wrist joint turns the axes after it about a line through the

@@ -439,3 +439,49 @@ fn puma560_derivatives_of_tau_cost_under_2000_operations() {
         .total();
     assert!(derivatives < 2000, "{derivatives} operations");
 }
+
+/// `ChainRef::dynamics_ignore`, which the generator relies on to drop joints from the
+/// dynamics' derivations, names only joints τ does not depend on: on every description with
+/// mass properties, τ at random states is unchanged (to 1e-12) when such a joint moves. And it
+/// finds the symmetries it should: the PUMA 560's first joint (vertical, under vertical
+/// gravity) and last (its link symmetric about the axis), not the first under tilted gravity.
+#[test]
+fn joints_the_dynamics_ignore_change_no_torque() {
+    let mut rng = StdRng::seed_from_u64(16);
+    let mut found = 0;
+    for path in crate::support::description_paths() {
+        let robot = Robot::from_toml_file(&path).unwrap();
+        if !robot.chain().has_dynamics() {
+            continue;
+        }
+        let n = robot.dof();
+        for j in (0..n).filter(|&j| robot.chain().dynamics_ignore(j)) {
+            found += 1;
+            for _ in 0..5 {
+                let mut state =
+                    || -> Vec<f64> { (0..n).map(|_| rng.random_range(-2.0..2.0)).collect() };
+                let (q, qd, qdd) = (state(), state(), state());
+                let mut moved = q.clone();
+                moved[j] += rng.random_range(0.3..3.0);
+                let (a, b) = (
+                    robot.inverse_dynamics(&q, &qd, &qdd),
+                    robot.inverse_dynamics(&moved, &qd, &qdd),
+                );
+                let e = relative(b.iter().copied(), a.iter().copied());
+                assert!(
+                    e < 1e-12,
+                    "{}: τ moves with joint {j}: {e:.1e}",
+                    path.display()
+                );
+            }
+        }
+    }
+    assert!(found >= 5, "symmetries found: {found}");
+    let ignored = |robot: &Robot| -> Vec<usize> {
+        (0..robot.dof())
+            .filter(|&j| robot.chain().dynamics_ignore(j))
+            .collect()
+    };
+    assert_eq!(ignored(&runtime("puma560")), [0, 5]);
+    assert!(!ignored(&fixture("tilted_modified")).contains(&0));
+}

@@ -206,6 +206,21 @@ pub fn coordinates(chain: ChainRef<'_>) -> impl Iterator<Item = Coordinates> {
     std::iter::once(Coordinates::Root).chain((0..chain.dof()).map(Coordinates::Joint))
 }
 
+/// Dynamics' expressions `exprs` (in `graph`) evaluated at 0 for the joints they do not
+/// depend on ([`ChainRef::dynamics_ignore`]): cos 1, sin 0, displacement 0. Exact, since the
+/// value does not depend on them, and the folding drops what a recursion computes for them
+/// (PUMA 560's ∂τ: 1,951 → 1,846 operations, and no sine of q6).
+pub fn without_ignored_joints(chain: ChainRef<'_>, graph: &SharedGraph, exprs: &[E]) -> Vec<E> {
+    if !(0..chain.dof()).any(|j| chain.dynamics_ignore(j)) {
+        return exprs.to_vec();
+    }
+    crate::graph::substitute(graph, exprs, |s| match s {
+        Sym::Cos(j) if chain.dynamics_ignore(j) => Some(E::K(1.0)),
+        Sym::Sin(j) | Sym::Len(j) if chain.dynamics_ignore(j) => Some(E::K(0.0)),
+        _ => None,
+    })
+}
+
 /// Of several candidate derivations of the same outputs, each in its own graph, the one
 /// with the fewest operations.
 pub fn cheapest(candidates: Vec<(SharedGraph, Vec<E>)>) -> (SharedGraph, Vec<E>) {

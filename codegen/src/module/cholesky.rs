@@ -195,8 +195,10 @@ pub fn solve(n: usize) -> (TokenStream, OpCount) {
 
 /// `D⁻¹` (`dm` in scope) as `(inverse, ok)`, with its operation count: `M = L⁻¹`
 /// (lower triangular, its diagonal the pivots' reciprocals), then `D⁻¹ = Mᵀ M` on and above
-/// the diagonal, mirrored below.
-pub fn inverse(n: usize) -> (TokenStream, OpCount) {
+/// the diagonal, mirrored below. `ok`: every pivot above the floor and, if `finite`, every
+/// entry finite (a caller that multiplies D⁻¹ by a finite vector and checks the product
+/// learns the same: a non-finite entry makes its row's product non-finite).
+pub fn inverse(n: usize, finite: bool) -> (TokenStream, OpCount) {
     let mut ops = factor_ops(n);
     let m = |i: usize, j: usize| format_ident!("m{}_{}", i, j);
     // Row i of M below the diagonal, m_ij = −(Σ_{k=j}^{i−1} l_ik m_kj) · inv_i: i − j + 1
@@ -214,6 +216,11 @@ pub fn inverse(n: usize) -> (TokenStream, OpCount) {
     }
     if n > LOOPED_ABOVE {
         let factor = factor_looped();
+        let check = if finite {
+            quote!(ok = ok & ::dhgen::Real::is_finite_lanes(e);)
+        } else {
+            quote!()
+        };
         let zeros = Shape::Square.init();
         let inverse = quote! {
             #factor
@@ -236,7 +243,7 @@ pub fn inverse(n: usize) -> (TokenStream, OpCount) {
                     for k in b + 1..DOF {
                         e = e + m[k][a] * m[k][b];
                     }
-                    ok = ok & ::dhgen::Real::is_finite_lanes(e);
+                    #check
                     out[(a, b)] = e;
                     out[(b, a)] = e;
                 }
@@ -291,7 +298,7 @@ pub fn inverse(n: usize) -> (TokenStream, OpCount) {
             quote!(out[(#a, #b)] = #name; out[(#b, #a)] = #name;)
         }
     });
-    let names = entries.iter().map(|(_, _, name)| name);
+    let names = entries.iter().filter(|_| finite).map(|(_, _, name)| name);
     let zeros = Shape::Square.init();
     let inverse = quote! {
         #(#s)*

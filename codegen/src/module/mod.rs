@@ -15,7 +15,7 @@ pub mod state;
 pub mod structure;
 pub mod tidy;
 
-use crate::derive::{Derivation, christoffel, inertia, newton_euler, regressor};
+use crate::derive::{Derivation, christoffel, derivatives, inertia, newton_euler, regressor};
 use crate::emit::{self, Output};
 use crate::graph::{E, OpCount, SharedGraph, Sym};
 use crate::limits::Unsupported;
@@ -119,6 +119,8 @@ pub struct Context<'c> {
     mass_matrix: OnceCell<Option<(SharedGraph, Vec<E>)>>,
     coriolis: OnceCell<Vec<(SharedGraph, Vec<E>)>>,
     assembled: OnceCell<Option<(SharedGraph, Vec<E>)>>,
+    tau_derivatives: OnceCell<(SharedGraph, Vec<E>)>,
+    with_mass_matrix: OnceCell<Option<(SharedGraph, Vec<E>)>>,
     regressor: OnceCell<(SharedGraph, Vec<E>)>,
     base: OnceCell<BaseParameters>,
 }
@@ -135,6 +137,8 @@ impl<'c> Context<'c> {
             mass_matrix: OnceCell::new(),
             coriolis: OnceCell::new(),
             assembled: OnceCell::new(),
+            tau_derivatives: OnceCell::new(),
+            with_mass_matrix: OnceCell::new(),
             regressor: OnceCell::new(),
             base: OnceCell::new(),
         }
@@ -186,6 +190,38 @@ impl<'c> Context<'c> {
             .as_ref()
     }
 
+    /// The cheapest derivation of `[∂τ/∂q, ∂τ/∂q̇]` (each row-major), built once: for
+    /// `inverse_dynamics_derivatives`, and for `forward_dynamics_derivatives`, which skips
+    /// the columns that are structurally zero in its products.
+    pub fn inverse_dynamics_derivatives(&self) -> &(SharedGraph, Vec<E>) {
+        self.tau_derivatives.get_or_init(|| {
+            derivatives::inverse_dynamics_derivatives(
+                &self.derivation,
+                self.coriolis_derivations(),
+                self.assembled_inverse_dynamics(),
+            )
+        })
+    }
+
+    /// `[∂τ/∂q, ∂τ/∂q̇, D]` (each row-major) in the graph of ∂τ's derivation, D by
+    /// [`derivatives::mass_matrix_beside`], where D costs fewer operations there than its own
+    /// cheapest derivation (`forward_dynamics_derivatives` then factorises that D); `None`
+    /// where it does not, or where D calls the runtime's loops.
+    pub fn derivatives_with_mass_matrix(&self) -> Option<&(SharedGraph, Vec<E>)> {
+        self.with_mass_matrix
+            .get_or_init(|| {
+                let (own_graph, own) = self.mass_matrix()?;
+                let (graph, outs) = self.inverse_dynamics_derivatives();
+                let (d, added) = derivatives::mass_matrix_beside(&self.derivation, graph, outs);
+                (added < crate::graph::cost(own_graph, own)).then(|| {
+                    let mut all = outs.clone();
+                    all.extend(d);
+                    (graph.clone(), all)
+                })
+            })
+            .as_ref()
+    }
+
     /// True above [`LOOPED_ABOVE`] joints: D and C call the runtime path's loops.
     pub fn looped(&self) -> bool {
         self.chain.dof() > LOOPED_ABOVE
@@ -217,6 +253,10 @@ impl<'c> Context<'c> {
             Availability::Always => true,
             Availability::Dynamics => self.chain.has_dynamics(),
             Availability::Derivatives => self.options.derivatives && self.chain.has_dynamics(),
+            Availability::DerivativesWithMassMatrix => {
+                self.available(Availability::Derivatives)
+                    && self.derivatives_with_mass_matrix().is_some()
+            }
             Availability::Regressor => self.options.regressor && self.chain.has_dynamics(),
             Availability::DecoupledWrist => {
                 crate::derive::singularity::decoupled_determinants(self.chain).is_some()
@@ -302,7 +342,12 @@ impl Items {
         let body = match (q.make)(cx) {
             Made::Derived(graph, exprs) => self.straight_line(cx, q, &graph, exprs, None),
             Made::Staged(graph, exprs, late) => {
-                self.straight_line(cx, q, &graph, exprs, Some(late))
+                let body = self.straight_line(cx, q, &graph, exprs, Some(late));
+                if !q.public {
+                    // Only its staged method (`<name>_then`) is called.
+                    return;
+                }
+                body
             }
             Made::Looped(body) => {
                 self.joints.insert(q.name, (0..cx.chain.dof()).collect());

@@ -57,6 +57,9 @@ pub enum Availability {
     DecoupledWrist,
     /// For robots with mass properties, when [`Options::derivatives`](super::Options) asks.
     Derivatives,
+    /// As `Derivatives`, where D(q) is cheaper beside ∂τ than on its own
+    /// ([`Context::derivatives_with_mass_matrix`](super::Context::derivatives_with_mass_matrix)).
+    DerivativesWithMassMatrix,
     /// For robots with mass properties, when [`Options::regressor`](super::Options) asks.
     Regressor,
 }
@@ -848,11 +851,7 @@ pub const QUANTITIES: &[Quantity] = &[
         available: Availability::Derivatives,
         public: true,
         make: |cx| {
-            let (graph, e) = derivatives::inverse_dynamics_derivatives(
-                &cx.derivation,
-                cx.coriolis_derivations(),
-                cx.assembled_inverse_dynamics(),
-            );
+            let (graph, e) = cx.inverse_dynamics_derivatives().clone();
             // ∂τ/∂q̇ does not read q̈: `forward_dynamics_derivatives` takes the bias torques
             // from it before q̈ is known.
             Made::Staged(graph, e, Input::Qdd)
@@ -902,7 +901,7 @@ pub const QUANTITIES: &[Quantity] = &[
         available: Availability::Derivatives,
         public: true,
         make: |cx| {
-            let (inverse, ops) = cholesky::inverse(cx.chain.dof());
+            let (inverse, ops) = cholesky::inverse(cx.chain.dof(), true);
             Made::Composed {
                 body: quote! {
                     let dm = self.mass_matrix();
@@ -933,6 +932,24 @@ pub const QUANTITIES: &[Quantity] = &[
         arm: None,
     },
     Quantity {
+        name: "forward_dynamics_terms",
+        doc: "∂τ/∂q, ∂τ/∂q̇ and D(q) in one derivation, staged at q̈: what \
+              `forward_dynamics_derivatives` evaluates where D costs less beside ∂τ.",
+        aliases: &[],
+        inputs: &[Input::Qd, Input::Qdd],
+        shape: Shape::SquareTriple,
+        available: Availability::DerivativesWithMassMatrix,
+        public: false,
+        make: |cx| {
+            let (graph, e) = cx
+                .derivatives_with_mass_matrix()
+                .expect("available only with it")
+                .clone();
+            Made::Staged(graph, e, Input::Qdd)
+        },
+        arm: None,
+    },
+    Quantity {
         name: "forward_dynamics_derivatives",
         doc: "The derivatives of forward dynamics, `(∂q̈/∂q, ∂q̈/∂q̇, ∂q̈/∂τ = D⁻¹)` at (q, q̇, τ), \
               from ∂q̈/∂x = −D⁻¹ ∂τ/∂x at q̈ = D⁻¹(τ − C q̇ − g − friction); `None` where D(q) \
@@ -944,7 +961,8 @@ pub const QUANTITIES: &[Quantity] = &[
         available: Availability::Derivatives,
         public: true,
         make: |cx| {
-            let joints = 0..cx.chain.dof();
+            let n = cx.chain.dof();
+            let joints = 0..n;
             // ½ viscous_j q̇_j where the joint has viscous friction.
             let viscous = cx
                 .chain
@@ -957,55 +975,101 @@ pub const QUANTITIES: &[Quantity] = &[
                     quote!(tau[#j] += #half * qd[#j];)
                 });
             let coulomb = cx.coulomb();
+            // The bias h from ∂τ/∂q̇ (`dqd`), which does not depend on q̈: the velocity terms
+            // of τ are quadratic in q̇ (so Σ_j q̇_j ∂/∂q̇_j doubles them) and viscous friction
+            // is linear, so h = g + ½ (∂τ/∂q̇ + diag(viscous)) q̇ + Coulomb; then q̈ = D⁻¹(τ − h).
+            let acceleration = quote! {
+                let half = ::dhgen::nalgebra::convert::<f64, T>(0.5);
+                let mut tau: [T; DOF] = ::core::array::from_fn(|k| {
+                    let s = dqd
+                        .row(k)
+                        .iter()
+                        .zip(qd)
+                        .fold(T::zero(), |s, (&d, &v)| s + d * v);
+                    g[k] + half * s
+                });
+                #(#viscous)*
+                #coulomb
+                (inverse * (applied - na::SVector::<T, DOF>::from(tau))).into()
+            };
+            // ∂τ/∂q, ∂τ/∂q̇ (and D, factorised between the stages, where it is cheaper beside
+            // them) with q̈ computed between the stages.
+            let (derivatives, reads): (_, &'static [&'static str]) =
+                if cx.derivatives_with_mass_matrix().is_some() {
+                    // Its entries need no check of their own: q̈ = D⁻¹(τ − h) is checked.
+                    let (inverse, _) = cholesky::inverse(n, false);
+                    (
+                        quote! {
+                            let mut factor = None;
+                            let mut terms = (zero(), zero(), zero());
+                            let qdd = self.forward_dynamics_terms_then(qd, |(_, dqd, dm)| {
+                                let (inverse, ok) = { #inverse };
+                                factor = Some((inverse, ok));
+                                #acceleration
+                            }, &mut terms);
+                            let Some((inverse, ok)) = factor else {
+                                return None;
+                            };
+                            let (dq, dqd, _) = terms;
+                        },
+                        &["forward_dynamics_terms", "gravity"],
+                    )
+                } else {
+                    (
+                        quote! {
+                            let (inverse, ok) = self.mass_matrix_inverse_lanes();
+                            let mut terms = (zero(), zero());
+                            let qdd = self.inverse_dynamics_derivatives_then(qd, |(_, dqd)| {
+                                #acceleration
+                            }, &mut terms);
+                            let (dq, dqd) = terms;
+                        },
+                        &[
+                            "mass_matrix_inverse_lanes",
+                            "gravity",
+                            "inverse_dynamics_derivatives",
+                        ],
+                    )
+                };
+            // Per column of ∂τ/∂q and of ∂τ/∂q̇, whether it may be non-zero: −D⁻¹ times a
+            // structurally zero column is zero, and is not computed.
+            let (_, e) = cx.inverse_dynamics_derivatives();
+            let used = |half: usize| -> Vec<bool> {
+                (0..n)
+                    .map(|m| {
+                        (0..n).any(|k| !matches!(e[half * n * n + k * n + m], E::K(x) if x == 0.0))
+                    })
+                    .collect()
+            };
+            let (used_q, used_qd) = (used(0), used(1));
             composed(
                 quote! {
-                    // D⁻¹ once: q̈ = D⁻¹(τ − h), then the derivatives at it.
-                    let (inverse, ok) = self.mass_matrix_inverse_lanes();
                     let g = self.gravity();
                     let applied = na::SVector::<T, DOF>::from(*tau);
-                    // The bias h from ∂τ/∂q̇, which does not depend on q̈: the velocity terms
-                    // of τ are quadratic in q̇ (so Σ_j q̇_j ∂/∂q̇_j doubles them) and viscous
-                    // friction is linear, so h = g + ½ (∂τ/∂q̇ + diag(viscous)) q̇ + Coulomb.
-                    let mut derivatives = (na::SMatrix::zeros(), na::SMatrix::zeros());
-                    let qdd = self.inverse_dynamics_derivatives_then(qd, |(_, dqd)| {
-                        let half = ::dhgen::nalgebra::convert::<f64, T>(0.5);
-                        let mut tau: [T; DOF] = ::core::array::from_fn(|k| {
-                            let s = dqd
-                                .row(k)
-                                .iter()
-                                .zip(qd)
-                                .fold(T::zero(), |s, (&d, &v)| s + d * v);
-                            g[k] + half * s
-                        });
-                        #(#viscous)*
-                        #coulomb
-                        (inverse * (applied - na::SVector::<T, DOF>::from(tau))).into()
-                    }, &mut derivatives);
-                    let (dq, dqd) = derivatives;
+                    let zero = || na::SMatrix::<T, DOF, DOF>::from_data(na::ArrayStorage([[T::zero(); DOF]; DOF]));
+                    #derivatives
                     let ok = ok #(& ::dhgen::Real::is_finite_lanes(qdd[#joints]))*;
-                    // −D⁻¹ X column by column in plain loops, which the compiler unrolls:
-                    // 40 % fewer instructions than nalgebra's general product at 6 × 6.
-                    let columns: [[T; DOF]; DOF] = inverse.into();
-                    let minus_inverse_times = |x: na::SMatrix<T, DOF, DOF>| {
-                        let mut out = [[T::zero(); DOF]; DOF];
-                        let x: [[T; DOF]; DOF] = x.into();
-                        for (out, x) in out.iter_mut().zip(&x) {
-                            for (column, &xk) in columns.iter().zip(x) {
+                    // −D⁻¹ X column by column, in place (column m of the product reads only
+                    // column m of X), in plain loops the compiler unrolls: 40 % fewer
+                    // instructions than nalgebra's general product at 6 × 6.
+                    let columns = &inverse.data.0;
+                    let minus_inverse_times = |x: &mut na::SMatrix<T, DOF, DOF>, used: [bool; DOF]| {
+                        for (x, _) in x.data.0.iter_mut().zip(used).filter(|(_, u)| *u) {
+                            let mut out = [T::zero(); DOF];
+                            for (column, &xk) in columns.iter().zip(&*x) {
                                 for (o, &a) in out.iter_mut().zip(column) {
                                     *o -= a * xk;
                                 }
                             }
+                            *x = out;
                         }
-                        na::SMatrix::<T, DOF, DOF>::from(out)
                     };
-                    na::SimdBool::all(ok)
-                        .then(|| (minus_inverse_times(dq), minus_inverse_times(dqd), inverse))
+                    let (mut dq, mut dqd) = (dq, dqd);
+                    minus_inverse_times(&mut dq, [#(#used_q),*]);
+                    minus_inverse_times(&mut dqd, [#(#used_qd),*]);
+                    na::SimdBool::all(ok).then_some((dq, dqd, inverse))
                 },
-                &[
-                    "mass_matrix_inverse_lanes",
-                    "gravity",
-                    "inverse_dynamics_derivatives",
-                ],
+                reads,
             )
         },
         arm: None,

@@ -32,6 +32,8 @@ pub enum Shape {
     Square,
     /// Two n×n matrices, each row by row, the first then the second.
     SquarePair,
+    /// Three n×n matrices, each row by row, in turn.
+    SquareTriple,
     /// An optional n×n matrix.
     OptionSquare,
     /// Three optional n×n matrices.
@@ -67,6 +69,11 @@ impl Shape {
             }
             Shape::Square => quote!(na::SMatrix<#t, DOF, DOF>),
             Shape::SquarePair => quote!((na::SMatrix<#t, DOF, DOF>, na::SMatrix<#t, DOF, DOF>)),
+            Shape::SquareTriple => quote!((
+                na::SMatrix<#t, DOF, DOF>,
+                na::SMatrix<#t, DOF, DOF>,
+                na::SMatrix<#t, DOF, DOF>,
+            )),
             Shape::OptionSquare => quote!(Option<na::SMatrix<#t, DOF, DOF>>),
             Shape::OptionSquareTriple => quote!(
                 Option<(
@@ -111,6 +118,10 @@ impl Shape {
             Shape::SquarePair => {
                 let z = zeros(quote!(DOF), quote!(DOF));
                 Some(quote!((#z, #z)))
+            }
+            Shape::SquareTriple => {
+                let z = zeros(quote!(DOF), quote!(DOF));
+                Some(quote!((#z, #z, #z)))
             }
             Shape::Vector => Some(zeros(quote!(DOF), quote!(1))),
             Shape::Cube => Some(quote!([[[T::zero(); DOF]; DOF]; DOF])),
@@ -165,7 +176,7 @@ impl Shape {
                     })
                     .collect()
             }
-            Shape::SquarePair => (0..2 * n * n)
+            Shape::SquarePair | Shape::SquareTriple => (0..entries)
                 .map(|idx| {
                     let (m, r, c) = (idx / (n * n), (idx / n) % n, idx % n);
                     let m = proc_macro2::Literal::usize_unsuffixed(m);
