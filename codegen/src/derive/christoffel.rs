@@ -48,7 +48,7 @@ pub fn christoffel(dv: &Derivation<'_>) -> (SharedGraph, Vec<E>) {
     {
         candidates.push((graph, e));
     }
-    super::cheapest(candidates)
+    super::cheapest_dynamics(dv.chain, candidates)
 }
 
 fn christoffel_dual(chain: ChainRef<'_>) -> (SharedGraph, Vec<E>) {

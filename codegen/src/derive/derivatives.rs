@@ -187,15 +187,7 @@ pub fn inverse_dynamics_derivatives(
             .collect();
         candidates.push((graph.clone(), out));
     }
-    super::cheapest(
-        candidates
-            .into_iter()
-            .map(|(graph, out)| {
-                let out = super::without_ignored_joints(chain, &graph, &out);
-                (graph, out)
-            })
-            .collect(),
-    )
+    super::cheapest_dynamics(chain, candidates)
 }
 
 /// D(q) row-major built in `graph`, beside the outputs `outs` of ∂τ's derivation there, and

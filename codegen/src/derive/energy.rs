@@ -38,5 +38,5 @@ pub fn kinetic_energy(dv: &Derivation<'_>) -> (SharedGraph, Vec<E>) {
         });
         (graph, vec![links + rotors])
     };
-    super::cheapest(vec![quadratic, recursive])
+    super::cheapest_dynamics(dv.chain, vec![quadratic, recursive])
 }

@@ -26,5 +26,5 @@ pub fn gravity(dv: &Derivation<'_>) -> (SharedGraph, Vec<E>) {
         let e = super::graph_chain(dv.chain, &graph).gravity_torques();
         (graph, e)
     };
-    super::cheapest(expanded.into_iter().chain([recursive]).collect())
+    super::cheapest_dynamics(dv.chain, expanded.into_iter().chain([recursive]).collect())
 }

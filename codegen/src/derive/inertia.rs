@@ -36,7 +36,8 @@ pub fn mass_matrix(dv: &Derivation<'_>) -> (SharedGraph, Vec<E>) {
         let graph = SharedGraph::default();
         dv.mass_matrix_exprs(&graph).map(|e| (graph, e))
     };
-    super::cheapest(
+    super::cheapest_dynamics(
+        chain,
         expanded
             .into_iter()
             .chain(recursive_candidates(chain, |_, _| {}))

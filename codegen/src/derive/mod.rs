@@ -221,6 +221,25 @@ pub fn without_ignored_joints(chain: ChainRef<'_>, graph: &SharedGraph, exprs: &
     })
 }
 
+/// [`cheapest`] for a quantity of the robot's own dynamics (without payload, not the
+/// regressor): each candidate first [without the joints the dynamics
+/// ignore](without_ignored_joints), so the recursions compete after dropping what they
+/// compute for them.
+pub fn cheapest_dynamics(
+    chain: ChainRef<'_>,
+    candidates: Vec<(SharedGraph, Vec<E>)>,
+) -> (SharedGraph, Vec<E>) {
+    cheapest(
+        candidates
+            .into_iter()
+            .map(|(graph, e)| {
+                let e = without_ignored_joints(chain, &graph, &e);
+                (graph, e)
+            })
+            .collect(),
+    )
+}
+
 /// Of several candidate derivations of the same outputs, each in its own graph, the one
 /// with the fewest operations.
 pub fn cheapest(candidates: Vec<(SharedGraph, Vec<E>)>) -> (SharedGraph, Vec<E>) {

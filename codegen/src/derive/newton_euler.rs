@@ -67,7 +67,8 @@ pub fn inverse_dynamics(
         let e = rnea_exprs(chain, &graph, false, true);
         (graph, e)
     };
-    super::cheapest(
+    super::cheapest_dynamics(
+        chain,
         std::iter::once(recursive)
             .chain(assembled.cloned())
             .collect(),

@@ -174,11 +174,17 @@ impl<'c> Context<'c> {
         self.coriolis.get_or_init(|| {
             let (graph, c) = self.christoffel();
             let direct = christoffel::coriolis_from(self.chain.dof(), graph, c);
-            vec![
+            [
                 christoffel::coriolis_recursive(self.chain),
                 (graph.clone(), direct),
                 christoffel::coriolis_spatial(self.chain),
             ]
+            .into_iter()
+            .map(|(graph, c)| {
+                let c = crate::derive::without_ignored_joints(self.chain, &graph, &c);
+                (graph, c)
+            })
+            .collect()
         })
     }
 

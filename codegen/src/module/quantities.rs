@@ -713,6 +713,7 @@ pub const QUANTITIES: &[Quantity] = &[
         make: |cx| {
             let graph = SharedGraph::default();
             let bias = newton_euler::rnea_exprs(cx.chain, &graph, true, true);
+            let bias = crate::derive::without_ignored_joints(cx.chain, &graph, &bias);
             derived(graph, bias)
         },
         arm: None,
