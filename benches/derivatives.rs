@@ -6,13 +6,13 @@
 //! `cargo bench --bench derivatives`
 //!
 //! Pinocchio 4.1.0 on the same models and machine (`scripts/pinocchio_bench.sh`: its templates
-//! compiled with `-O3 -march=native`, medians of three rounds alternating with this benchmark,
-//! 2026-11-30): PUMA 560 `rnea` 0.81–0.90 µs, `computeRNEADerivatives` 2.88–3.28 µs,
-//! `computeABADerivatives` 4.27–4.30 µs; Panda 0.99–1.12, 3.37–3.78 and 4.67–5.33 µs.
-//! Generated here, the same rounds: PUMA 560 ∂τ 0.39–0.54 µs, ∂q̈ 1.00–1.19 µs; Panda
-//! 1.16–1.24 and 1.68–1.80 µs (τ alone: 0.11–0.14 and 0.17–0.20 µs). Instructions per call
-//! (`scripts/pinocchio_bench.sh --callgrind`, `examples/instructions.rs`): Pinocchio 24,364 and
-//! 33,754 (PUMA 560), 29,094 and 40,623 (Panda); generated 4,867 and 8,274, 10,579 and 16,185.
+//! compiled with `-O3 -march=native`, three rounds alternating with this benchmark, 2026-11-30):
+//! PUMA 560 `rnea` 0.80 µs, `computeRNEADerivatives` 2.77 µs, `computeABADerivatives`
+//! 3.83–3.87 µs; Panda 0.93, 3.26–3.27 and 4.58–4.71 µs. Generated here, the same rounds: PUMA
+//! 560 ∂τ 382–388 ns, ∂q̈ 576–588 ns; Panda 1.08 and 1.40–1.41 µs (τ alone: 83 and 154–157 ns).
+//! Instructions per call (`scripts/pinocchio_bench.sh --callgrind`, `examples/instructions.rs`):
+//! Pinocchio 24,364 and 33,754 (PUMA 560), 29,094 and 40,623 (Panda); generated 4,565 and
+//! 6,418, 10,300 and 13,874.
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use dhgen::Robot;
