@@ -965,16 +965,8 @@ pub const QUANTITIES: &[Quantity] = &[
             let n = cx.chain.dof();
             let joints = 0..n;
             // ½ viscous_j q̇_j where the joint has viscous friction.
-            let viscous = cx
-                .chain
-                .bodies
-                .iter()
-                .enumerate()
-                .filter(|(_, b)| b.friction.viscous != 0.0)
-                .map(|(j, b)| {
-                    let half = crate::emit::constant(0.5 * b.friction.viscous);
-                    quote!(tau[#j] += #half * qd[#j];)
-                });
+            let viscous =
+                super::state::friction_terms(cx, |f| 0.5 * f.viscous, |k, j| quote!(#k * qd[#j]));
             let coulomb = cx.coulomb();
             // The bias h from ∂τ/∂q̇ (`dqd`), which does not depend on q̈: the velocity terms
             // of τ are quadratic in q̇ (so Σ_j q̇_j ∂/∂q̇_j doubles them) and viscous friction
@@ -989,7 +981,7 @@ pub const QUANTITIES: &[Quantity] = &[
                         .fold(T::zero(), |s, (&d, &v)| s + d * v);
                     g[k] + half * s
                 });
-                #(#viscous)*
+                #viscous
                 #coulomb
                 (inverse * (applied - na::SVector::<T, DOF>::from(tau))).into()
             };

@@ -93,15 +93,29 @@ pub fn definition(cx: &Context<'_>) -> TokenStream {
 
 /// `tau[j] += coulomb_j · sign(q̇_j)` for the joints with Coulomb friction.
 pub fn coulomb(cx: &Context<'_>) -> TokenStream {
+    friction_terms(
+        cx,
+        |f| f.coulomb,
+        |k, j| quote!(#k * ::dhgen::Real::sign(qd[#j])),
+    )
+}
+
+/// `tau[j] += term(k_j, j)` for each joint whose `k_j = coefficient(its friction)` is not
+/// zero (`k_j` as a constant of type `T`).
+pub fn friction_terms(
+    cx: &Context<'_>,
+    coefficient: impl Fn(&dhgen_model::Friction) -> f64,
+    term: impl Fn(TokenStream, usize) -> TokenStream,
+) -> TokenStream {
     let lines = cx
         .chain
         .bodies
         .iter()
         .enumerate()
-        .filter(|(_, b)| b.friction.coulomb != 0.0)
+        .filter(|(_, b)| coefficient(&b.friction) != 0.0)
         .map(|(j, b)| {
-            let k = constant(b.friction.coulomb);
-            quote!(tau[#j] += #k * ::dhgen::Real::sign(qd[#j]);)
+            let t = term(constant(coefficient(&b.friction)), j);
+            quote!(tau[#j] += #t;)
         });
     quote!(#(#lines)*)
 }
