@@ -197,6 +197,62 @@ impl<R: Ring> MassMoments<R> {
     }
 }
 
+/// The links' mass moments in their joint frames with the inertial parameters grouped
+/// (Khalil and Kleinfinger, 1987), in spatial form: from the tip down, the part of link j's
+/// moments that joint j can neither move nor load is moved onto link j − 1 (onto the fixed
+/// base, where it acts on no joint, for j = 1). For a revolute joint (axis z through the
+/// origin of its frame) that part is the mass, the first moment along the axis and
+/// `Ī_yy (1 − z zᵀ)`: its momentum does not depend on q̇_j and it exerts no torque about the
+/// axis. For a prismatic joint it is the rotational inertia `Ī` (no mass, so no force along
+/// the axis, and the same at any displacement). τ, D(q), C(q, q̇), g(q), the kinetic energy
+/// and the centre of mass are unchanged (each moved part stays where it is, on the parent);
+/// the links keep fewer non-zero parameters, so every recursion costs fewer operations
+/// (PUMA 560: τ by Newton–Euler 427 → 345 operations, C by Echeandia and Wensing 1,388 → 936;
+/// UR5 485 → 332 and 1,094 → 531; Panda 818 → 703 and 2,317 → 2,090). Empty for a
+/// kinematics-only chain. (The runtime path keeps the links as described: the two check each
+/// other.)
+pub fn grouped(chain: ChainRef<'_>) -> Vec<MassMoments<f64>> {
+    let n = chain.dof();
+    if !chain.has_dynamics() {
+        return Vec::new();
+    }
+    let mut b: Vec<MassMoments<f64>> = chain
+        .bodies
+        .iter()
+        .filter_map(|b| b.inertial.map(|i| MassMoments::about_origin(&i)))
+        .collect();
+    for j in (0..n).rev() {
+        let moved = match chain.bodies[j].joint {
+            JointKind::Revolute => {
+                let l = b[j].i[1][1];
+                let moved = MassMoments {
+                    m: b[j].m,
+                    h: [0.0, 0.0, b[j].h[2]],
+                    i: [[l, 0.0, 0.0], [0.0, l, 0.0], [0.0, 0.0, 0.0]],
+                };
+                b[j].m = 0.0;
+                b[j].h[2] = 0.0;
+                b[j].i[0][0] -= l;
+                b[j].i[1][1] = 0.0;
+                moved
+            }
+            JointKind::Prismatic => {
+                let moved = MassMoments {
+                    m: 0.0,
+                    h: [0.0; 3],
+                    i: b[j].i,
+                };
+                b[j].i = [[0.0; 3]; 3];
+                moved
+            }
+        };
+        if j > 0 {
+            b[j - 1] = b[j - 1].plus(&moved.transformed(&chain.placements[j]));
+        }
+    }
+    b
+}
+
 fn dot<R: Ring>(a: &V3<R>, b: &V3<R>) -> R {
     a[0].clone() * b[0].clone() + a[1].clone() * b[1].clone() + a[2].clone() * b[2].clone()
 }
@@ -258,10 +314,13 @@ impl<'c, R: Ring> RingChain<'c, R> {
                 JointKind::Prismatic => JointValue::Prismatic(sym.length(j)).motion(),
             }
         };
-        let bodies = chain
-            .bodies
+        let bodies = grouped(chain)
             .iter()
-            .filter_map(|b| b.inertial.map(|i| MassMoments::about_origin(&i)))
+            .map(|b| MassMoments {
+                m: k(b.m),
+                h: b.h.map(k),
+                i: b.i.map(|row| row.map(k)),
+            })
             .collect();
         let motions: Vec<Frame<R>> = (0..chain.dof()).map(motion).collect();
         RingChain {
