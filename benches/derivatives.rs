@@ -6,13 +6,13 @@
 //! `cargo bench --bench derivatives`
 //!
 //! Pinocchio 4.1.0 on the same models and machine (`scripts/pinocchio_bench.sh`: its templates
-//! compiled with `-O3 -march=native`, three rounds alternating with this benchmark, 2026-11-30):
-//! PUMA 560 `rnea` 0.80 µs, `computeRNEADerivatives` 2.77 µs, `computeABADerivatives`
-//! 3.83–3.87 µs; Panda 0.93, 3.26–3.27 and 4.58–4.71 µs. Generated here, the same rounds: PUMA
-//! 560 ∂τ 382–388 ns, ∂q̈ 576–588 ns; Panda 1.08 and 1.40–1.41 µs (τ alone: 83 and 154–157 ns).
+//! compiled with `-O3 -march=native`, two rounds alternating with this benchmark, 2026-12-01):
+//! PUMA 560 `rnea` 0.80 µs, `computeRNEADerivatives` 2.76 µs, `computeABADerivatives`
+//! 3.84–3.86 µs; Panda 0.94, 3.25–3.27 and 4.60–4.64 µs. Generated here, the same rounds: PUMA
+//! 560 ∂τ 261 ns, ∂q̈ 505–516 ns; Panda 1.02–1.04 and 1.36–1.37 µs (τ alone: 83 and 135 ns).
 //! Instructions per call (`scripts/pinocchio_bench.sh --callgrind`, `examples/instructions.rs`):
-//! Pinocchio 24,364 and 33,754 (PUMA 560), 29,094 and 40,623 (Panda); generated 4,565 and
-//! 6,418, 10,300 and 13,874.
+//! Pinocchio 24,364 and 33,754 (PUMA 560), 29,094 and 40,623 (Panda); generated 3,810 and
+//! 5,847, 9,835 and 13,596.
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use dhgen::Robot;

@@ -194,9 +194,9 @@ pub fn inverse_dynamics_derivatives(
 /// the operations it adds to them: of the normal form and the composite-rigid-body recursion
 /// in joint frames or in any frame's coordinates, the one adding fewest. ∂τ's derivation
 /// holds much of what D needs (the normal forms' terms, composite inertias), so D costs a
-/// fraction of its own cheapest derivation there: PUMA 560 70 operations instead of 171
-/// (the normal form), Panda 161 instead of 490 (joint 2's coordinates, beside Carpentier and
-/// Mansard's closed form).
+/// fraction of its own cheapest derivation there: PUMA 560 99 operations instead of 171
+/// (the normal form), Panda 161 instead of 443 (beside Carpentier and Mansard's closed
+/// form).
 pub fn mass_matrix_beside(dv: &Derivation<'_>, graph: &SharedGraph, outs: &[E]) -> (Vec<E>, usize) {
     let chain = dv.chain;
     let n = chain.dof();
