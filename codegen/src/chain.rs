@@ -205,7 +205,8 @@ impl<R: Ring> MassMoments<R> {
 /// `Ī_yy (1 − z zᵀ)`: its momentum does not depend on q̇_j and it exerts no torque about the
 /// axis. For a prismatic joint it is the rotational inertia `Ī` (no mass, so no force along
 /// the axis, and the same at any displacement). τ, D(q), C(q, q̇), g(q), the kinetic energy
-/// and the centre of mass are unchanged (each moved part stays where it is, on the parent);
+/// are unchanged (each moved part stays where it is, on the parent; link 1 keeps only what
+/// loads joint 1, so per-link sums such as the centre of mass are not);
 /// the links keep fewer non-zero parameters, so every recursion costs fewer operations
 /// (PUMA 560: τ by Newton–Euler 427 → 345 operations, C by Echeandia and Wensing 1,388 → 936;
 /// UR5 485 → 332 and 1,094 → 531; Panda 818 → 703 and 2,317 → 2,090). Empty for a
@@ -248,6 +249,33 @@ pub fn grouped(chain: ChainRef<'_>) -> Vec<MassMoments<f64>> {
         };
         if j > 0 {
             b[j - 1] = b[j - 1].plus(&moved.transformed(&chain.placements[j]));
+        }
+    }
+    // Link 1 moves about (along) a fixed axis: of its own moments only the inertia about the
+    // axis loads a revolute joint 1 (with the first moment across it, under gravity across
+    // the axis), only the mass a prismatic one.
+    let first = &mut b[0];
+    match chain.bodies[0].joint {
+        JointKind::Revolute => {
+            let g = chain.gravity_in_root();
+            let across = g[0] != 0.0 || g[1] != 0.0;
+            let h = if across {
+                [first.h[0], first.h[1], 0.0]
+            } else {
+                [0.0; 3]
+            };
+            *first = MassMoments {
+                m: 0.0,
+                h,
+                i: [[0.0; 3], [0.0; 3], [0.0, 0.0, first.i[2][2]]],
+            };
+        }
+        JointKind::Prismatic => {
+            *first = MassMoments {
+                m: first.m,
+                h: [0.0; 3],
+                i: [[0.0; 3]; 3],
+            };
         }
     }
     b
