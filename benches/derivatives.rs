@@ -12,7 +12,7 @@
 //! 560 ∂τ 261 ns, ∂q̈ 505–516 ns; Panda 1.02–1.04 and 1.36–1.37 µs (τ alone: 83 and 135 ns).
 //! Instructions per call (`scripts/pinocchio_bench.sh --callgrind`, `examples/instructions.rs`):
 //! Pinocchio 24,364 and 33,754 (PUMA 560), 29,094 and 40,623 (Panda); generated 3,810 and
-//! 5,847, 9,835 and 13,596.
+//! 5,847, 9,828 and 13,434.
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use dhgen::Robot;
