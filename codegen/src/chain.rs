@@ -257,12 +257,10 @@ pub fn grouped(chain: ChainRef<'_>) -> Vec<MassMoments<f64>> {
     let first = &mut b[0];
     match chain.bodies[0].joint {
         JointKind::Revolute => {
-            let g = chain.gravity_in_root();
-            let across = g[0] != 0.0 || g[1] != 0.0;
-            let h = if across {
-                [first.h[0], first.h[1], 0.0]
-            } else {
+            let h = if chain.gravity_along_first_axis() {
                 [0.0; 3]
+            } else {
+                [first.h[0], first.h[1], 0.0]
             };
             *first = MassMoments {
                 m: 0.0,

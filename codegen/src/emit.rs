@@ -65,6 +65,18 @@ fn sym_load(s: Sym) -> (Ident, TokenStream) {
     (ident(&name), load)
 }
 
+/// The argument array an input symbol loads from (`"qd"`, `"qdd"`, `"tau"`, `"payload"`);
+/// `None` for the joint variables, which the `State` holds.
+pub fn input_array(s: Sym) -> Option<&'static str> {
+    match s {
+        Sym::Qd(_) => Some("qd"),
+        Sym::Qdd(_) => Some("qdd"),
+        Sym::Tau(_) => Some("tau"),
+        Sym::Payload(_) => Some("payload"),
+        Sym::Cos(_) | Sym::Sin(_) | Sym::Len(_) => None,
+    }
+}
+
 /// `x` as an `f64` expression: a literal, or for a non-finite value (which
 /// [`limits::check`](crate::limits::check) keeps out of generated code, and which
 /// `Literal::f64_suffixed` would panic on) the named constant.
@@ -267,14 +279,7 @@ pub fn emit_staged(
         for id in needed {
             let load = match graph.node(id) {
                 Node::Sym(sym) => {
-                    let array = match sym {
-                        Sym::Qd(_) => Some("qd"),
-                        Sym::Qdd(_) => Some("qdd"),
-                        Sym::Tau(_) => Some("tau"),
-                        Sym::Payload(_) => Some("payload"),
-                        _ => None,
-                    };
-                    if let Some(a) = array.filter(|a| !inputs.contains(a)) {
+                    if let Some(a) = input_array(sym).filter(|a| !inputs.contains(a)) {
                         inputs.push(a);
                     }
                     sym_load(sym).1

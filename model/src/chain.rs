@@ -328,6 +328,13 @@ impl<'a> ChainRef<'a> {
             && self.placements[k].rotation_is_identity()
     }
 
+    /// True when gravity, in the root frame, is exactly parallel to its z axis, the first
+    /// joint's axis (or zero): then a revolute joint 1 turns nothing gravity can tell apart.
+    pub fn gravity_along_first_axis(&self) -> bool {
+        let g = self.gravity_in_root();
+        g[0] == 0.0 && g[1] == 0.0
+    }
+
     /// True when moving joint `k` (0-based) is a symmetry of the dynamics, so that D(q),
     /// C(q, q̇), g(q) and τ(q, q̇, q̈) do not depend on q_k (∂τ/∂q_k = 0) and may be evaluated
     /// at any value of it:
@@ -345,10 +352,8 @@ impl<'a> ChainRef<'a> {
             return false;
         }
         let body = &self.bodies[k];
-        let first = k == 0 && {
-            let g = self.gravity_in_root();
-            body.joint == JointKind::Prismatic || (g[0] == 0.0 && g[1] == 0.0)
-        };
+        let first =
+            k == 0 && (body.joint == JointKind::Prismatic || self.gravity_along_first_axis());
         let last = k == n - 1
             && body.joint == JointKind::Revolute
             && body.inertial.as_ref().is_some_and(|m| {

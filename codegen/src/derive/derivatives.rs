@@ -16,7 +16,6 @@
 //! at every other velocity), so these functions differentiate the smooth part of τ.
 
 use super::Derivation;
-use super::inertia::add_armature;
 use crate::chain::{Coordinates, RingChain};
 use crate::dual::{Dual, DualSymbols, RateSymbols};
 use crate::graph::{E, SharedGraph, Sym};
@@ -76,15 +75,11 @@ pub fn inverse_dynamics_derivatives(
     // Column m of ∂τ/∂q from `column`, or zeros where τ does not depend on q_m (a structural
     // fact: moving joint m is a symmetry of the dynamics), which no candidate need compute.
     let dq_column = |m: usize, column: &dyn Fn(usize) -> E| -> Vec<E> {
-        (0..n)
-            .map(|k| {
-                if chain.dynamics_ignore(m) {
-                    E::K(0.0)
-                } else {
-                    column(k)
-                }
-            })
-            .collect()
+        if chain.dynamics_ignore(m) {
+            vec![E::K(0.0); n]
+        } else {
+            (0..n).map(column).collect()
+        }
     };
     // ∂τ/∂q row-major from its entries (k, m).
     let dq_rows = |entry: &dyn Fn(usize, usize) -> E| -> Vec<E> {
@@ -202,13 +197,7 @@ pub fn mass_matrix_beside(dv: &Derivation<'_>, graph: &SharedGraph, outs: &[E]) 
     let n = chain.dof();
     let before = crate::graph::cost(graph, outs);
     let recursive = |at: Option<Coordinates>| {
-        let rc = super::graph_chain(chain, graph);
-        let mut d = match at {
-            None => rc.mass_matrix(),
-            Some(at) => rc.mass_matrix_in(at),
-        };
-        add_armature(chain, &mut d, |e, x| *e = e.clone() + E::K(x));
-        let d: Vec<E> = d.into_iter().flatten().collect();
+        let d = super::inertia::recursive(chain, &super::graph_chain(chain, graph), at);
         super::without_ignored_joints(chain, graph, &d)
     };
     dv.mass_matrix_exprs(graph)

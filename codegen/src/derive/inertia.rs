@@ -20,6 +20,21 @@ pub fn mass_matrix_polys(chain: ChainRef<'_>, budget: &Rc<Budget>) -> Vec<Vec<Po
     d
 }
 
+/// D(q) row-major by the composite-rigid-body recursion on `rc`, in joint frames (`None`) or in
+/// one frame's coordinates, armature included.
+pub(crate) fn recursive(
+    chain: ChainRef<'_>,
+    rc: &RingChain<'_, E>,
+    at: Option<Coordinates>,
+) -> Vec<E> {
+    let mut d = match at {
+        None => rc.mass_matrix(),
+        Some(at) => rc.mass_matrix_in(at),
+    };
+    add_armature(chain, &mut d, |e, x| *e = e.clone() + E::K(x));
+    d.into_iter().flatten().collect()
+}
+
 /// Adds each joint's armature to the diagonal.
 pub(crate) fn add_armature<X>(chain: ChainRef<'_>, d: &mut [Vec<X>], add: impl Fn(&mut X, f64)) {
     for (i, b) in chain.bodies.iter().enumerate() {
@@ -67,12 +82,7 @@ pub(crate) fn recursive_candidates<'c>(
         let graph = SharedGraph::default();
         let mut rc = super::graph_chain(chain, &graph);
         adjust(&mut rc, &graph);
-        let mut d = match at {
-            None => rc.mass_matrix(),
-            Some(at) => rc.mass_matrix_in(at),
-        };
-        add_armature(chain, &mut d, |e, x| *e = e.clone() + E::K(x));
-        let e: Vec<E> = d.into_iter().flatten().collect();
+        let e = recursive(chain, &rc, at);
         debug_assert_eq!(e.len(), n * n);
         (graph, e)
     })

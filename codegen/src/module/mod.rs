@@ -548,13 +548,7 @@ impl Items {
                 .collect()
         };
         let mut ty = q.shape.ty(&t);
-        let late_sym = |s: Sym| match late {
-            Some(Input::Qd) => matches!(s, Sym::Qd(_)),
-            Some(Input::Qdd) => matches!(s, Sym::Qdd(_)),
-            Some(Input::Tau) => matches!(s, Sym::Tau(_)),
-            Some(Input::Payload) => matches!(s, Sym::Payload(_)),
-            None => false,
-        };
+        let late_sym = |s: Sym| late.is_some_and(|i| emit::input_array(s) == Some(i.name()));
         let mut emitted = emit::emit_staged(
             graph,
             outputs(q.shape.targets(cx.chain.dof(), exprs.len())),
