@@ -9143,7 +9143,7 @@ pub mod puma560 {
             q: &[[T; DOF]],
             out: &mut [na::Matrix4<T>],
         ) -> Result<(), ::dhgen::batch::LengthMismatch> {
-            ::dhgen::batch::run([q], out, |[q]| super::fk_matrix(&q))
+            ::dhgen::batch::run([q], out, |[q]| super::fk_matrix(q))
         }
         /// [`fk`](super::fk) for each configuration: `out[c]` from `q[c]`, four `f64` or eight `f32` configurations per call (`dhgen::batch`).
         ///
@@ -9153,7 +9153,7 @@ pub mod puma560 {
             q: &[[T; DOF]],
             out: &mut [na::Isometry3<T>],
         ) -> Result<(), ::dhgen::batch::LengthMismatch> {
-            ::dhgen::batch::run([q], out, |[q]| super::fk(&q))
+            ::dhgen::batch::run([q], out, |[q]| super::fk(q))
         }
         /// [`frames_matrix`](super::frames_matrix) for each configuration: `out[c]` from `q[c]`, four `f64` or eight `f32` configurations per call (`dhgen::batch`).
         ///
@@ -9163,7 +9163,7 @@ pub mod puma560 {
             q: &[[T; DOF]],
             out: &mut [[na::Matrix4<T>; DOF]],
         ) -> Result<(), ::dhgen::batch::LengthMismatch> {
-            ::dhgen::batch::run([q], out, |[q]| super::frames_matrix(&q))
+            ::dhgen::batch::run([q], out, |[q]| super::frames_matrix(q))
         }
         /// [`frames`](super::frames) for each configuration: `out[c]` from `q[c]`, four `f64` or eight `f32` configurations per call (`dhgen::batch`).
         ///
@@ -9173,7 +9173,7 @@ pub mod puma560 {
             q: &[[T; DOF]],
             out: &mut [[na::Isometry3<T>; DOF]],
         ) -> Result<(), ::dhgen::batch::LengthMismatch> {
-            ::dhgen::batch::run([q], out, |[q]| super::frames(&q))
+            ::dhgen::batch::run([q], out, |[q]| super::frames(q))
         }
         /// [`jacobian`](super::jacobian) for each configuration: `out[c]` from `q[c]`, four `f64` or eight `f32` configurations per call (`dhgen::batch`).
         ///
@@ -9183,7 +9183,7 @@ pub mod puma560 {
             q: &[[T; DOF]],
             out: &mut [na::SMatrix<T, 6, DOF>],
         ) -> Result<(), ::dhgen::batch::LengthMismatch> {
-            ::dhgen::batch::run([q], out, |[q]| super::jacobian(&q))
+            ::dhgen::batch::run([q], out, |[q]| super::jacobian(q))
         }
         /// [`jdot_qdot`](super::jdot_qdot) for each configuration: `out[c]` from `q[c]`, `qd[c]`, four `f64` or eight `f32` configurations per call (`dhgen::batch`).
         ///
@@ -9194,7 +9194,7 @@ pub mod puma560 {
             qd: &[[T; DOF]],
             out: &mut [na::SVector<T, 6>],
         ) -> Result<(), ::dhgen::batch::LengthMismatch> {
-            ::dhgen::batch::run([q, qd], out, |[q, qd]| super::jdot_qdot(&q, &qd))
+            ::dhgen::batch::run([q, qd], out, |[q, qd]| super::jdot_qdot(q, qd))
         }
         /// [`det_j11`](super::det_j11) for each configuration: `out[c]` from `q[c]`, four `f64` or eight `f32` configurations per call (`dhgen::batch`).
         ///
@@ -9204,7 +9204,7 @@ pub mod puma560 {
             q: &[[T; DOF]],
             out: &mut [T],
         ) -> Result<(), ::dhgen::batch::LengthMismatch> {
-            ::dhgen::batch::run([q], out, |[q]| super::det_j11(&q))
+            ::dhgen::batch::run([q], out, |[q]| super::det_j11(q))
         }
         /// [`det_j22`](super::det_j22) for each configuration: `out[c]` from `q[c]`, four `f64` or eight `f32` configurations per call (`dhgen::batch`).
         ///
@@ -9214,7 +9214,7 @@ pub mod puma560 {
             q: &[[T; DOF]],
             out: &mut [T],
         ) -> Result<(), ::dhgen::batch::LengthMismatch> {
-            ::dhgen::batch::run([q], out, |[q]| super::det_j22(&q))
+            ::dhgen::batch::run([q], out, |[q]| super::det_j22(q))
         }
         /// [`mass_matrix`](super::mass_matrix) for each configuration: `out[c]` from `q[c]`, four `f64` or eight `f32` configurations per call (`dhgen::batch`).
         ///
@@ -9224,7 +9224,7 @@ pub mod puma560 {
             q: &[[T; DOF]],
             out: &mut [na::SMatrix<T, DOF, DOF>],
         ) -> Result<(), ::dhgen::batch::LengthMismatch> {
-            ::dhgen::batch::run([q], out, |[q]| super::mass_matrix(&q))
+            ::dhgen::batch::run([q], out, |[q]| super::mass_matrix(q))
         }
         /// [`christoffel`](super::christoffel) for each configuration: `out[c]` from `q[c]`, four `f64` or eight `f32` configurations per call (`dhgen::batch`).
         ///
@@ -9234,7 +9234,7 @@ pub mod puma560 {
             q: &[[T; DOF]],
             out: &mut [[[[T; DOF]; DOF]; DOF]],
         ) -> Result<(), ::dhgen::batch::LengthMismatch> {
-            ::dhgen::batch::run([q], out, |[q]| super::christoffel(&q))
+            ::dhgen::batch::run([q], out, |[q]| super::christoffel(q))
         }
         /// [`coriolis`](super::coriolis) for each configuration: `out[c]` from `q[c]`, `qd[c]`, four `f64` or eight `f32` configurations per call (`dhgen::batch`).
         ///
@@ -9245,7 +9245,7 @@ pub mod puma560 {
             qd: &[[T; DOF]],
             out: &mut [na::SMatrix<T, DOF, DOF>],
         ) -> Result<(), ::dhgen::batch::LengthMismatch> {
-            ::dhgen::batch::run([q, qd], out, |[q, qd]| super::coriolis(&q, &qd))
+            ::dhgen::batch::run([q, qd], out, |[q, qd]| super::coriolis(q, qd))
         }
         /// [`gravity`](super::gravity) for each configuration: `out[c]` from `q[c]`, four `f64` or eight `f32` configurations per call (`dhgen::batch`).
         ///
@@ -9255,7 +9255,7 @@ pub mod puma560 {
             q: &[[T; DOF]],
             out: &mut [na::SVector<T, DOF>],
         ) -> Result<(), ::dhgen::batch::LengthMismatch> {
-            ::dhgen::batch::run([q], out, |[q]| super::gravity(&q))
+            ::dhgen::batch::run([q], out, |[q]| super::gravity(q))
         }
         /// [`inverse_dynamics`](super::inverse_dynamics) for each configuration: `out[c]` from `q[c]`, `qd[c]`, `qdd[c]`, four `f64` or eight `f32` configurations per call (`dhgen::batch`).
         ///
@@ -9270,7 +9270,7 @@ pub mod puma560 {
             ::dhgen::batch::run(
                 [q, qd, qdd],
                 out,
-                |[q, qd, qdd]| super::inverse_dynamics(&q, &qd, &qdd),
+                |[q, qd, qdd]| super::inverse_dynamics(q, qd, qdd),
             )
         }
         /// [`bias`](super::bias) for each configuration: `out[c]` from `q[c]`, `qd[c]`, four `f64` or eight `f32` configurations per call (`dhgen::batch`).
@@ -9282,7 +9282,7 @@ pub mod puma560 {
             qd: &[[T; DOF]],
             out: &mut [na::SVector<T, DOF>],
         ) -> Result<(), ::dhgen::batch::LengthMismatch> {
-            ::dhgen::batch::run([q, qd], out, |[q, qd]| super::bias(&q, &qd))
+            ::dhgen::batch::run([q, qd], out, |[q, qd]| super::bias(q, qd))
         }
         /// [`forward_dynamics_lanes`](super::forward_dynamics_lanes) for each configuration: `out[c]` from `q[c]`, `qd[c]`, `tau[c]`, four `f64` or eight `f32` configurations per call (`dhgen::batch`).
         ///
@@ -9298,7 +9298,7 @@ pub mod puma560 {
                 [q, qd, tau],
                 out,
                 |[q, qd, tau]| {
-                    let (value, ok) = super::forward_dynamics_lanes(&q, &qd, &tau);
+                    let (value, ok) = super::forward_dynamics_lanes(q, qd, tau);
                     ::dhgen::batch::Masked(value, ok)
                 },
             )
@@ -9312,7 +9312,7 @@ pub mod puma560 {
             qd: &[[T; DOF]],
             out: &mut [T],
         ) -> Result<(), ::dhgen::batch::LengthMismatch> {
-            ::dhgen::batch::run([q, qd], out, |[q, qd]| super::kinetic_energy(&q, &qd))
+            ::dhgen::batch::run([q, qd], out, |[q, qd]| super::kinetic_energy(q, qd))
         }
     }
     /// D, C, g and J at one configuration, as a controller needs them.

@@ -483,7 +483,7 @@ impl Items {
         };
         let call = format_ident!("{}", q.name);
         let name = format_ident!("{}", name);
-        let value = quote!(super::#call(&q, #(&#inputs),*));
+        let value = quote!(super::#call(q, #(#inputs),*));
         let value = if wrap {
             quote!({
                 let (value, ok) = #value;
