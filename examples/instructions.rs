@@ -139,6 +139,8 @@ macro_rules! run {
                 ("sincos", false) => libm::sincos(q[0]).0,
                 ("fk", true) => $m::fk(q).translation.x,
                 ("fk", false) => robot.fk(q).translation.x,
+                // The pose as a matrix (no rotation-to-quaternion conversion).
+                ("fk_matrix", true) => $m::fk_matrix(q)[(0, 3)],
                 ("jacobian", true) => $m::jacobian(q)[(0, 1)],
                 ("jacobian", false) => robot.jacobian(q)[(0, 1)],
                 ("mass_matrix", true) => $m::mass_matrix(q)[(1, 1)],
