@@ -102,6 +102,29 @@ ROBOTS = [
         "tip": "link2",
         "seed": 1105,
     },
+    {
+        # A tree (wheels, head, hand) whose arm starts after a prismatic torso; the base
+        # carries a 1 mg antenna whose tensor is not positive semi-definite (a link no moving
+        # body carries: dhgen reads past it, as Pinocchio does).
+        "name": "tiago",
+        "urdf": "tiago.urdf",
+        "source_path": "robots/tiago_description/robots/tiago.urdf",
+        "licence": "Apache-2.0 (robots/tiago_description/README.md; upstream "
+        "pal-robotics/tiago_robot tiago_description)",
+        "tip": "arm_7_link",
+        "seed": 1106,
+    },
+    {
+        # Spherical joints written as three revolute ones through massless virtual links
+        # (no <inertial>): 13 joints from the root to the left hand.
+        "name": "human",
+        "urdf": "human.urdf",
+        "source_path": "robots/human_description/robots/human.urdf",
+        "licence": "BSD-2-Clause (robots/human_description/README.md; original work of the "
+        "Gepetto team)",
+        "tip": "left_hand",
+        "seed": 1107,
+    },
 ]
 
 MOVABLE = ("revolute", "continuous", "prismatic")

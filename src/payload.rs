@@ -65,7 +65,7 @@ impl Payload {
                 )));
             }
         }
-        dhgen_model::validate::check_inertia_tensor(&inertia, false).map_err(PayloadError)?;
+        dhgen_model::validate::check_inertia_tensor(&inertia, mass, false).map_err(PayloadError)?;
         Ok(Payload { mass, com, inertia })
     }
 

@@ -304,6 +304,16 @@ pub fn urdf_report(u: &dhgen_model::urdf::UrdfRobot) -> String {
             )
         },
     );
+    if !u.massless.is_empty() {
+        field(
+            &mut out,
+            "massless",
+            &format!(
+                "{} (moved by a joint, no <inertial> on them or fixed to them)",
+                u.massless.join(", ")
+            ),
+        );
+    }
     if u.snaps.is_empty() {
         field(
             &mut out,

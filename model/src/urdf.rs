@@ -17,16 +17,20 @@
 //!   two-arm robot) are held at `q = 0` and merged the same way; so are the links above
 //!   `base`, whose mass the fixed base carries;
 //! - `<inertial>` with its own `<origin>` (the tensor is rotated into the link frame);
-//!   a file with no `<inertial>` at all is a kinematics-only robot; otherwise every body the
-//!   joints move must have one (after merging);
+//!   a file with no `<inertial>` at all is a kinematics-only robot; otherwise a body the
+//!   joints move with none (after merging) is massless, as in Pinocchio and KDL, and listed
+//!   in [`UrdfRobot::massless`];
 //! - `<visual>`, `<collision>`, `<transmission>`, `<gazebo>` and unknown elements are ignored:
 //!   collision capsules of dhgen are segments between link frames, which a URDF's boxes and
 //!   cylinders at their own origins do not describe.
 //!
 //! Errors (floating, planar and mimic joints on the chain, closed chains, unknown links, a
-//! missing `<inertial>` on a moving body, negative mass, an inertia tensor that is not
-//! positive semi-definite, a zero axis) name the file, line and column, the link or joint and
-//! the attribute. Inertia tensors need not obey the triangle inequality: published URDFs often
+//! negative mass or an inertia tensor that is not
+//! positive semi-definite on a link a moving body carries, a zero axis) name the file, line
+//! and column, the link or joint and the attribute. The links the fixed base carries (with
+//! every branch that leaves the chain before its first moving joint) may hold any mass
+//! properties: a published URDF's 1 mg antenna on the base, with a tensor no body can have,
+//! does not stop its arm from loading. Inertia tensors need not obey the triangle inequality: published URDFs often
 //! do not, and Pinocchio accepts them.
 //!
 //! # Exact quarter turns
@@ -110,6 +114,11 @@ pub struct UrdfRobot {
     pub joints: Vec<UrdfJoint>,
     /// Movable joints off the chain, held at zero.
     pub locked: Vec<String>,
+    /// Links a joint moves that have no `<inertial>`, nor anything fixed to them, in a file
+    /// where other links have one: read as massless, as Pinocchio and KDL read them (the
+    /// virtual links between the axes of a spherical joint written as three revolute ones),
+    /// and listed (by `dhgen info` too) in case one is an omission.
+    pub massless: Vec<String>,
     /// Values read as exact quarter turns or coordinate axes.
     pub snaps: Vec<Snap>,
 }
@@ -207,6 +216,10 @@ struct Link {
     name: String,
     loc: Position,
     inertial: Option<(Inertial, Position)>,
+    /// What no body can have in its `<inertial>` (a negative mass, a tensor that is not
+    /// positive semi-definite) and where: an error only if a moving body carries the link;
+    /// the fixed base and the branches off the chain may hold anything.
+    unphysical: Option<(Position, String)>,
 }
 
 struct Joint {
@@ -369,14 +382,10 @@ impl<'a> Reader<'a> {
             .map_or_else(|| "robot".to_string(), |(n, _)| n.to_string());
         let (links, index) = self.links(root)?;
         let joints = self.joints(root, &links, &index)?;
-        let (model, base, tip, movable, locked) = self.chain(&name, &links, &joints, &index)?;
+        let robot = self.chain(&name, &links, &joints, &index)?;
         Ok(UrdfRobot {
-            model,
-            base,
-            tip,
-            joints: movable,
-            locked,
             snaps: self.snaps,
+            ..robot
         })
     }
 
@@ -395,14 +404,18 @@ impl<'a> Reader<'a> {
                 return Err(self.err(loc, format!("link `{name}` is defined twice")));
             }
             let what = format!("link `{name}`");
-            let inertial = match n.children().find(|c| c.has_tag_name("inertial")) {
-                None => None,
-                Some(i) => Some((self.inertial(i, &what)?, self.node_pos(i))),
+            let (inertial, unphysical) = match n.children().find(|c| c.has_tag_name("inertial")) {
+                None => (None, None),
+                Some(i) => {
+                    let (inertial, unphysical) = self.inertial(i, &what)?;
+                    (Some((inertial, self.node_pos(i))), unphysical)
+                }
             };
             links.push(Link {
                 name: name.to_string(),
                 loc,
                 inertial,
+                unphysical,
             });
         }
         if links.is_empty() {
@@ -411,9 +424,13 @@ impl<'a> Reader<'a> {
         Ok((links, index))
     }
 
-    /// One `<inertial>`, checked (mass ≥ 0, inertia positive semi-definite) and expressed in
-    /// its link's frame.
-    fn inertial(&mut self, n: roxmltree::Node<'_, '_>, what: &str) -> Result<Inertial, LoadError> {
+    /// One `<inertial>`, expressed in its link's frame, with what makes it unphysical (a
+    /// negative mass, a tensor that is not positive semi-definite) if anything does.
+    fn inertial(
+        &mut self,
+        n: roxmltree::Node<'_, '_>,
+        what: &str,
+    ) -> Result<(Inertial, Option<(Position, String)>), LoadError> {
         let here = self.node_pos(n);
         let at = format!("{what} <inertial>");
         let origin = self.origin(n, &at)?;
@@ -429,9 +446,9 @@ impl<'a> Reader<'a> {
                     format!("{at} <mass> has no `value`"),
                 )
             })?;
-        if let Err(message) = validate::check_mass(mass) {
-            return Err(self.err(mass_loc, format!("{at} <mass value>: {message}")));
-        }
+        let mut unphysical = validate::check_mass(mass)
+            .err()
+            .map(|message| (mass_loc, format!("{at} <mass value>: {message}")));
         let inertia_node = n
             .children()
             .find(|c| c.has_tag_name("inertia"))
@@ -444,18 +461,18 @@ impl<'a> Reader<'a> {
         }
         let [xx, yy, zz, xy, yz, xz] = e;
         let tensor = [[xx, xy, xz], [xy, yy, yz], [xz, yz, zz]];
-        if let Err(message) = validate::check_inertia_tensor(&tensor, true) {
-            return Err(self.err(
+        if let Err(message) = validate::check_inertia_tensor(&tensor, mass, true) {
+            unphysical.get_or_insert((
                 self.node_pos(inertia_node),
                 format!("{at} <inertia>: {message}"),
             ));
         }
-        Ok(Inertial {
+        let inertial = Inertial {
             mass,
             com: [0.0; 3],
             inertia: tensor,
-        }
-        .in_frame(&origin))
+        };
+        Ok((inertial.in_frame(&origin), unphysical))
     }
 
     fn joints(
@@ -604,7 +621,7 @@ impl<'a> Reader<'a> {
         links: &[Link],
         joints: &[Joint],
         index: &HashMap<String, usize>,
-    ) -> Result<(RobotModel, String, String, Vec<UrdfJoint>, Vec<String>), LoadError> {
+    ) -> Result<UrdfRobot, LoadError> {
         let first = self.node_pos(self.doc.root_element());
         let mut parent_joint: Vec<Option<usize>> = vec![None; links.len()];
         let mut children: Vec<Vec<usize>> = vec![Vec::new(); links.len()];
@@ -797,18 +814,24 @@ impl<'a> Reader<'a> {
         // to it (fixed joints, movable joints off the chain at q = 0), in its frame.
         let has_dynamics = links.iter().any(|l| l.inertial.is_some());
         let mut locked = Vec::new();
-        let body = |start: usize, locked: &mut Vec<String>| -> (Inertial, bool) {
+        let mut massless = Vec::new();
+        // Also the first link of the body whose `<inertial>` is unphysical, if any.
+        let body = |start: usize, locked: &mut Vec<String>| {
             let mut total = Inertial {
                 mass: 0.0,
                 com: [0.0; 3],
                 inertia: [[0.0; 3]; 3],
             };
             let mut any = false;
+            let mut unphysical = None;
             let mut stack = vec![(start, Frame::identity())];
             while let Some((l, tf)) = stack.pop() {
                 if let Some((m, _)) = &links[l].inertial {
                     total = total.combined(&m.in_frame(&tf));
                     any = true;
+                }
+                if unphysical.is_none() {
+                    unphysical = links[l].unphysical.clone();
                 }
                 for &j in &children[l] {
                     if on_path[j] && joints[j].kind.movable() {
@@ -820,24 +843,19 @@ impl<'a> Reader<'a> {
                     stack.push((joints[j].child, tf.compose(&joints[j].origin)));
                 }
             }
-            (total, any)
+            (total, any, unphysical)
         };
         // The links above the first moving joint are the fixed base; their off-chain
         // movable joints are locked too (listed), their mass is not the robot's.
         let _ = body(base, &mut locked);
         let mut bodies = Vec::new();
         for &j in &moving {
-            let (m, any) = body(joints[j].child, &mut locked);
+            let (m, any, unphysical) = body(joints[j].child, &mut locked);
+            if let Some((loc, message)) = unphysical {
+                return Err(self.err(loc, message));
+            }
             if has_dynamics && !any {
-                let child = &links[joints[j].child];
-                return Err(self.err(
-                    child.loc,
-                    format!(
-                        "link `{}` (moved by joint `{}`) has no <inertial>, nor has any link \
-                         fixed to it, while other links have one: give it its mass properties",
-                        child.name, joints[j].name
-                    ),
-                ));
+                massless.push(links[joints[j].child].name.clone());
             }
             bodies.push(m);
         }
@@ -901,13 +919,15 @@ impl<'a> Reader<'a> {
                 .map_or_else(String::new, |f| format!("{f}: "));
             self.err(e.loc, format!("{joint}{field}{}", e.message))
         })?;
-        Ok((
+        Ok(UrdfRobot {
             model,
-            links[base].name.clone(),
-            links[tip].name.clone(),
-            out_joints,
+            base: links[base].name.clone(),
+            tip: links[tip].name.clone(),
+            joints: out_joints,
             locked,
-        ))
+            massless,
+            snaps: Vec::new(),
+        })
     }
 
     /// The axis, unit, snapped to a coordinate axis within the tolerance.

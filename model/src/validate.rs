@@ -726,7 +726,13 @@ fn inertial<L: Clone>(
             tensor[a][b] = x;
             tensor[b][a] = x;
         }
-        check_inertia(at, t.loc.clone(), &tensor, allow_nonphysical)?;
+        check_inertia(
+            at,
+            t.loc.clone(),
+            &tensor,
+            mass.unwrap_or(0.0),
+            allow_nonphysical,
+        )?;
         Ok(tensor)
     })?;
     let group = ["mass", "com", "inertia"];
@@ -764,19 +770,22 @@ fn inertial<L: Clone>(
     }
 }
 
-/// The principal moments of `tensor`, ascending, and the tolerance the checks use.
-fn principal_moments(tensor: &[[f64; 3]; 3]) -> ([f64; 3], f64) {
+/// The principal moments of the tensor of a body of mass `mass`, ascending, and the tolerance
+/// the checks use: a billionth of the largest moment, and at least the moment of `mass` at a
+/// micrometre (exporters write round-off such as `ixx="-5.42101e-20"` for a zero moment of a
+/// half-kilogram link; a real moment that small is below anything a robot can resolve).
+fn principal_moments(tensor: &[[f64; 3]; 3], mass: f64) -> ([f64; 3], f64) {
     let m = nalgebra::Matrix3::from_fn(|i, j| tensor[i][j]);
     let mut e = m.symmetric_eigenvalues();
     e.as_mut_slice().sort_by(f64::total_cmp);
     let scale = e.amax().max(f64::MIN_POSITIVE);
-    ([e[0], e[1], e[2]], 1e-9 * scale)
+    ([e[0], e[1], e[2]], (1e-9 * scale).max(mass * 1e-12))
 }
 
-/// Whether the principal moments obey the triangle inequality (the rule
-/// `allow_nonphysical_inertia` lifts).
-pub(crate) fn obeys_triangle_inequality(tensor: &[[f64; 3]; 3]) -> bool {
-    let (e, tol) = principal_moments(tensor);
+/// Whether the principal moments of a body of mass `mass` obey the triangle inequality (the
+/// rule `allow_nonphysical_inertia` lifts).
+pub(crate) fn obeys_triangle_inequality(tensor: &[[f64; 3]; 3], mass: f64) -> bool {
+    let (e, tol) = principal_moments(tensor, mass);
     e[0] + e[1] >= e[2] - tol
 }
 
@@ -800,9 +809,10 @@ fn check_inertia<L: Clone>(
     at: At<'_>,
     loc: L,
     tensor: &[[f64; 3]; 3],
+    mass: f64,
     allow_nonphysical: bool,
 ) -> Result<(), Error<L>> {
-    check_inertia_tensor(tensor, allow_nonphysical).map_err(|message| {
+    check_inertia_tensor(tensor, mass, allow_nonphysical).map_err(|message| {
         let hint = if message.contains("triangle") {
             "; set `allow_nonphysical_inertia = true` at the top level to accept published values like these"
         } else {
@@ -812,9 +822,26 @@ fn check_inertia<L: Clone>(
     })
 }
 
-/// The rule for an inertia tensor about the centre of mass, as a message: finite entries,
-/// positive semi-definite, and (unless `allow_nonphysical`) the triangle inequality.
-pub fn check_inertia_tensor(tensor: &[[f64; 3]; 3], allow_nonphysical: bool) -> Result<(), String> {
+/// The rule for the inertia tensor of a body of mass `mass` about its centre of mass, as a
+/// message: finite entries, positive semi-definite, and (unless `allow_nonphysical`) the
+/// triangle inequality, each to a billionth of the largest principal moment and at least to
+/// the moment of `mass` at a micrometre (round-off such as `-5.42101e-20` in an exported file
+/// passes; a negative moment a robot could feel does not).
+///
+/// ```
+/// use dhgen_model::validate::check_inertia_tensor;
+/// let rod = [[0.02, 0.0, 0.0], [0.0, 0.02, 0.0], [0.0, 0.0, 0.0]];
+/// assert!(check_inertia_tensor(&rod, 1.0, false).is_ok());
+/// let round_off = [[-5.42101e-20, 0.0, 0.0], [0.0, -5.42101e-20, 0.0], [0.0, 0.0, 0.0]];
+/// assert!(check_inertia_tensor(&round_off, 0.526, false).is_ok());
+/// let impossible = [[-1e-4, 0.0, 0.0], [0.0, 0.02, 0.0], [0.0, 0.0, 0.02]];
+/// assert!(check_inertia_tensor(&impossible, 1.0, true).is_err());
+/// ```
+pub fn check_inertia_tensor(
+    tensor: &[[f64; 3]; 3],
+    mass: f64,
+    allow_nonphysical: bool,
+) -> Result<(), String> {
     if tensor
         .iter()
         .flatten()
@@ -825,7 +852,7 @@ pub fn check_inertia_tensor(tensor: &[[f64; 3]; 3], allow_nonphysical: bool) -> 
             INERTIA.max
         ));
     }
-    let (e, tol) = principal_moments(tensor);
+    let (e, tol) = principal_moments(tensor, mass);
     if e[0] < -tol {
         return Err(format!(
             "inertia tensor is not positive semi-definite (principal moments {}, {}, {})",
@@ -834,7 +861,7 @@ pub fn check_inertia_tensor(tensor: &[[f64; 3]; 3], allow_nonphysical: bool) -> 
             short(e[2])
         ));
     }
-    if !allow_nonphysical && !obeys_triangle_inequality(tensor) {
+    if !allow_nonphysical && !obeys_triangle_inequality(tensor, mass) {
         return Err(format!(
             "principal moments {a}, {b}, {c} violate the triangle inequality ({a} + {b} < {c})",
             a = short(e[0]),

@@ -84,7 +84,7 @@ impl RobotModel {
             .links
             .iter()
             .filter_map(|l| l.inertial)
-            .any(|i| !crate::validate::obeys_triangle_inequality(&i.inertia))
+            .any(|i| !crate::validate::obeys_triangle_inequality(&i.inertia, i.mass))
         {
             let _ = writeln!(out, "allow_nonphysical_inertia = true");
         }

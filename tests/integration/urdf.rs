@@ -206,6 +206,72 @@ fn double_pendulum_runtime_matches_pinocchio() {
     check_runtime("double_pendulum", 0.0);
 }
 
+/// TIAGo's arm (a prismatic torso and seven revolute joints, from a tree with wheels, a head
+/// and a hand), whose fixed base carries a 1 mg antenna with a tensor that is not positive
+/// semi-definite: no moving body carries it, so the arm loads, as in Pinocchio.
+#[test]
+fn tiago_arm_runtime_matches_pinocchio() {
+    check_runtime("tiago", UrdfOptions::DEFAULT_SNAP);
+    check_runtime("tiago", 0.0);
+}
+
+/// A human model's arm from the root to the left hand: 13 joints, its spherical joints
+/// written as three revolute ones through virtual links with no `<inertial>`, read as massless
+/// (as Pinocchio reads them) and listed.
+#[test]
+fn human_arm_with_massless_virtual_links_matches_pinocchio() {
+    check_runtime("human", UrdfOptions::DEFAULT_SNAP);
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/urdf/human.urdf");
+    let options = UrdfOptions {
+        tip: Some("left_hand".into()),
+        ..Default::default()
+    };
+    let urdf = read_file(path, &options).unwrap();
+    assert_eq!(
+        urdf.massless,
+        [
+            "middle_abdomen_virtual",
+            "middle_thorax_virtual",
+            "middle_thorax_virtual_2",
+            "left_upperarm_virtual",
+            "left_upperarm_virtual_2",
+            "left_lowerarm_virtual",
+            "left_hand_virtual",
+        ]
+    );
+}
+
+/// Where an unphysical `<inertial>` matters: on a link the base carries it is ignored, on a
+/// link a joint moves it is an error at its `<inertia>`; round-off below a micrometre's moment
+/// of the link's mass (`ixx="-5.42101e-20"`, as exporters write zeros) is not unphysical.
+#[test]
+fn unphysical_inertials_are_errors_only_where_a_joint_moves_them() {
+    let urdf = |base_tensor: &str, arm_tensor: &str| {
+        format!(
+            r#"<robot name="r">
+  <link name="base"><inertial><mass value="1e-6"/><inertia {base_tensor}/></inertial></link>
+  <link name="arm"><inertial><mass value="0.526"/><inertia {arm_tensor}/></inertial></link>
+  <joint name="j" type="revolute"><parent link="base"/><child link="arm"/>
+    <axis xyz="0 1 0"/><limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
+</robot>"#
+        )
+    };
+    let good = r#"ixx="0.01" iyy="0.01" izz="0.01" ixy="0" iyz="0" ixz="0""#;
+    let bad = r#"ixx="2.371e-8" iyy="2.833e-8" izz="3.849e-8" ixy="6.119e-8" iyz="0" ixz="0""#;
+    let round_off = r#"ixx="-5.42101e-20" iyy="-5.42101e-20" izz="0" ixy="0" iyz="0" ixz="0""#;
+    let read = |text: String| {
+        dhgen::model::urdf::read(&text, "r.urdf", &UrdfOptions::default()).map(|u| u.model)
+    };
+    assert!(read(urdf(bad, good)).is_ok(), "the base's antenna");
+    let e = read(urdf(good, bad)).unwrap_err().to_string();
+    assert!(
+        e.starts_with("r.urdf:3:") && e.contains("link `arm`") && e.contains("semi-definite"),
+        "{e}"
+    );
+    let model = read(urdf(good, round_off)).expect("round-off is no error");
+    assert_eq!(model.links[0].inertial.as_ref().unwrap().mass, 0.526);
+}
+
 /// The generated modules of the same files (`robot!(pub mod m = "x.urdf", tip = "...")`),
 /// against the same references, and against the runtime path.
 mod generated {

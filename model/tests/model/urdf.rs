@@ -255,16 +255,20 @@ fn urdf_malformed_xml_is_located() {
 }
 
 #[test]
-fn urdf_missing_inertial_on_a_moving_link() {
+fn urdf_missing_inertial_on_a_moving_link_is_massless_and_listed() {
     let text = ARM.replace(
         "<inertial><origin xyz=\"0 0 0.1\"/><mass value=\"1.5\"/><inertia ixx=\"0.02\" iyy=\"0.02\" izz=\"0.004\" ixy=\"0\" iyz=\"0\" ixz=\"0\"/></inertial>",
         "",
     );
-    let e = bad(&text);
-    assert!(
-        e.contains("link `l2`") && e.contains("no <inertial>"),
-        "{e}"
-    );
+    assert_ne!(text, ARM);
+    let r = read(&text, "m.urdf", &UrdfOptions::default()).unwrap();
+    assert_eq!(r.massless, ["l2"]);
+    assert!(r.model.has_dynamics());
+    let full = read(ARM, "arm.urdf", &UrdfOptions::default()).unwrap();
+    assert!(full.massless.is_empty());
+    let (a, b) = (&r.model.links[1], &full.model.links[1]);
+    assert_eq!(a.inertial.as_ref().map(|i| i.mass), Some(0.0));
+    assert_eq!(b.inertial.as_ref().map(|i| i.mass), Some(1.5));
     // A file with no inertial at all is a kinematics-only robot.
     let kin: String = ARM
         .lines()
