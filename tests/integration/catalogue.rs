@@ -49,3 +49,5 @@ dhgen::robot!(pub mod kinova_urdf = "tests/data/urdf/kinova.urdf", tip = "j2s6s2
 dhgen::robot!(pub mod double_pendulum_urdf = "tests/data/urdf/double_pendulum_continuous.urdf");
 dhgen::robot!(pub mod random_urdf_2 = "tests/data/urdf/random_2.urdf", tip = "link_7");
 dhgen::robot!(pub mod random_urdf_3 = "tests/data/urdf/random_3.urdf", tip = "tool");
+dhgen::robot!(pub mod tiago_arm = "tests/data/urdf/tiago.urdf", tip = "arm_7_link");
+dhgen::robot!(pub mod human_arm = "tests/data/urdf/human.urdf", tip = "left_hand");

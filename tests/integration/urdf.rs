@@ -277,8 +277,8 @@ fn unphysical_inertials_are_errors_only_where_a_joint_moves_them() {
 mod generated {
     use super::{Worst, data, friction, qdd_matches, robot, vector};
     use crate::catalogue::{
-        baxter_left, double_pendulum_urdf, kinova_urdf, panda_urdf, random_urdf_2, random_urdf_3,
-        ur5_urdf,
+        baxter_left, double_pendulum_urdf, human_arm, kinova_urdf, panda_urdf, random_urdf_2,
+        random_urdf_3, tiago_arm, ur5_urdf,
     };
     use dhgen::model::urdf::UrdfOptions;
     use nalgebra::DMatrix;
@@ -357,6 +357,8 @@ mod generated {
         random_urdf_3,
         "random_3"
     );
+    check!(tiago_arm_generated_matches_pinocchio, tiago_arm, "tiago");
+    check!(human_arm_generated_matches_pinocchio, human_arm, "human");
 }
 
 /// The URDF robots converted to DH tables (`dhgen convert --to dh|mdh`: base and tool poses,
