@@ -46,6 +46,7 @@ mod planning_workspace;
 mod regressor;
 mod ring_algorithms;
 mod rotation;
+mod rtb_models;
 mod runtime_laws;
 mod runtime_reference;
 mod singular_inertia;
