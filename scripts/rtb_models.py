@@ -19,9 +19,10 @@ Where the Toolbox's own gravload disagrees with its potential energy (P8: the PU
 with a rotated base), g is the centres' Jacobians' (exact, where the energy's finite differences
 are good to 1e-9), tau = D qdd + Cqd + g, and the robot's `gravity_from` says so.
 
-Models the format cannot take are listed with the reason instead of samples: `rejected` (the
-Toolbox's data is outside the format's ranges: dhgen must reject its description with an error
-naming the field) and `skipped` (a Toolbox feature the DH format does not have).
+A model with flipped joints (the Toolbox's `flip`: theta = -q + offset; Jaco and Mico) is written
+in the description's `urdf` convention, the flipped joint's axis -z (`flipped`: true). Models
+whose data the format must refuse are listed in `rejected` with the field (dhgen must reject
+their description with an error naming it).
 
     pip install roboticstoolbox-python==1.5.0
     python3 scripts/rtb_models.py     # writes tests/data/rtb_models.json
@@ -33,6 +34,7 @@ from pathlib import Path
 
 import numpy as np
 import roboticstoolbox as rtb
+from spatialmath import SE3
 
 warnings.filterwarnings("ignore")
 OUT = Path(__file__).resolve().parent.parent / "tests" / "data" / "rtb_models.json"
@@ -114,6 +116,43 @@ def gravity_torques(r, q):
     return g
 
 
+def se3_fields(T):
+    """A pose as the description's `{ xyz, rpy }` (URDF rpy: R = Rz(yaw) Ry(pitch) Rx(roll))."""
+    T = SE3(T, check=False) if not isinstance(T, SE3) else T
+    return (f"{{ xyz = [{', '.join(num(x) for x in T.t)}], "
+            f"rpy = [{', '.join(num(x) for x in T.rpy(order='zyx'))}] }}")
+
+
+def urdf_description(r, name):
+    """A standard table with flipped joints in the description's `urdf` convention: row i's
+    origin is the fixed part of the previous DH transform followed by the joint's offset, its
+    axis z or, flipped, -z; the last row's fixed part moves into the tool (kinematics only)."""
+    if r.mdh or has_dynamics(r):
+        fail(f"{name}: flipped joints in a modified table or with dynamics are not handled")
+    lines = [f'name = "{name}"', 'convention = "urdf"',
+             "gravity = [%s]" % ", ".join(num(x) for x in r.gravity)]
+    if not np.array_equal(r.base.A, np.eye(4)):
+        lines.append(f"base = {se3_fields(r.base)}")
+    before = SE3()
+    for L in r.links:
+        if L.isprismatic:
+            origin = before * SE3.Rz(L.theta) * SE3.Tz(L.offset)
+            after = SE3.Tx(L.a) * SE3.Rx(L.alpha)
+        else:
+            origin = before * SE3.Rz(L.offset)
+            after = SE3.Tz(L.d) * SE3.Tx(L.a) * SE3.Rx(L.alpha)
+        lines += ["", "[[links]]", f'joint = "{"prismatic" if L.isprismatic else "revolute"}"',
+                  f"origin = {se3_fields(origin)}",
+                  f"axis = [0.0, 0.0, {'-1.0' if L.isflip else '1.0'}]"]
+        if L.qlim is not None and np.all(np.isfinite(L.qlim)):
+            lines.append(f"limits = [{num(L.qlim[0])}, {num(L.qlim[1])}]")
+        before = after
+    tool = before * r.tool
+    if not np.array_equal(tool.A, np.eye(4)):
+        lines.insert(3, f"tool = {se3_fields(tool)}")
+    return "\n".join(lines) + "\n"
+
+
 def potential(r, q):
     g = np.array(r.gravity, dtype=float)
     frames = r.fkine_all(q)  # the base first, then each link's frame
@@ -147,17 +186,14 @@ def main():
             "Cqd": "coriolis(q, qd) @ qd", "tau": "rne(q, qd, qdd) = D qdd + Cqd + g",
             "friction_included": False, "motor_inertia_included": False,
         },
-        "robots": [], "rejected": [], "skipped": [],
+        "robots": [], "rejected": [],
     }
     for name in NAMES:
         r = getattr(rtb.models.DH, name)()
-        flipped = [j + 1 for j, L in enumerate(r.links) if L.isflip]
-        if flipped:
-            out["skipped"].append({"name": name, "why": f"joints {flipped} are flipped "
-                                   "(theta = -q + offset), which a DH row cannot say; the "
-                                   "description's urdf convention can (axis = [0, 0, -1])"})
-            continue
-        toml = description(r, name.lower())
+        # A flipped joint (theta = -q + offset) has no field in a DH row: such a robot is
+        # written in the urdf convention, its joint's axis -z.
+        flipped = any(L.isflip for L in r.links)
+        toml = (urdf_description if flipped else description)(r, name.lower())
         bad = [(j + 1, L.r) for j, L in enumerate(r.links)
                if has_dynamics(r) and np.abs(np.array(L.r, dtype=float)).max() > 1e3]
         if bad:
@@ -167,7 +203,8 @@ def main():
                                            f"{[float(x) for x in bad[0][1]]} m is beyond any "
                                            "robot (millimetres written as metres?)"})
             continue
-        robot = {"name": name, "dof": r.n, "toml": toml, "gravity_from": None, "samples": []}
+        robot = {"name": name, "dof": r.n, "toml": toml, "flipped": flipped, "gravity_from": None,
+                 "samples": []}
         dyn = has_dynamics(r)
         nf = r.nofriction(True, True)
         for L in nf.links:

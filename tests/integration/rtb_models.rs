@@ -1,12 +1,16 @@
 //! Every DH model of Robotics Toolbox for Python 1.5.0 (tests/data/rtb_models.json, made by
-//! scripts/rtb_models.py): 21 robots from 2 to 10 joints — industrial arms, 7-joint arms,
+//! scripts/rtb_models.py): 23 robots from 2 to 10 joints — industrial arms, 7-joint arms,
 //! 10-joint snakes, a PUMA 560 on a two-axis gantry with a rotated base, standard and modified
-//! tables, base and tool transforms — each written as a dhgen description, on the runtime path
-//! against the Toolbox's T, J0 and, where the model has dynamics, D, g, C q̇ and τ at 5 seeded
-//! states. The Toolbox's data that is outside the format's ranges (IRB 140: a centre of mass
-//! 198 km away) must be rejected with an error naming the field.
+//! tables, base and tool transforms, joints turning against their DH axis (Jaco and Mico, in
+//! the `urdf` convention) — each written as a dhgen description, on the runtime path against the
+//! Toolbox's T, J0 and, where the model has dynamics, D, g, C q̇ and τ at 5 seeded states; and
+//! the same robots converted to DH tables of both conventions (`convert::to_dh`). The
+//! Toolbox's data that is outside the format's ranges (IRB 140: a centre of mass 198 km away)
+//! must be rejected with an error naming the field.
 
 use dhgen::Robot;
+use dhgen::model::convert::to_dh;
+use dhgen::model::{Convention, RobotModel};
 use nalgebra::DMatrix;
 use serde_json::Value;
 
@@ -49,48 +53,84 @@ fn error(ours: &DMatrix<f64>, theirs: &DMatrix<f64>) -> f64 {
     (ours - theirs).amax() / theirs.amax().max(1.0)
 }
 
+/// The worst errors of `robot` against the references `r`: T, J, D, g, C q̇, τ.
+fn worst(robot: &Robot, r: &Value) -> [f64; 6] {
+    let n = robot.dof();
+    let mut worst = [0.0f64; 6];
+    for s in r["samples"].as_array().unwrap() {
+        let (q, qd, qdd) = (column(&s["q"]), column(&s["qd"]), column(&s["qdd"]));
+        let t = robot.fk(&q[..]).to_homogeneous();
+        let t = DMatrix::from_fn(4, 4, |i, j| t[(i, j)]);
+        worst[0] = worst[0].max(error(&t, &rows(&s["T"])));
+        let j = robot.jacobian(&q[..]);
+        let j = DMatrix::from_fn(6, n, |a, b| j[(a, b)]);
+        worst[1] = worst[1].max(error(&j, &rows(&s["J0"])));
+        if s.get("D").is_none() {
+            continue;
+        }
+        let vector = |v: &[f64]| DMatrix::from_column_slice(n, 1, v);
+        worst[2] = worst[2].max(error(&robot.mass_matrix(&q[..]), &rows(&s["D"])));
+        let g = robot.gravity(&q[..]);
+        worst[3] = worst[3].max(error(&vector(g.as_slice()), &rows(&s["g"])));
+        let c = robot.coriolis(&q[..], &qd[..]) * DMatrix::from_column_slice(n, 1, &qd);
+        worst[4] = worst[4].max(error(&c, &rows(&s["Cqd"])));
+        let tau = robot.inverse_dynamics(&q[..], &qd[..], &qdd[..]);
+        worst[5] = worst[5].max(error(&vector(tau.as_slice()), &rows(&s["tau"])));
+    }
+    worst
+}
+
 #[test]
 fn toolbox_models_match_on_the_runtime_path() {
     let d = data();
     let robots = d["robots"].as_array().unwrap();
-    assert_eq!(robots.len(), 21);
+    assert_eq!(robots.len(), 23);
     let mut dynamics = 0;
+    let mut flipped = 0;
     for r in robots {
         let name = r["name"].as_str().unwrap();
         let robot = Robot::from_toml_str(r["toml"].as_str().unwrap())
             .unwrap_or_else(|e| panic!("{name}: {e}"));
         let n = robot.dof();
         assert_eq!(n, r["dof"].as_u64().unwrap() as usize, "{name}");
-        let mut worst = [0.0f64; 6];
-        for s in r["samples"].as_array().unwrap() {
-            let (q, qd, qdd) = (column(&s["q"]), column(&s["qd"]), column(&s["qdd"]));
-            let t = robot.fk(&q[..]).to_homogeneous();
-            let t = DMatrix::from_fn(4, 4, |i, j| t[(i, j)]);
-            worst[0] = worst[0].max(error(&t, &rows(&s["T"])));
-            let j = robot.jacobian(&q[..]);
-            let j = DMatrix::from_fn(6, n, |a, b| j[(a, b)]);
-            worst[1] = worst[1].max(error(&j, &rows(&s["J0"])));
-            if s.get("D").is_none() {
-                continue;
-            }
-            let vector = |v: &[f64]| DMatrix::from_column_slice(n, 1, v);
-            worst[2] = worst[2].max(error(&robot.mass_matrix(&q[..]), &rows(&s["D"])));
-            let g = robot.gravity(&q[..]);
-            worst[3] = worst[3].max(error(&vector(g.as_slice()), &rows(&s["g"])));
-            let c = robot.coriolis(&q[..], &qd[..]) * DMatrix::from_column_slice(n, 1, &qd);
-            worst[4] = worst[4].max(error(&c, &rows(&s["Cqd"])));
-            let tau = robot.inverse_dynamics(&q[..], &qd[..], &qdd[..]);
-            worst[5] = worst[5].max(error(&vector(tau.as_slice()), &rows(&s["tau"])));
-        }
         if r["samples"][0].get("D").is_some() {
             dynamics += 1;
         }
-        for (what, w) in ["T", "J", "D", "g", "Cqd", "tau"].iter().zip(worst) {
+        if r["flipped"].as_bool().unwrap() {
+            assert_eq!(robot.model().convention, Convention::Urdf, "{name}");
+            flipped += 1;
+        }
+        let w = worst(&robot, r);
+        for (what, w) in ["T", "J", "D", "g", "Cqd", "tau"].iter().zip(w) {
             println!("{name} ({n} joints) {what}: worst relative error {w:.1e}");
             assert!(w < 1e-12, "{name} {what}: {w:e}");
         }
     }
-    assert_eq!(dynamics, 8, "the models with dynamics");
+    assert_eq!(
+        (dynamics, flipped),
+        (8, 2),
+        "the models with dynamics, with flipped joints"
+    );
+}
+
+/// Converted to a DH table of either convention (the flipped joints of Jaco and Mico get a z
+/// axis along the joint's turning direction, the frames around them change, q does not), each
+/// robot still matches the Toolbox.
+#[test]
+fn toolbox_models_converted_to_dh_still_match() {
+    let d = data();
+    for r in d["robots"].as_array().unwrap() {
+        let name = r["name"].as_str().unwrap();
+        let model = RobotModel::from_toml_str(r["toml"].as_str().unwrap()).unwrap();
+        for convention in [Convention::Standard, Convention::Modified] {
+            let converted = to_dh(&model, convention)
+                .unwrap_or_else(|e| panic!("{name} to {convention:?}: {e}"));
+            let w = worst(&Robot::from_model(converted), r);
+            for (what, w) in ["T", "J", "D", "g", "Cqd", "tau"].iter().zip(w) {
+                assert!(w < 1e-12, "{name} as {convention:?} {what}: {w:e}");
+            }
+        }
+    }
 }
 
 #[test]
