@@ -42,6 +42,7 @@ fn hostile_urdf_files_load_or_fail_with_one_located_line() {
         ("ur5.urdf", None),
         ("kinova.urdf", Some("j2s6s200_end_effector")),
         ("double_pendulum_continuous.urdf", None),
+        ("human.urdf", Some("left_hand")),
     ]
     .iter()
     .map(|(f, tip)| (std::fs::read_to_string(format!("{dir}/{f}")).unwrap(), *tip))
