@@ -39,6 +39,25 @@ pub trait Real: SimdRealField<Element: nalgebra::RealField> + Copy {
         difference.simd_eq(Self::zero())
     }
 
+    /// `self · b + c`, what generated code writes for a product added to a value: one fused
+    /// multiply-add (one rounding) where the target has FMA instructions
+    /// ([`FUSED`](crate::sincos::FUSED), `-C target-cpu=x86-64-v3` or `native` on current x86),
+    /// a multiplication and an addition otherwise, so that scalars and SIMD packs round alike
+    /// on every target.
+    ///
+    /// ```
+    /// use dhgen::Real;
+    /// assert_eq!(Real::mul_add_fast(2.0f64, 3.0, 1.0), 7.0);
+    /// ```
+    #[inline(always)]
+    fn mul_add_fast(self, b: Self, c: Self) -> Self {
+        if crate::sincos::FUSED {
+            self.simd_mul_add(b, c)
+        } else {
+            self * b + c
+        }
+    }
+
     /// Lane-wise sign with `sign(0) = 0`: `1` where positive, `−1` where negative, `0`
     /// elsewhere (zero and NaN): Coulomb friction's `coulomb · sign(q̇)`.
     #[inline]

@@ -244,6 +244,37 @@ pub fn emit_staged(
             }
         }
     }
+    // A product read once, by a sum or difference in its own part, and neither stored nor
+    // passed on, is fused into it: `Real::mul_add_fast`, one instruction where the target has
+    // FMA, the same multiplication and addition (rounded alike) elsewhere.
+    let mut readers = vec![0u32; size];
+    for &id in &order {
+        if is_op(id) {
+            for child in children(graph.node(id)) {
+                readers[child as usize] += 1;
+            }
+        }
+    }
+    let fusible = |m: Id, into: Id| {
+        matches!(graph.node(m), Node::Mul(..))
+            && readers[m as usize] == 1
+            && stored_at[m as usize].is_empty()
+            && slot[m as usize] == NONE
+            && part_of[m as usize] == part_of[into as usize]
+    };
+    let mut fused = vec![false; size];
+    for &id in &order {
+        match graph.node(id) {
+            Node::Add(a, b) | Node::Sub(a, b) => {
+                if fusible(b, id) {
+                    fused[b as usize] = true;
+                } else if fusible(a, id) {
+                    fused[a as usize] = true;
+                }
+            }
+            _ => {}
+        }
+    }
     // Every value has one name wherever it is read: inputs by what they are, constants
     // `k<id>`, operations `t<id>`.
     let name = |id: Id| -> Ident {
@@ -294,12 +325,33 @@ pub fn emit_staged(
             let n = name(id);
             stmts.push(quote!(let #n: T = #load;));
         }
+        let factors = |m: Id| match graph.node(m) {
+            Node::Mul(x, y) => (name(x), name(y)),
+            _ => unreachable!("only products are fused"),
+        };
         for &id in nodes {
+            if fused[id as usize] {
+                continue;
+            }
             let n = name(id);
             let rhs = match graph.node(id) {
+                Node::Add(a, b) if fused[b as usize] || fused[a as usize] => {
+                    let (m, c) = if fused[b as usize] { (b, a) } else { (a, b) };
+                    let ((x, y), c) = (factors(m), name(c));
+                    quote!(::dhgen::Real::mul_add_fast(#x, #y, #c))
+                }
                 Node::Add(a, b) => {
                     let (a, b) = (name(a), name(b));
                     quote!(#a + #b)
+                }
+                // a − x·y = (−x)·y + a, and x·y − b = x·y + (−b): negation is exact.
+                Node::Sub(a, b) if fused[b as usize] => {
+                    let ((x, y), a) = (factors(b), name(a));
+                    quote!(::dhgen::Real::mul_add_fast(-#x, #y, #a))
+                }
+                Node::Sub(a, b) if fused[a as usize] => {
+                    let ((x, y), b) = (factors(a), name(b));
+                    quote!(::dhgen::Real::mul_add_fast(#x, #y, -#b))
                 }
                 Node::Sub(a, b) => {
                     let (a, b) = (name(a), name(b));
