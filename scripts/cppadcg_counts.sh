@@ -11,14 +11,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 out="${TMPDIR:-/tmp}/dhgen-cppadcg"
 mkdir -p "$out"
-python3 - "$out" <<'PY'
-import json, sys
-sys.path.insert(0, "scripts")
-import pinocchio_derivatives as pd
-for name in ["puma560", "panda"]:
-    robot = json.loads((pd.DATA / f"{name}.json").read_text())
-    pd.model_of(robot).saveToBinary(f"{sys.argv[1]}/{name}.bin")
-PY
+python3 scripts/pinocchio_derivatives.py --save-models "$out"
 prefix="$(python3 -c 'import pinocchio, pathlib; print(pathlib.Path(pinocchio.__file__).parents[4])')"
 g++ -O1 -w -DNDEBUG -std=c++17 \
     -DBOOST_MPL_LIMIT_LIST_SIZE=30 -DBOOST_MPL_LIMIT_VECTOR_SIZE=30 \

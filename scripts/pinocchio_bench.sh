@@ -11,15 +11,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 out="${TMPDIR:-/tmp}/dhgen-pinocchio-bench"
 mkdir -p "$out"
-python3 - "$out" <<'PY'
-import json, sys
-from pathlib import Path
-sys.path.insert(0, "scripts")
-import pinocchio_derivatives as pd
-for name in ["puma560", "panda"]:
-    robot = json.loads((pd.DATA / f"{name}.json").read_text())
-    pd.model_of(robot).saveToBinary(f"{sys.argv[1]}/{name}.bin")
-PY
+python3 scripts/pinocchio_derivatives.py --save-models "$out"
 prefix="$(python3 -c 'import pinocchio, pathlib; print(pathlib.Path(pinocchio.__file__).parents[4])')"
 march=-march=native
 [[ "${1:-}" == --callgrind ]] && march=

@@ -12,6 +12,9 @@ matrices as lists of rows, entry [k][m] = d(out_k)/d(in_m).
 
     pip install pin        # Pinocchio 3.x
     python3 scripts/pinocchio_derivatives.py
+    python3 scripts/pinocchio_derivatives.py --save-models DIR   # DIR/<robot>.bin, for the
+                                                # C++ benchmarks (scripts/pinocchio_bench.sh,
+                                                # scripts/cppadcg_counts.sh)
 """
 import json
 import sys
@@ -95,6 +98,12 @@ def rows(m):
 
 
 def main():
+    if "--save-models" in sys.argv:
+        out = Path(sys.argv[sys.argv.index("--save-models") + 1])
+        for name in ["puma560", "panda"]:
+            robot = json.loads((DATA / f"{name}.json").read_text())
+            model_of(robot).saveToBinary(str(out / f"{name}.bin"))
+        return
     for name in ["puma560", "panda"]:
         robot = json.loads((DATA / f"{name}.json").read_text())
         model = model_of(robot)

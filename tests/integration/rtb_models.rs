@@ -8,6 +8,7 @@
 //! Toolbox's data that is outside the format's ranges (IRB 140: a centre of mass 198 km away)
 //! must be rejected with an error naming the field.
 
+use crate::urdf::{matrix as rows, vector as column};
 use dhgen::Robot;
 use dhgen::model::convert::to_dh;
 use dhgen::model::{Convention, RobotModel};
@@ -17,34 +18,6 @@ use serde_json::Value;
 fn data() -> Value {
     let path = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/rtb_models.json");
     serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap()
-}
-
-fn rows(v: &Value) -> DMatrix<f64> {
-    let rows: Vec<Vec<f64>> = match v[0].as_array() {
-        Some(_) => v
-            .as_array()
-            .unwrap()
-            .iter()
-            .map(|r| {
-                r.as_array()
-                    .unwrap()
-                    .iter()
-                    .map(|x| x.as_f64().unwrap())
-                    .collect()
-            })
-            .collect(),
-        None => v
-            .as_array()
-            .unwrap()
-            .iter()
-            .map(|x| vec![x.as_f64().unwrap()])
-            .collect(),
-    };
-    DMatrix::from_fn(rows.len(), rows[0].len(), |i, j| rows[i][j])
-}
-
-fn column(v: &Value) -> Vec<f64> {
-    rows(v).iter().copied().collect()
 }
 
 /// The largest difference relative to the reference's largest entry (at least 1).

@@ -16,7 +16,7 @@ pub(crate) fn data(name: &str) -> Value {
     serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap()
 }
 
-fn vector(v: &Value) -> Vec<f64> {
+pub(crate) fn vector(v: &Value) -> Vec<f64> {
     v.as_array()
         .unwrap()
         .iter()
@@ -25,7 +25,7 @@ fn vector(v: &Value) -> Vec<f64> {
 }
 
 /// A list of rows, or a vector as one column.
-fn matrix(v: &Value) -> DMatrix<f64> {
+pub(crate) fn matrix(v: &Value) -> DMatrix<f64> {
     if v[0].is_number() {
         return DMatrix::from_column_slice(v.as_array().unwrap().len(), 1, &vector(v));
     }
