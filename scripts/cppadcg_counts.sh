@@ -10,15 +10,9 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 out="${TMPDIR:-/tmp}/dhgen-cppadcg"
-mkdir -p "$out"
-python3 scripts/pinocchio_derivatives.py --save-models "$out"
-prefix="$(python3 -c 'import pinocchio, pathlib; print(pathlib.Path(pinocchio.__file__).parents[4])')"
-g++ -O1 -w -DNDEBUG -std=c++17 \
-    -DBOOST_MPL_LIMIT_LIST_SIZE=30 -DBOOST_MPL_LIMIT_VECTOR_SIZE=30 \
-    -DBOOST_MPL_CFG_NO_PREPROCESSED_HEADERS -DBOOST_FUSION_INVOKE_MAX_ARITY=12 \
-    -I"$prefix/include" -I"$prefix/include/eigen3" benches/pinocchio/cppadcg.cpp \
-    -o "$out/generate" -L"$prefix/lib" -lpinocchio_default -lcppad_lib -lboost_serialization \
-    -lboost_filesystem -Wl,-rpath,"$prefix/lib"
+source scripts/pinocchio_cxx.sh
+extra_libs=(-lcppad_lib)
+pinocchio_cxx benches/pinocchio/cppadcg.cpp "$out/generate" -O1 -w
 for robot in puma560:6 panda:7; do
     name=${robot%:*}
     dof=${robot#*:}

@@ -2,7 +2,7 @@
 # Times Pinocchio's rnea, computeRNEADerivatives and computeABADerivatives on the same PUMA 560
 # and Panda models as scripts/pinocchio_derivatives.py builds (from tests/data), for comparison
 # with `cargo bench --bench derivatives`. Needs `pip install pin cmeel-eigen` (Pinocchio's
-# headers and libraries come with the wheel); compiles benches/pinocchio/derivatives.cpp with
+# headers and libraries come with the wheels); compiles benches/pinocchio/derivatives.cpp with
 # -O3 -march=native and Pinocchio's templates instantiated here (about 4 minutes).
 # `--callgrind` instead counts instructions per call (exact, load-independent): compiled for
 # baseline x86-64 like `cargo build --release` (valgrind has no AVX-512), each function called
@@ -10,17 +10,10 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 out="${TMPDIR:-/tmp}/dhgen-pinocchio-bench"
-mkdir -p "$out"
-python3 scripts/pinocchio_derivatives.py --save-models "$out"
-prefix="$(python3 -c 'import pinocchio, pathlib; print(pathlib.Path(pinocchio.__file__).parents[4])')"
+source scripts/pinocchio_cxx.sh
 march=-march=native
 [[ "${1:-}" == --callgrind ]] && march=
-g++ -O3 $march -DNDEBUG -std=c++17 \
-    -DBOOST_MPL_LIMIT_LIST_SIZE=30 -DBOOST_MPL_LIMIT_VECTOR_SIZE=30 \
-    -DBOOST_MPL_CFG_NO_PREPROCESSED_HEADERS -DBOOST_FUSION_INVOKE_MAX_ARITY=12 \
-    -I"$prefix/include" -I"$prefix/include/eigen3" benches/pinocchio/derivatives.cpp \
-    -o "$out/bench" -L"$prefix/lib" -lpinocchio_default -lboost_serialization \
-    -lboost_filesystem -Wl,-rpath,"$prefix/lib"
+pinocchio_cxx benches/pinocchio/derivatives.cpp "$out/bench" -O3 $march
 if [[ "${1:-}" != --callgrind ]]; then
     "$out/bench" "$out/puma560.bin" "$out/panda.bin"
     exit

@@ -51,11 +51,7 @@ pub trait Real: SimdRealField<Element: nalgebra::RealField> + Copy {
     /// ```
     #[inline(always)]
     fn mul_add_fast(self, b: Self, c: Self) -> Self {
-        if crate::sincos::FUSED {
-            self.simd_mul_add(b, c)
-        } else {
-            self * b + c
-        }
+        crate::sincos::mul_add::<Self, { crate::sincos::FUSED }>(self, b, c)
     }
 
     /// Lane-wise sign with `sign(0) = 0`: `1` where positive, `−1` where negative, `0`

@@ -67,9 +67,10 @@ fn fast_two_diff<T: SimdRealField + Copy>(a: T, b: T) -> (T, T) {
 /// 21 % off a pack's sine and cosine and 9–18 % off fk, J, D and τ on packs.
 pub const FUSED: bool = cfg!(target_feature = "fma");
 
-/// `a·b + c`, with one rounding when `FUSED`.
+/// `a·b + c`, with one rounding when `FUSED`: the sine and cosine's, and generated code's
+/// through [`Real::mul_add_fast`](crate::Real::mul_add_fast).
 #[inline(always)]
-fn mul_add<T: SimdRealField + Copy, const FUSED: bool>(a: T, b: T, c: T) -> T {
+pub(crate) fn mul_add<T: SimdRealField + Copy, const FUSED: bool>(a: T, b: T, c: T) -> T {
     if FUSED {
         a.simd_mul_add(b, c)
     } else {
