@@ -137,6 +137,13 @@ macro_rules! run {
                 // One sine and cosine: dhgen's branch-free one against `libm`'s.
                 ("sincos", true) => probe_sincos(q[0]).0,
                 ("sincos", false) => libm::sincos(q[0]).0,
+                // Every joint's sine and cosine, as a generated `State` takes them (packs of four
+                // where the target has AVX), against one call each of `libm`'s.
+                ("sincos_joints", true) => {
+                    let (s, _) = <f64 as dhgen::Real>::sincos_array(*q);
+                    s.iter().sum()
+                }
+                ("sincos_joints", false) => q.iter().map(|&x| libm::sincos(x).0).sum(),
                 ("fk", true) => $m::fk(q).translation.x,
                 ("fk", false) => robot.fk(q).translation.x,
                 // The pose as a matrix (no rotation-to-quaternion conversion).

@@ -4,7 +4,9 @@
 //! `f64`) and [`WideF32x8`] (eight `f32`) implement: called on a pack, a function evaluates
 //! four (eight) configurations at once, lane by lane as the scalar path does (branch-free
 //! selects where scalar code would branch: Coulomb friction's sign, the Cholesky pivot check).
-//! `f32` lanes are bit for bit the scalar results; `f64` lanes agree to rounding, because the
+//! `f32` lanes are bit for bit the scalar results; so are `f64` lanes where the target has AVX
+//! (scalar code then takes its sines and cosines from packs as well,
+//! [`sincos::PACKED`](crate::sincos::PACKED)); elsewhere they agree to rounding, because the
 //! pack's sine and cosine are branch-free polynomials (within one ulp) where scalar `f64` keeps
 //! `libm`'s, faster one value at a time. Each generated module's `batch`
 //! submodule wraps this for slices: `batch::mass_matrix(&qs, &mut out)` packs the

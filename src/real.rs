@@ -8,15 +8,17 @@ use simba::simd::{WideF32x8, WideF64x4};
 ///
 /// Generated functions take any `T: Real`. `f64` and `f32` compute `sincos` with one shared
 /// argument reduction (the `libm` crate's port of musl, accurate to within 1 ulp), about a
-/// quarter fewer instructions than separate `sin` and `cos`. Any `RealField` type (a dual
-/// number, say) implements `SimdRealField` with one lane and can implement this trait with the
-/// defaults.
+/// quarter fewer instructions than separate `sin` and `cos`; a generated `State` takes all its
+/// joints' at once ([`sincos_array`](Real::sincos_array)), which `f64` evaluates four at a time
+/// on a pack where the target has AVX. Any `RealField` type (a dual number, say) implements
+/// `SimdRealField` with one lane and can implement this trait with the defaults.
 ///
 /// The SIMD packs [`WideF64x4`] (four `f64`) and [`WideF32x8`] (eight `f32`) are `Real` too:
 /// every generated function evaluates four (eight) configurations in one call, each lane as
-/// the scalar path computes it (branches of generated code are lane-wise selects); the one
-/// difference is `WideF64x4`'s sine and cosine, branch-free polynomials within one ulp rather
-/// than `libm`'s. [`crate::batch`] runs slices of configurations through them.
+/// the scalar path computes it (branches of generated code are lane-wise selects), bit for
+/// bit; the one exception is `f64` on targets without AVX, where a lane's sine and cosine are
+/// the branch-free polynomials of [`crate::sincos`] and the scalar's `libm`'s (both within one
+/// ulp). [`crate::batch`] runs slices of configurations through them.
 ///
 /// ```
 /// use dhgen::Real;
@@ -28,6 +30,29 @@ pub trait Real: SimdRealField<Element: nalgebra::RealField> + Copy {
     #[inline]
     fn sincos(self) -> (Self, Self) {
         self.simd_sin_cos()
+    }
+
+    /// `(sin x_i, cos x_i)` for every entry of `x`: what a generated `State` computes for its
+    /// revolute joints. Entry by entry with [`sincos`](Real::sincos) by default; `f64`, where
+    /// the target has SIMD ([`sincos::PACKED`](crate::sincos::PACKED)), evaluates them four at
+    /// a time with [`sincos::sincos`](crate::sincos::sincos) on a pack, so that every entry is
+    /// bit for bit what a pack's lane computes.
+    ///
+    /// ```
+    /// use dhgen::Real;
+    /// let (s, c) = f64::sincos_array([0.5, -2.0, 3.0, 1e-9, 7.0]);
+    /// for (i, x) in [0.5f64, -2.0, 3.0, 1e-9, 7.0].into_iter().enumerate() {
+    ///     assert!((s[i] - x.sin()).abs() <= f64::EPSILON && (c[i] - x.cos()).abs() <= f64::EPSILON);
+    /// }
+    /// ```
+    #[inline]
+    fn sincos_array<const N: usize>(x: [Self; N]) -> ([Self; N], [Self; N]) {
+        let mut s = x;
+        let mut c = x;
+        for i in 0..N {
+            (s[i], c[i]) = x[i].sincos();
+        }
+        (s, c)
     }
 
     /// Which lanes are finite (neither infinite nor NaN).
@@ -71,6 +96,36 @@ impl Real for f64 {
     }
 
     #[inline]
+    fn sincos_array<const N: usize>(x: [f64; N]) -> ([f64; N], [f64; N]) {
+        let mut s = [0.0; N];
+        let mut c = [0.0; N];
+        if !crate::sincos::PACKED {
+            for i in 0..N {
+                (s[i], c[i]) = libm::sincos(x[i]);
+            }
+            return (s, c);
+        }
+        let mut start = 0;
+        while start + 4 <= N {
+            let lanes = [x[start], x[start + 1], x[start + 2], x[start + 3]];
+            let (ps, pc) = crate::sincos::sincos(WideF64x4::from(lanes));
+            s[start..start + 4].copy_from_slice(&ps.0.to_array());
+            c[start..start + 4].copy_from_slice(&pc.0.to_array());
+            start += 4;
+        }
+        if start < N {
+            let at = |l: usize| start + l;
+            let lanes = core::array::from_fn(|l| if at(l) < N { x[at(l)] } else { 0.0 });
+            let (ps, pc) = crate::sincos::sincos(WideF64x4::from(lanes));
+            let (ps, pc) = (ps.0.to_array(), pc.0.to_array());
+            for l in 0..N - start {
+                (s[at(l)], c[at(l)]) = (ps[l], pc[l]);
+            }
+        }
+        (s, c)
+    }
+
+    #[inline]
     fn is_finite_lanes(self) -> bool {
         self.is_finite()
     }
@@ -89,9 +144,11 @@ impl Real for f32 {
 }
 
 /// Four `f64` lanes. The sine and cosine are this crate's branch-free ones on the whole pack
-/// (within one ulp, like `libm`'s, which `f64` keeps because it is faster one value at a
-/// time), so a lane's results agree with the scalar path's to rounding (1e-13 relative in
-/// practice), not bit for bit; everything after the sine and cosine is the same arithmetic.
+/// (within one ulp), the ones a generated `State` of scalar `f64` uses too where the target
+/// has AVX ([`sincos::PACKED`](crate::sincos::PACKED)): there a lane's results are the scalar
+/// path's bit for bit; elsewhere scalar `f64` keeps `libm`'s, faster one value at a time, and
+/// a lane agrees with it to rounding (1e-13 relative in practice). Everything after the sine
+/// and cosine is the same arithmetic.
 impl Real for WideF64x4 {
     #[inline]
     fn sincos(self) -> (Self, Self) {

@@ -14,8 +14,10 @@
 //! the target has FMA instructions ([`FUSED`]) the multiply-adds of the reduction and the
 //! kernels are fused, on scalars and packs alike. The error bound (within one ulp of the true
 //! sine and cosine, fused or not) is checked against a double-double reference by this
-//! module's test. Packs of `f64` use it; scalar `f64` keeps
-//! `libm::sincos`, which is faster one value at a time (over angles in [−π, π],
+//! module's test. Packs of `f64` use it, and so do scalar `f64` generated functions where the
+//! target has AVX ([`PACKED`]): their `State` takes all its joints' sines and cosines as packs
+//! of four ([`Real::sincos_array`](crate::Real::sincos_array)). One value at a time, `f64`
+//! keeps `libm::sincos`, which is faster so (over angles in [−π, π],
 //! `cargo bench --bench batch`, 2026-12-01: `libm` 5.3 ns per call, this code 12.1 alone and
 //! 5.4 per angle in a pack of four on the default x86-64 target; 4.7, 7.8 and 2.2 with AVX2 and
 //! FMA, fused):
@@ -66,6 +68,14 @@ fn fast_two_diff<T: SimdRealField + Copy>(a: T, b: T) -> (T, T) {
 /// round alike on every target. With AVX2 and FMA (`-C target-cpu=x86-64-v3`), fusing takes
 /// 21 % off a pack's sine and cosine and 9–18 % off fk, J, D and τ on packs.
 pub const FUSED: bool = cfg!(target_feature = "fma");
+
+/// Whether scalar `f64` code evaluates several sines and cosines as one pack
+/// ([`Real::sincos_array`](crate::Real::sincos_array)): where the target has AVX, whose
+/// registers hold four `f64` (`-C target-cpu=x86-64-v3` or `native` on current x86). There a
+/// pack of four costs about as many instructions as one `libm::sincos`; with two `f64` per
+/// register (SSE2, the default `x86_64` target) it costs three times as many (323 instructions
+/// against 104 for angles in [−2, 2]) and `libm` one by one stays cheaper.
+pub const PACKED: bool = cfg!(target_feature = "avx");
 
 /// `a·b + c`, with one rounding when `FUSED`: the sine and cosine's, and generated code's
 /// through [`Real::mul_add_fast`](crate::Real::mul_add_fast).

@@ -1,7 +1,9 @@
 //! Generated code on SIMD packs (`dhgen::batch`): every configuration of a batch gets what the
-//! scalar function returns for it, in `f32` (eight lanes) bit for bit, in `f64` (four lanes) to
-//! 1e-12 of the output's largest entry (the pack's sine and cosine are dhgen's branch-free
-//! ones, scalar `f64` keeps `libm`'s; both within one ulp), with the same `None`s; on every
+//! scalar function returns for it, in `f32` (eight lanes) bit for bit, in `f64` (four lanes) bit
+//! for bit where the target has AVX ([`dhgen::sincos::PACKED`]: scalar code then takes its sines
+//! and cosines from packs too) and otherwise to 1e-12 of the output's largest entry (the pack's
+//! sine and cosine are dhgen's branch-free ones, scalar `f64` keeps `libm`'s; both within one
+//! ulp), with the same `None`s; on every
 //! catalogue robot and the fixtures that exercise prismatic joints, modified DH, base and
 //! tool, motors, Coulomb friction (at q̇ = 0 too) and a singular inertia matrix. The slices
 //! are of 11 configurations: full packs and a partial one.
@@ -87,7 +89,7 @@ fn close<A: std::fmt::Debug, B: std::fmt::Debug>(what: &str, c: usize, batch: &A
     }
 }
 
-/// Bit for bit in `f32`, to rounding in `f64` (whose packs have their own sine and cosine).
+/// Bit for bit in `f32`, and in `f64` where its scalar sines and cosines come from packs.
 trait Agree {
     const BITWISE: bool;
 }
@@ -97,7 +99,8 @@ impl Agree for f32 {
 }
 
 impl Agree for f64 {
-    const BITWISE: bool = false;
+    // Where scalar `f64` takes its sines and cosines from packs too (AVX), bit for bit.
+    const BITWISE: bool = dhgen::sincos::PACKED;
 }
 
 fn agree<T: Agree, A: std::fmt::Debug, B: std::fmt::Debug>(

@@ -223,24 +223,26 @@ pub mod puma560 {
             let mut c = [T::zero(); DOF];
             let mut s = [T::zero(); DOF];
             let d = [T::zero(); DOF];
-            let (sj, cj) = ::dhgen::Real::sincos(q[0]);
-            s[0] = sj;
-            c[0] = cj;
-            let (sj, cj) = ::dhgen::Real::sincos(q[1]);
-            s[1] = sj;
-            c[1] = cj;
-            let (sj, cj) = ::dhgen::Real::sincos(q[2]);
-            s[2] = sj;
-            c[2] = cj;
-            let (sj, cj) = ::dhgen::Real::sincos(q[3]);
-            s[3] = sj;
-            c[3] = cj;
-            let (sj, cj) = ::dhgen::Real::sincos(q[4]);
-            s[4] = sj;
-            c[4] = cj;
-            let (sj, cj) = ::dhgen::Real::sincos(q[5]);
-            s[5] = sj;
-            c[5] = cj;
+            let (sa, ca) = ::dhgen::Real::sincos_array([
+                q[0],
+                q[1],
+                q[2],
+                q[3],
+                q[4],
+                q[5],
+            ]);
+            s[0] = sa[0];
+            c[0] = ca[0];
+            s[1] = sa[1];
+            c[1] = ca[1];
+            s[2] = sa[2];
+            c[2] = ca[2];
+            s[3] = sa[3];
+            c[3] = ca[3];
+            s[4] = sa[4];
+            c[4] = ca[4];
+            s[5] = sa[5];
+            c[5] = ca[5];
             State { c, s, d }
         }
     }
@@ -7206,24 +7208,26 @@ pub mod puma560 {
             let mut c = [T::zero(); DOF];
             let mut s = [T::zero(); DOF];
             let d = [T::zero(); DOF];
-            let (sj, cj) = ::dhgen::Real::sincos(q[0]);
-            s[0] = sj;
-            c[0] = cj;
-            let (sj, cj) = ::dhgen::Real::sincos(q[1]);
-            s[1] = sj;
-            c[1] = cj;
-            let (sj, cj) = ::dhgen::Real::sincos(q[2]);
-            s[2] = sj;
-            c[2] = cj;
-            let (sj, cj) = ::dhgen::Real::sincos(q[3]);
-            s[3] = sj;
-            c[3] = cj;
-            let (sj, cj) = ::dhgen::Real::sincos(q[4]);
-            s[4] = sj;
-            c[4] = cj;
-            let (sj, cj) = ::dhgen::Real::sincos(q[5]);
-            s[5] = sj;
-            c[5] = cj;
+            let (sa, ca) = ::dhgen::Real::sincos_array([
+                q[0],
+                q[1],
+                q[2],
+                q[3],
+                q[4],
+                q[5],
+            ]);
+            s[0] = sa[0];
+            c[0] = ca[0];
+            s[1] = sa[1];
+            c[1] = ca[1];
+            s[2] = sa[2];
+            c[2] = ca[2];
+            s[3] = sa[3];
+            c[3] = ca[3];
+            s[4] = sa[4];
+            c[4] = ca[4];
+            s[5] = sa[5];
+            c[5] = ca[5];
             State { c, s, d }
         }
         #[inline]
@@ -7232,24 +7236,26 @@ pub mod puma560 {
             let mut c = [T::zero(); DOF];
             let mut s = [T::zero(); DOF];
             let d = [T::zero(); DOF];
-            let (sj, cj) = ::dhgen::Real::sincos(q[0]);
-            s[0] = sj;
-            c[0] = cj;
-            let (sj, cj) = ::dhgen::Real::sincos(q[1]);
-            s[1] = sj;
-            c[1] = cj;
-            let (sj, cj) = ::dhgen::Real::sincos(q[2]);
-            s[2] = sj;
-            c[2] = cj;
-            let (sj, cj) = ::dhgen::Real::sincos(q[3]);
-            s[3] = sj;
-            c[3] = cj;
-            let (sj, cj) = ::dhgen::Real::sincos(q[4]);
-            s[4] = sj;
-            c[4] = cj;
-            let (sj, cj) = ::dhgen::Real::sincos(q[5]);
-            s[5] = sj;
-            c[5] = cj;
+            let (sa, ca) = ::dhgen::Real::sincos_array([
+                q[0],
+                q[1],
+                q[2],
+                q[3],
+                q[4],
+                q[5],
+            ]);
+            s[0] = sa[0];
+            c[0] = ca[0];
+            s[1] = sa[1];
+            c[1] = ca[1];
+            s[2] = sa[2];
+            c[2] = ca[2];
+            s[3] = sa[3];
+            c[3] = ca[3];
+            s[4] = sa[4];
+            c[4] = ca[4];
+            s[5] = sa[5];
+            c[5] = ca[5];
             State { c, s, d }
         }
         #[inline]
@@ -7258,24 +7264,26 @@ pub mod puma560 {
             let mut c = [T::zero(); DOF];
             let mut s = [T::zero(); DOF];
             let d = [T::zero(); DOF];
-            let (sj, cj) = ::dhgen::Real::sincos(q[0]);
-            s[0] = sj;
-            c[0] = cj;
-            let (sj, cj) = ::dhgen::Real::sincos(q[1]);
-            s[1] = sj;
-            c[1] = cj;
-            let (sj, cj) = ::dhgen::Real::sincos(q[2]);
-            s[2] = sj;
-            c[2] = cj;
-            let (sj, cj) = ::dhgen::Real::sincos(q[3]);
-            s[3] = sj;
-            c[3] = cj;
-            let (sj, cj) = ::dhgen::Real::sincos(q[4]);
-            s[4] = sj;
-            c[4] = cj;
-            let (sj, cj) = ::dhgen::Real::sincos(q[5]);
-            s[5] = sj;
-            c[5] = cj;
+            let (sa, ca) = ::dhgen::Real::sincos_array([
+                q[0],
+                q[1],
+                q[2],
+                q[3],
+                q[4],
+                q[5],
+            ]);
+            s[0] = sa[0];
+            c[0] = ca[0];
+            s[1] = sa[1];
+            c[1] = ca[1];
+            s[2] = sa[2];
+            c[2] = ca[2];
+            s[3] = sa[3];
+            c[3] = ca[3];
+            s[4] = sa[4];
+            c[4] = ca[4];
+            s[5] = sa[5];
+            c[5] = ca[5];
             State { c, s, d }
         }
         #[inline]
@@ -7284,24 +7292,26 @@ pub mod puma560 {
             let mut c = [T::zero(); DOF];
             let mut s = [T::zero(); DOF];
             let d = [T::zero(); DOF];
-            let (sj, cj) = ::dhgen::Real::sincos(q[0]);
-            s[0] = sj;
-            c[0] = cj;
-            let (sj, cj) = ::dhgen::Real::sincos(q[1]);
-            s[1] = sj;
-            c[1] = cj;
-            let (sj, cj) = ::dhgen::Real::sincos(q[2]);
-            s[2] = sj;
-            c[2] = cj;
-            let (sj, cj) = ::dhgen::Real::sincos(q[3]);
-            s[3] = sj;
-            c[3] = cj;
-            let (sj, cj) = ::dhgen::Real::sincos(q[4]);
-            s[4] = sj;
-            c[4] = cj;
-            let (sj, cj) = ::dhgen::Real::sincos(q[5]);
-            s[5] = sj;
-            c[5] = cj;
+            let (sa, ca) = ::dhgen::Real::sincos_array([
+                q[0],
+                q[1],
+                q[2],
+                q[3],
+                q[4],
+                q[5],
+            ]);
+            s[0] = sa[0];
+            c[0] = ca[0];
+            s[1] = sa[1];
+            c[1] = ca[1];
+            s[2] = sa[2];
+            c[2] = ca[2];
+            s[3] = sa[3];
+            c[3] = ca[3];
+            s[4] = sa[4];
+            c[4] = ca[4];
+            s[5] = sa[5];
+            c[5] = ca[5];
             State { c, s, d }
         }
         #[inline]
@@ -7310,21 +7320,17 @@ pub mod puma560 {
             let mut c = [T::zero(); DOF];
             let mut s = [T::zero(); DOF];
             let d = [T::zero(); DOF];
-            let (sj, cj) = ::dhgen::Real::sincos(q[0]);
-            s[0] = sj;
-            c[0] = cj;
-            let (sj, cj) = ::dhgen::Real::sincos(q[1]);
-            s[1] = sj;
-            c[1] = cj;
-            let (sj, cj) = ::dhgen::Real::sincos(q[2]);
-            s[2] = sj;
-            c[2] = cj;
-            let (sj, cj) = ::dhgen::Real::sincos(q[3]);
-            s[3] = sj;
-            c[3] = cj;
-            let (sj, cj) = ::dhgen::Real::sincos(q[4]);
-            s[4] = sj;
-            c[4] = cj;
+            let (sa, ca) = ::dhgen::Real::sincos_array([q[0], q[1], q[2], q[3], q[4]]);
+            s[0] = sa[0];
+            c[0] = ca[0];
+            s[1] = sa[1];
+            c[1] = ca[1];
+            s[2] = sa[2];
+            c[2] = ca[2];
+            s[3] = sa[3];
+            c[3] = ca[3];
+            s[4] = sa[4];
+            c[4] = ca[4];
             State { c, s, d }
         }
         #[inline]
@@ -7333,24 +7339,26 @@ pub mod puma560 {
             let mut c = [T::zero(); DOF];
             let mut s = [T::zero(); DOF];
             let d = [T::zero(); DOF];
-            let (sj, cj) = ::dhgen::Real::sincos(q[0]);
-            s[0] = sj;
-            c[0] = cj;
-            let (sj, cj) = ::dhgen::Real::sincos(q[1]);
-            s[1] = sj;
-            c[1] = cj;
-            let (sj, cj) = ::dhgen::Real::sincos(q[2]);
-            s[2] = sj;
-            c[2] = cj;
-            let (sj, cj) = ::dhgen::Real::sincos(q[3]);
-            s[3] = sj;
-            c[3] = cj;
-            let (sj, cj) = ::dhgen::Real::sincos(q[4]);
-            s[4] = sj;
-            c[4] = cj;
-            let (sj, cj) = ::dhgen::Real::sincos(q[5]);
-            s[5] = sj;
-            c[5] = cj;
+            let (sa, ca) = ::dhgen::Real::sincos_array([
+                q[0],
+                q[1],
+                q[2],
+                q[3],
+                q[4],
+                q[5],
+            ]);
+            s[0] = sa[0];
+            c[0] = ca[0];
+            s[1] = sa[1];
+            c[1] = ca[1];
+            s[2] = sa[2];
+            c[2] = ca[2];
+            s[3] = sa[3];
+            c[3] = ca[3];
+            s[4] = sa[4];
+            c[4] = ca[4];
+            s[5] = sa[5];
+            c[5] = ca[5];
             State { c, s, d }
         }
         #[inline]
@@ -7359,12 +7367,11 @@ pub mod puma560 {
             let mut c = [T::zero(); DOF];
             let mut s = [T::zero(); DOF];
             let d = [T::zero(); DOF];
-            let (sj, cj) = ::dhgen::Real::sincos(q[1]);
-            s[1] = sj;
-            c[1] = cj;
-            let (sj, cj) = ::dhgen::Real::sincos(q[2]);
-            s[2] = sj;
-            c[2] = cj;
+            let (sa, ca) = ::dhgen::Real::sincos_array([q[1], q[2]]);
+            s[1] = sa[0];
+            c[1] = ca[0];
+            s[2] = sa[1];
+            c[2] = ca[1];
             State { c, s, d }
         }
         #[inline]
@@ -7373,9 +7380,9 @@ pub mod puma560 {
             let mut c = [T::zero(); DOF];
             let mut s = [T::zero(); DOF];
             let d = [T::zero(); DOF];
-            let (sj, cj) = ::dhgen::Real::sincos(q[4]);
-            s[4] = sj;
-            c[4] = cj;
+            let (sa, ca) = ::dhgen::Real::sincos_array([q[4]]);
+            s[4] = sa[0];
+            c[4] = ca[0];
             State { c, s, d }
         }
         #[inline]
@@ -7384,18 +7391,15 @@ pub mod puma560 {
             let mut c = [T::zero(); DOF];
             let mut s = [T::zero(); DOF];
             let d = [T::zero(); DOF];
-            let (sj, cj) = ::dhgen::Real::sincos(q[1]);
-            s[1] = sj;
-            c[1] = cj;
-            let (sj, cj) = ::dhgen::Real::sincos(q[2]);
-            s[2] = sj;
-            c[2] = cj;
-            let (sj, cj) = ::dhgen::Real::sincos(q[3]);
-            s[3] = sj;
-            c[3] = cj;
-            let (sj, cj) = ::dhgen::Real::sincos(q[4]);
-            s[4] = sj;
-            c[4] = cj;
+            let (sa, ca) = ::dhgen::Real::sincos_array([q[1], q[2], q[3], q[4]]);
+            s[1] = sa[0];
+            c[1] = ca[0];
+            s[2] = sa[1];
+            c[2] = ca[1];
+            s[3] = sa[2];
+            c[3] = ca[2];
+            s[4] = sa[3];
+            c[4] = ca[3];
             State { c, s, d }
         }
         #[inline]
@@ -7404,18 +7408,15 @@ pub mod puma560 {
             let mut c = [T::zero(); DOF];
             let mut s = [T::zero(); DOF];
             let d = [T::zero(); DOF];
-            let (sj, cj) = ::dhgen::Real::sincos(q[1]);
-            s[1] = sj;
-            c[1] = cj;
-            let (sj, cj) = ::dhgen::Real::sincos(q[2]);
-            s[2] = sj;
-            c[2] = cj;
-            let (sj, cj) = ::dhgen::Real::sincos(q[3]);
-            s[3] = sj;
-            c[3] = cj;
-            let (sj, cj) = ::dhgen::Real::sincos(q[4]);
-            s[4] = sj;
-            c[4] = cj;
+            let (sa, ca) = ::dhgen::Real::sincos_array([q[1], q[2], q[3], q[4]]);
+            s[1] = sa[0];
+            c[1] = ca[0];
+            s[2] = sa[1];
+            c[2] = ca[1];
+            s[3] = sa[2];
+            c[3] = ca[2];
+            s[4] = sa[3];
+            c[4] = ca[3];
             State { c, s, d }
         }
         #[inline]
@@ -7424,18 +7425,15 @@ pub mod puma560 {
             let mut c = [T::zero(); DOF];
             let mut s = [T::zero(); DOF];
             let d = [T::zero(); DOF];
-            let (sj, cj) = ::dhgen::Real::sincos(q[1]);
-            s[1] = sj;
-            c[1] = cj;
-            let (sj, cj) = ::dhgen::Real::sincos(q[2]);
-            s[2] = sj;
-            c[2] = cj;
-            let (sj, cj) = ::dhgen::Real::sincos(q[3]);
-            s[3] = sj;
-            c[3] = cj;
-            let (sj, cj) = ::dhgen::Real::sincos(q[4]);
-            s[4] = sj;
-            c[4] = cj;
+            let (sa, ca) = ::dhgen::Real::sincos_array([q[1], q[2], q[3], q[4]]);
+            s[1] = sa[0];
+            c[1] = ca[0];
+            s[2] = sa[1];
+            c[2] = ca[1];
+            s[3] = sa[2];
+            c[3] = ca[2];
+            s[4] = sa[3];
+            c[4] = ca[3];
             State { c, s, d }
         }
         #[inline]
@@ -7444,18 +7442,15 @@ pub mod puma560 {
             let mut c = [T::zero(); DOF];
             let mut s = [T::zero(); DOF];
             let d = [T::zero(); DOF];
-            let (sj, cj) = ::dhgen::Real::sincos(q[1]);
-            s[1] = sj;
-            c[1] = cj;
-            let (sj, cj) = ::dhgen::Real::sincos(q[2]);
-            s[2] = sj;
-            c[2] = cj;
-            let (sj, cj) = ::dhgen::Real::sincos(q[3]);
-            s[3] = sj;
-            c[3] = cj;
-            let (sj, cj) = ::dhgen::Real::sincos(q[4]);
-            s[4] = sj;
-            c[4] = cj;
+            let (sa, ca) = ::dhgen::Real::sincos_array([q[1], q[2], q[3], q[4]]);
+            s[1] = sa[0];
+            c[1] = ca[0];
+            s[2] = sa[1];
+            c[2] = ca[1];
+            s[3] = sa[2];
+            c[3] = ca[2];
+            s[4] = sa[3];
+            c[4] = ca[3];
             State { c, s, d }
         }
         #[inline]
@@ -7464,18 +7459,15 @@ pub mod puma560 {
             let mut c = [T::zero(); DOF];
             let mut s = [T::zero(); DOF];
             let d = [T::zero(); DOF];
-            let (sj, cj) = ::dhgen::Real::sincos(q[1]);
-            s[1] = sj;
-            c[1] = cj;
-            let (sj, cj) = ::dhgen::Real::sincos(q[2]);
-            s[2] = sj;
-            c[2] = cj;
-            let (sj, cj) = ::dhgen::Real::sincos(q[3]);
-            s[3] = sj;
-            c[3] = cj;
-            let (sj, cj) = ::dhgen::Real::sincos(q[4]);
-            s[4] = sj;
-            c[4] = cj;
+            let (sa, ca) = ::dhgen::Real::sincos_array([q[1], q[2], q[3], q[4]]);
+            s[1] = sa[0];
+            c[1] = ca[0];
+            s[2] = sa[1];
+            c[2] = ca[1];
+            s[3] = sa[2];
+            c[3] = ca[2];
+            s[4] = sa[3];
+            c[4] = ca[3];
             State { c, s, d }
         }
         #[inline]
@@ -7486,21 +7478,17 @@ pub mod puma560 {
             let mut c = [T::zero(); DOF];
             let mut s = [T::zero(); DOF];
             let d = [T::zero(); DOF];
-            let (sj, cj) = ::dhgen::Real::sincos(q[1]);
-            s[1] = sj;
-            c[1] = cj;
-            let (sj, cj) = ::dhgen::Real::sincos(q[2]);
-            s[2] = sj;
-            c[2] = cj;
-            let (sj, cj) = ::dhgen::Real::sincos(q[3]);
-            s[3] = sj;
-            c[3] = cj;
-            let (sj, cj) = ::dhgen::Real::sincos(q[4]);
-            s[4] = sj;
-            c[4] = cj;
-            let (sj, cj) = ::dhgen::Real::sincos(q[5]);
-            s[5] = sj;
-            c[5] = cj;
+            let (sa, ca) = ::dhgen::Real::sincos_array([q[1], q[2], q[3], q[4], q[5]]);
+            s[1] = sa[0];
+            c[1] = ca[0];
+            s[2] = sa[1];
+            c[2] = ca[1];
+            s[3] = sa[2];
+            c[3] = ca[2];
+            s[4] = sa[3];
+            c[4] = ca[3];
+            s[5] = sa[4];
+            c[5] = ca[4];
             State { c, s, d }
         }
         #[inline]
@@ -7509,21 +7497,17 @@ pub mod puma560 {
             let mut c = [T::zero(); DOF];
             let mut s = [T::zero(); DOF];
             let d = [T::zero(); DOF];
-            let (sj, cj) = ::dhgen::Real::sincos(q[1]);
-            s[1] = sj;
-            c[1] = cj;
-            let (sj, cj) = ::dhgen::Real::sincos(q[2]);
-            s[2] = sj;
-            c[2] = cj;
-            let (sj, cj) = ::dhgen::Real::sincos(q[3]);
-            s[3] = sj;
-            c[3] = cj;
-            let (sj, cj) = ::dhgen::Real::sincos(q[4]);
-            s[4] = sj;
-            c[4] = cj;
-            let (sj, cj) = ::dhgen::Real::sincos(q[5]);
-            s[5] = sj;
-            c[5] = cj;
+            let (sa, ca) = ::dhgen::Real::sincos_array([q[1], q[2], q[3], q[4], q[5]]);
+            s[1] = sa[0];
+            c[1] = ca[0];
+            s[2] = sa[1];
+            c[2] = ca[1];
+            s[3] = sa[2];
+            c[3] = ca[2];
+            s[4] = sa[3];
+            c[4] = ca[3];
+            s[5] = sa[4];
+            c[5] = ca[4];
             State { c, s, d }
         }
         #[inline]
@@ -7532,21 +7516,17 @@ pub mod puma560 {
             let mut c = [T::zero(); DOF];
             let mut s = [T::zero(); DOF];
             let d = [T::zero(); DOF];
-            let (sj, cj) = ::dhgen::Real::sincos(q[1]);
-            s[1] = sj;
-            c[1] = cj;
-            let (sj, cj) = ::dhgen::Real::sincos(q[2]);
-            s[2] = sj;
-            c[2] = cj;
-            let (sj, cj) = ::dhgen::Real::sincos(q[3]);
-            s[3] = sj;
-            c[3] = cj;
-            let (sj, cj) = ::dhgen::Real::sincos(q[4]);
-            s[4] = sj;
-            c[4] = cj;
-            let (sj, cj) = ::dhgen::Real::sincos(q[5]);
-            s[5] = sj;
-            c[5] = cj;
+            let (sa, ca) = ::dhgen::Real::sincos_array([q[1], q[2], q[3], q[4], q[5]]);
+            s[1] = sa[0];
+            c[1] = ca[0];
+            s[2] = sa[1];
+            c[2] = ca[1];
+            s[3] = sa[2];
+            c[3] = ca[2];
+            s[4] = sa[3];
+            c[4] = ca[3];
+            s[5] = sa[4];
+            c[5] = ca[4];
             State { c, s, d }
         }
         #[inline]
@@ -7555,21 +7535,17 @@ pub mod puma560 {
             let mut c = [T::zero(); DOF];
             let mut s = [T::zero(); DOF];
             let d = [T::zero(); DOF];
-            let (sj, cj) = ::dhgen::Real::sincos(q[1]);
-            s[1] = sj;
-            c[1] = cj;
-            let (sj, cj) = ::dhgen::Real::sincos(q[2]);
-            s[2] = sj;
-            c[2] = cj;
-            let (sj, cj) = ::dhgen::Real::sincos(q[3]);
-            s[3] = sj;
-            c[3] = cj;
-            let (sj, cj) = ::dhgen::Real::sincos(q[4]);
-            s[4] = sj;
-            c[4] = cj;
-            let (sj, cj) = ::dhgen::Real::sincos(q[5]);
-            s[5] = sj;
-            c[5] = cj;
+            let (sa, ca) = ::dhgen::Real::sincos_array([q[1], q[2], q[3], q[4], q[5]]);
+            s[1] = sa[0];
+            c[1] = ca[0];
+            s[2] = sa[1];
+            c[2] = ca[1];
+            s[3] = sa[2];
+            c[3] = ca[2];
+            s[4] = sa[3];
+            c[4] = ca[3];
+            s[5] = sa[4];
+            c[5] = ca[4];
             State { c, s, d }
         }
         #[inline]
@@ -7578,21 +7554,17 @@ pub mod puma560 {
             let mut c = [T::zero(); DOF];
             let mut s = [T::zero(); DOF];
             let d = [T::zero(); DOF];
-            let (sj, cj) = ::dhgen::Real::sincos(q[1]);
-            s[1] = sj;
-            c[1] = cj;
-            let (sj, cj) = ::dhgen::Real::sincos(q[2]);
-            s[2] = sj;
-            c[2] = cj;
-            let (sj, cj) = ::dhgen::Real::sincos(q[3]);
-            s[3] = sj;
-            c[3] = cj;
-            let (sj, cj) = ::dhgen::Real::sincos(q[4]);
-            s[4] = sj;
-            c[4] = cj;
-            let (sj, cj) = ::dhgen::Real::sincos(q[5]);
-            s[5] = sj;
-            c[5] = cj;
+            let (sa, ca) = ::dhgen::Real::sincos_array([q[1], q[2], q[3], q[4], q[5]]);
+            s[1] = sa[0];
+            c[1] = ca[0];
+            s[2] = sa[1];
+            c[2] = ca[1];
+            s[3] = sa[2];
+            c[3] = ca[2];
+            s[4] = sa[3];
+            c[4] = ca[3];
+            s[5] = sa[4];
+            c[5] = ca[4];
             State { c, s, d }
         }
         #[inline]
@@ -7601,18 +7573,15 @@ pub mod puma560 {
             let mut c = [T::zero(); DOF];
             let mut s = [T::zero(); DOF];
             let d = [T::zero(); DOF];
-            let (sj, cj) = ::dhgen::Real::sincos(q[1]);
-            s[1] = sj;
-            c[1] = cj;
-            let (sj, cj) = ::dhgen::Real::sincos(q[2]);
-            s[2] = sj;
-            c[2] = cj;
-            let (sj, cj) = ::dhgen::Real::sincos(q[3]);
-            s[3] = sj;
-            c[3] = cj;
-            let (sj, cj) = ::dhgen::Real::sincos(q[4]);
-            s[4] = sj;
-            c[4] = cj;
+            let (sa, ca) = ::dhgen::Real::sincos_array([q[1], q[2], q[3], q[4]]);
+            s[1] = sa[0];
+            c[1] = ca[0];
+            s[2] = sa[1];
+            c[2] = ca[1];
+            s[3] = sa[2];
+            c[3] = ca[2];
+            s[4] = sa[3];
+            c[4] = ca[3];
             State { c, s, d }
         }
         #[inline]
@@ -7621,18 +7590,15 @@ pub mod puma560 {
             let mut c = [T::zero(); DOF];
             let mut s = [T::zero(); DOF];
             let d = [T::zero(); DOF];
-            let (sj, cj) = ::dhgen::Real::sincos(q[1]);
-            s[1] = sj;
-            c[1] = cj;
-            let (sj, cj) = ::dhgen::Real::sincos(q[2]);
-            s[2] = sj;
-            c[2] = cj;
-            let (sj, cj) = ::dhgen::Real::sincos(q[3]);
-            s[3] = sj;
-            c[3] = cj;
-            let (sj, cj) = ::dhgen::Real::sincos(q[4]);
-            s[4] = sj;
-            c[4] = cj;
+            let (sa, ca) = ::dhgen::Real::sincos_array([q[1], q[2], q[3], q[4]]);
+            s[1] = sa[0];
+            c[1] = ca[0];
+            s[2] = sa[1];
+            c[2] = ca[1];
+            s[3] = sa[2];
+            c[3] = ca[2];
+            s[4] = sa[3];
+            c[4] = ca[3];
             State { c, s, d }
         }
         #[inline]
@@ -7641,18 +7607,15 @@ pub mod puma560 {
             let mut c = [T::zero(); DOF];
             let mut s = [T::zero(); DOF];
             let d = [T::zero(); DOF];
-            let (sj, cj) = ::dhgen::Real::sincos(q[1]);
-            s[1] = sj;
-            c[1] = cj;
-            let (sj, cj) = ::dhgen::Real::sincos(q[2]);
-            s[2] = sj;
-            c[2] = cj;
-            let (sj, cj) = ::dhgen::Real::sincos(q[3]);
-            s[3] = sj;
-            c[3] = cj;
-            let (sj, cj) = ::dhgen::Real::sincos(q[4]);
-            s[4] = sj;
-            c[4] = cj;
+            let (sa, ca) = ::dhgen::Real::sincos_array([q[1], q[2], q[3], q[4]]);
+            s[1] = sa[0];
+            c[1] = ca[0];
+            s[2] = sa[1];
+            c[2] = ca[1];
+            s[3] = sa[2];
+            c[3] = ca[2];
+            s[4] = sa[3];
+            c[4] = ca[3];
             State { c, s, d }
         }
         #[inline]
@@ -7663,21 +7626,17 @@ pub mod puma560 {
             let mut c = [T::zero(); DOF];
             let mut s = [T::zero(); DOF];
             let d = [T::zero(); DOF];
-            let (sj, cj) = ::dhgen::Real::sincos(q[1]);
-            s[1] = sj;
-            c[1] = cj;
-            let (sj, cj) = ::dhgen::Real::sincos(q[2]);
-            s[2] = sj;
-            c[2] = cj;
-            let (sj, cj) = ::dhgen::Real::sincos(q[3]);
-            s[3] = sj;
-            c[3] = cj;
-            let (sj, cj) = ::dhgen::Real::sincos(q[4]);
-            s[4] = sj;
-            c[4] = cj;
-            let (sj, cj) = ::dhgen::Real::sincos(q[5]);
-            s[5] = sj;
-            c[5] = cj;
+            let (sa, ca) = ::dhgen::Real::sincos_array([q[1], q[2], q[3], q[4], q[5]]);
+            s[1] = sa[0];
+            c[1] = ca[0];
+            s[2] = sa[1];
+            c[2] = ca[1];
+            s[3] = sa[2];
+            c[3] = ca[2];
+            s[4] = sa[3];
+            c[4] = ca[3];
+            s[5] = sa[4];
+            c[5] = ca[4];
             State { c, s, d }
         }
         #[inline]
@@ -7688,21 +7647,17 @@ pub mod puma560 {
             let mut c = [T::zero(); DOF];
             let mut s = [T::zero(); DOF];
             let d = [T::zero(); DOF];
-            let (sj, cj) = ::dhgen::Real::sincos(q[1]);
-            s[1] = sj;
-            c[1] = cj;
-            let (sj, cj) = ::dhgen::Real::sincos(q[2]);
-            s[2] = sj;
-            c[2] = cj;
-            let (sj, cj) = ::dhgen::Real::sincos(q[3]);
-            s[3] = sj;
-            c[3] = cj;
-            let (sj, cj) = ::dhgen::Real::sincos(q[4]);
-            s[4] = sj;
-            c[4] = cj;
-            let (sj, cj) = ::dhgen::Real::sincos(q[5]);
-            s[5] = sj;
-            c[5] = cj;
+            let (sa, ca) = ::dhgen::Real::sincos_array([q[1], q[2], q[3], q[4], q[5]]);
+            s[1] = sa[0];
+            c[1] = ca[0];
+            s[2] = sa[1];
+            c[2] = ca[1];
+            s[3] = sa[2];
+            c[3] = ca[2];
+            s[4] = sa[3];
+            c[4] = ca[3];
+            s[5] = sa[4];
+            c[5] = ca[4];
             State { c, s, d }
         }
         #[inline]
@@ -7711,18 +7666,15 @@ pub mod puma560 {
             let mut c = [T::zero(); DOF];
             let mut s = [T::zero(); DOF];
             let d = [T::zero(); DOF];
-            let (sj, cj) = ::dhgen::Real::sincos(q[1]);
-            s[1] = sj;
-            c[1] = cj;
-            let (sj, cj) = ::dhgen::Real::sincos(q[2]);
-            s[2] = sj;
-            c[2] = cj;
-            let (sj, cj) = ::dhgen::Real::sincos(q[3]);
-            s[3] = sj;
-            c[3] = cj;
-            let (sj, cj) = ::dhgen::Real::sincos(q[4]);
-            s[4] = sj;
-            c[4] = cj;
+            let (sa, ca) = ::dhgen::Real::sincos_array([q[1], q[2], q[3], q[4]]);
+            s[1] = sa[0];
+            c[1] = ca[0];
+            s[2] = sa[1];
+            c[2] = ca[1];
+            s[3] = sa[2];
+            c[3] = ca[2];
+            s[4] = sa[3];
+            c[4] = ca[3];
             State { c, s, d }
         }
         #[inline]
@@ -7731,21 +7683,17 @@ pub mod puma560 {
             let mut c = [T::zero(); DOF];
             let mut s = [T::zero(); DOF];
             let d = [T::zero(); DOF];
-            let (sj, cj) = ::dhgen::Real::sincos(q[0]);
-            s[0] = sj;
-            c[0] = cj;
-            let (sj, cj) = ::dhgen::Real::sincos(q[1]);
-            s[1] = sj;
-            c[1] = cj;
-            let (sj, cj) = ::dhgen::Real::sincos(q[2]);
-            s[2] = sj;
-            c[2] = cj;
-            let (sj, cj) = ::dhgen::Real::sincos(q[3]);
-            s[3] = sj;
-            c[3] = cj;
-            let (sj, cj) = ::dhgen::Real::sincos(q[4]);
-            s[4] = sj;
-            c[4] = cj;
+            let (sa, ca) = ::dhgen::Real::sincos_array([q[0], q[1], q[2], q[3], q[4]]);
+            s[0] = sa[0];
+            c[0] = ca[0];
+            s[1] = sa[1];
+            c[1] = ca[1];
+            s[2] = sa[2];
+            c[2] = ca[2];
+            s[3] = sa[3];
+            c[3] = ca[3];
+            s[4] = sa[4];
+            c[4] = ca[4];
             State { c, s, d }
         }
     }

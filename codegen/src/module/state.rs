@@ -12,25 +12,38 @@ use quote::quote;
 pub fn fill(cx: &Context<'_>, joints: Option<&[usize]>) -> TokenStream {
     let chain = cx.chain;
     let used = |j: &usize| joints.is_none_or(|js| js.contains(j));
-    let lines = chain
-        .bodies
-        .iter()
-        .enumerate()
-        .filter(|(j, _)| used(j))
-        .map(|(j, b)| {
-            let value = if b.offset == 0.0 {
-                quote!(q[#j])
-            } else {
-                let k = constant(b.offset);
-                quote!(q[#j] + #k)
-            };
-            match b.joint {
-                JointKind::Revolute => {
-                    quote!(let (sj, cj) = ::dhgen::Real::sincos(#value); s[#j] = sj; c[#j] = cj;)
-                }
-                JointKind::Prismatic => quote!(d[#j] = #value;),
-            }
-        });
+    let value = |j: usize| {
+        let offset = chain.bodies[j].offset;
+        if offset == 0.0 {
+            quote!(q[#j])
+        } else {
+            let k = constant(offset);
+            quote!(q[#j] + #k)
+        }
+    };
+    let of_kind = |kind: JointKind| {
+        (0..chain.bodies.len())
+            .filter(|j| used(j) && chain.bodies[*j].joint == kind)
+            .collect::<Vec<_>>()
+    };
+    let lengths_lines = of_kind(JointKind::Prismatic).into_iter().map(|j| {
+        let v = value(j);
+        quote!(d[#j] = #v;)
+    });
+    // Every revolute joint's sine and cosine in one call (packs of four for `f64` where the
+    // target has AVX), so that a scalar's are bit for bit a pack lane's.
+    let revolute = of_kind(JointKind::Revolute);
+    let trig_lines = if revolute.is_empty() {
+        quote!()
+    } else {
+        let values = revolute.iter().map(|&j| value(j));
+        let k = 0..revolute.len();
+        quote! {
+            let (sa, ca) = ::dhgen::Real::sincos_array([#(#values),*]);
+            #(s[#revolute] = sa[#k]; c[#revolute] = ca[#k];)*
+        }
+    };
+    let lines = quote!(#trig_lines #(#lengths_lines)*);
     // Only arrays that some line fills are declared `mut` (no warnings in user crates).
     let any = |kind: JointKind| {
         chain
@@ -59,7 +72,7 @@ pub fn fill(cx: &Context<'_>, joints: Option<&[usize]>) -> TokenStream {
         #read
         #trig
         #lengths
-        #(#lines)*
+        #lines
         State { c, s, d }
     }
 }
