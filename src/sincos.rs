@@ -356,6 +356,18 @@ mod tests {
                 assert_eq!(c.0.to_array()[i].to_bits(), ci.to_bits(), "cos {xi}");
             }
         }
+        // Every entry of an array (a full pack and a partial one), bit for bit this sine and
+        // cosine's where they are packed, `libm`'s elsewhere.
+        let x = [0.25, -3.0, 1e6, 7.5, -0.0, 2.0, f64::NAN];
+        let (s, c) = <f64 as crate::Real>::sincos_array(x);
+        for (i, x) in x.into_iter().enumerate() {
+            let (si, ci) = if super::PACKED { sincos(x) } else { libm::sincos(x) };
+            assert_eq!(
+                (s[i].to_bits(), c[i].to_bits()),
+                (si.to_bits(), ci.to_bits()),
+                "{x}"
+            );
+        }
         // Signed zero and the cases beyond the range (libm's).
         assert_eq!(sincos(-0.0f64).0.to_bits(), (-0.0f64).to_bits());
         for x in [f64::NAN, f64::INFINITY, 1e6, -3e9, f64::MAX] {
