@@ -6,13 +6,15 @@
 # -O3 -march=native and Pinocchio's templates instantiated here (about 4 minutes).
 # `--callgrind` instead counts instructions per call (exact, load-independent): compiled for
 # baseline x86-64 like `cargo build --release` (valgrind has no AVX-512), each function called
-# 1,000 times under callgrind, its inclusive count divided by its calls.
+# 1,000 times under callgrind, its inclusive count divided by its calls;
+# `--callgrind -march=x86-64-v3` counts the build for AVX2 and FMA instead (to compare with
+# dhgen built with `RUSTFLAGS="-C target-cpu=x86-64-v3"`).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 out="${TMPDIR:-/tmp}/dhgen-pinocchio-bench"
 source scripts/pinocchio_cxx.sh
 march=-march=native
-[[ "${1:-}" == --callgrind ]] && march=
+[[ "${1:-}" == --callgrind ]] && march="${2:-}"
 pinocchio_cxx benches/pinocchio/derivatives.cpp "$out/bench" -O3 $march
 if [[ "${1:-}" != --callgrind ]]; then
     "$out/bench" "$out/puma560.bin" "$out/panda.bin"
