@@ -34,7 +34,7 @@ pub trait Real: SimdRealField<Element: nalgebra::RealField> + Copy {
 
     /// `(sin x_i, cos x_i)` for every entry of `x`: what a generated `State` computes for its
     /// revolute joints. Entry by entry with [`sincos`](Real::sincos) by default; `f64`, where
-    /// the target has SIMD ([`sincos::PACKED`](crate::sincos::PACKED)), evaluates them four at
+    /// the target has AVX ([`sincos::PACKED`](crate::sincos::PACKED)), evaluates them four at
     /// a time with [`sincos::sincos`](crate::sincos::sincos) on a pack, so that every entry is
     /// bit for bit what a pack's lane computes.
     ///
