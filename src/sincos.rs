@@ -364,7 +364,11 @@ mod tests {
         let x = [0.25, -3.0, 1e6, 7.5, -0.0, 2.0, f64::NAN];
         let (s, c) = <f64 as crate::Real>::sincos_array(x);
         for (i, x) in x.into_iter().enumerate() {
-            let (si, ci) = if super::PACKED { sincos(x) } else { libm::sincos(x) };
+            let (si, ci) = if super::PACKED {
+                sincos(x)
+            } else {
+                libm::sincos(x)
+            };
             assert_eq!(
                 (s[i].to_bits(), c[i].to_bits()),
                 (si.to_bits(), ci.to_bits()),
