@@ -359,6 +359,40 @@ mod generated {
     );
     check!(tiago_arm_generated_matches_pinocchio, tiago_arm, "tiago");
     check!(human_arm_generated_matches_pinocchio, human_arm, "human");
+
+    /// A joint whose offset is a quarter turn (the UR5's shoulder lift and wrist 1, from the
+    /// turns of their URDF origins about the joint axis; the Kinova's joints 1 and 3) gets
+    /// the sine and cosine of q turned exactly, not those of the rounded q + offset: at q = 0
+    /// each is exactly 0 or ±1, and everywhere a generated `State` holds ±sin q and ±cos q.
+    #[test]
+    fn quarter_turn_offsets_turn_the_sine_and_cosine_exactly() {
+        use dhgen::Real;
+        macro_rules! exact {
+            ($m:ident, $turned:expr) => {{
+                use $m as r;
+                let home = r::State::new(&[0.0f64; r::DOF]);
+                for x in home.c.iter().chain(&home.s) {
+                    assert!(*x == 0.0 || x.abs() == 1.0, "{}: {x}", stringify!($m));
+                }
+                let q: [f64; r::DOF] = core::array::from_fn(|j| 0.37 + 0.81 * j as f64);
+                let st = r::State::new(&q);
+                let (s, c) = f64::sincos_array(q);
+                let mut turned = 0;
+                for j in 0..r::DOF {
+                    let got = (st.s[j].to_bits(), st.c[j].to_bits());
+                    let turns = [(s[j], c[j]), (c[j], -s[j]), (-s[j], -c[j]), (-c[j], s[j])];
+                    let k = turns
+                        .iter()
+                        .position(|&(a, b)| (a.to_bits(), b.to_bits()) == got)
+                        .unwrap_or_else(|| panic!("{} joint {j}", stringify!($m)));
+                    turned += usize::from(k != 0);
+                }
+                assert_eq!(turned, $turned, "{}", stringify!($m));
+            }};
+        }
+        exact!(ur5_urdf, 2);
+        exact!(kinova_urdf, 2);
+    }
 }
 
 /// The URDF robots converted to DH tables (`dhgen convert --to dh|mdh`: base and tool poses,

@@ -3,7 +3,7 @@
 
 use super::Context;
 use crate::emit::constant;
-use dhgen_model::JointKind;
+use dhgen_model::{Angle, JointKind};
 use proc_macro2::TokenStream;
 use quote::quote;
 
@@ -31,16 +31,41 @@ pub fn fill(cx: &Context<'_>, joints: Option<&[usize]>) -> TokenStream {
         quote!(d[#j] = #v;)
     });
     // Every revolute joint's sine and cosine in one call (packs of four for `f64` where the
-    // target has AVX), so that a scalar's are bit for bit a pack lane's.
+    // target has AVX), so that a scalar's are bit for bit a pack lane's. An offset that is a
+    // quarter turn (as the description reads it: within 1e-12 rad of k·π/2) turns the sine
+    // and cosine of q exactly instead of rounding q + offset: sin(q + π/2) = cos q, and so on.
     let revolute = of_kind(JointKind::Revolute);
     let trig_lines = if revolute.is_empty() {
         quote!()
     } else {
-        let values = revolute.iter().map(|&j| value(j));
-        let k = 0..revolute.len();
+        let quarter = |j: usize| {
+            let offset = chain.bodies[j].offset;
+            (offset != 0.0)
+                .then(|| Angle::from_radians(offset).quarter_turn())
+                .flatten()
+        };
+        let values = revolute.iter().map(|&j| {
+            if quarter(j).is_some() {
+                quote!(q[#j])
+            } else {
+                value(j)
+            }
+        });
+        let stores = revolute.iter().enumerate().map(|(k, &j)| {
+            let (sin, cos) = (quote!(sa[#k]), quote!(ca[#k]));
+            // (cos, sin) of the offset, exactly: sin(q + o) = sin q · cos o + cos q · sin o,
+            // cos(q + o) = cos q · cos o − sin q · sin o.
+            let (sj, cj) = match quarter(j) {
+                None | Some((1, 0)) => (sin, cos),
+                Some((0, 1)) => (cos, quote!(-#sin)),
+                Some((-1, 0)) => (quote!(-#sin), quote!(-#cos)),
+                Some(_) => (quote!(-#cos), sin),
+            };
+            quote!(s[#j] = #sj; c[#j] = #cj;)
+        });
         quote! {
             let (sa, ca) = ::dhgen::Real::sincos_array([#(#values),*]);
-            #(s[#revolute] = sa[#k]; c[#revolute] = ca[#k];)*
+            #(#stores)*
         }
     };
     let lines = quote!(#trig_lines #(#lengths_lines)*);
