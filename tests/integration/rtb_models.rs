@@ -45,7 +45,7 @@ fn worst(robot: &Robot, r: &Value) -> [f64; 6] {
         worst[2] = worst[2].max(error(&robot.mass_matrix(&q[..]), &rows(&s["D"])));
         let g = robot.gravity(&q[..]);
         worst[3] = worst[3].max(error(&vector(g.as_slice()), &rows(&s["g"])));
-        let c = robot.coriolis(&q[..], &qd[..]) * DMatrix::from_column_slice(n, 1, &qd);
+        let c = robot.coriolis(&q[..], &qd[..]) * vector(&qd);
         worst[4] = worst[4].max(error(&c, &rows(&s["Cqd"])));
         let tau = robot.inverse_dynamics(&q[..], &qd[..], &qdd[..]);
         worst[5] = worst[5].max(error(&vector(tau.as_slice()), &rows(&s["tau"])));

@@ -11,7 +11,6 @@ use quote::quote;
 /// (all when `None`), ending in the value.
 pub fn fill(cx: &Context<'_>, joints: Option<&[usize]>) -> TokenStream {
     let chain = cx.chain;
-    let used = |j: &usize| joints.is_none_or(|js| js.contains(j));
     let value = |j: usize| {
         let offset = chain.bodies[j].offset;
         if offset == 0.0 {
@@ -23,69 +22,62 @@ pub fn fill(cx: &Context<'_>, joints: Option<&[usize]>) -> TokenStream {
     };
     let of_kind = |kind: JointKind| {
         (0..chain.bodies.len())
-            .filter(|j| used(j) && chain.bodies[*j].joint == kind)
+            .filter(|j| joints.is_none_or(|js| js.contains(j)) && chain.bodies[*j].joint == kind)
             .collect::<Vec<_>>()
     };
-    let lengths_lines = of_kind(JointKind::Prismatic).into_iter().map(|j| {
+    let (revolute, prismatic) = (of_kind(JointKind::Revolute), of_kind(JointKind::Prismatic));
+    let lengths_lines = prismatic.iter().map(|&j| {
         let v = value(j);
         quote!(d[#j] = #v;)
     });
     // Every revolute joint's sine and cosine in one call (packs of four for `f64` where the
     // target has AVX), so that a scalar's are bit for bit a pack lane's. An offset that is a
-    // quarter turn (as the description reads it: within 1e-12 rad of k·π/2) turns the sine
-    // and cosine of q exactly instead of rounding q + offset: sin(q + π/2) = cos q, and so on.
-    let revolute = of_kind(JointKind::Revolute);
+    // quarter turn (as the description reads it: within 1e-12 rad of k·π/2, zero included)
+    // turns the sine and cosine of q exactly instead of rounding q + offset:
+    // sin(q + o) = sin q · cos o + cos q · sin o, cos(q + o) = cos q · cos o − sin q · sin o.
     let trig_lines = if revolute.is_empty() {
         quote!()
     } else {
-        let quarter = |j: usize| {
-            let offset = chain.bodies[j].offset;
-            (offset != 0.0)
-                .then(|| Angle::from_radians(offset).quarter_turn())
-                .flatten()
-        };
-        let values = revolute.iter().map(|&j| {
-            if quarter(j).is_some() {
+        let turns: Vec<_> = revolute
+            .iter()
+            .map(|&j| Angle::from_radians(chain.bodies[j].offset).quarter_turn())
+            .collect();
+        let values = revolute.iter().zip(&turns).map(|(&j, turn)| {
+            if turn.is_some() {
                 quote!(q[#j])
             } else {
                 value(j)
             }
         });
-        let stores = revolute.iter().enumerate().map(|(k, &j)| {
-            let (sin, cos) = (quote!(sa[#k]), quote!(ca[#k]));
-            // (cos, sin) of the offset, exactly: sin(q + o) = sin q · cos o + cos q · sin o,
-            // cos(q + o) = cos q · cos o − sin q · sin o.
-            let (sj, cj) = match quarter(j) {
-                None | Some((1, 0)) => (sin, cos),
-                Some((0, 1)) => (cos, quote!(-#sin)),
-                Some((-1, 0)) => (quote!(-#sin), quote!(-#cos)),
-                Some(_) => (quote!(-#cos), sin),
-            };
-            quote!(s[#j] = #sj; c[#j] = #cj;)
-        });
+        let stores = revolute
+            .iter()
+            .zip(&turns)
+            .enumerate()
+            .map(|(k, (&j, turn))| {
+                let (sin, cos) = (quote!(sa[#k]), quote!(ca[#k]));
+                let (sj, cj) = match turn {
+                    None | Some((1, 0)) => (sin, cos),
+                    Some((0, 1)) => (cos, quote!(-#sin)),
+                    Some((-1, 0)) => (quote!(-#sin), quote!(-#cos)),
+                    Some(_) => (quote!(-#cos), sin),
+                };
+                quote!(s[#j] = #sj; c[#j] = #cj;)
+            });
         quote! {
             let (sa, ca) = ::dhgen::Real::sincos_array([#(#values),*]);
             #(#stores)*
         }
     };
-    let lines = quote!(#trig_lines #(#lengths_lines)*);
     // Only arrays that some line fills are declared `mut` (no warnings in user crates).
-    let any = |kind: JointKind| {
-        chain
-            .bodies
-            .iter()
-            .enumerate()
-            .any(|(j, b)| used(&j) && b.joint == kind)
-    };
-    let trig = if any(JointKind::Revolute) {
-        quote!(let mut c = [T::zero(); DOF]; let mut s = [T::zero(); DOF];)
-    } else {
+    let trig = if revolute.is_empty() {
         quote!(let c = [T::zero(); DOF]; let s = [T::zero(); DOF];)
-    };
-    let lengths = if any(JointKind::Prismatic) {
-        quote!(let mut d = [T::zero(); DOF];)
     } else {
+        quote!(let mut c = [T::zero(); DOF]; let mut s = [T::zero(); DOF];)
+    };
+    let lengths = if prismatic.is_empty() {
         quote!(let d = [T::zero(); DOF];)
+    } else {
+        quote!(let mut d = [T::zero(); DOF];)
     };
     let read = if joints.is_some_and(<[usize]>::is_empty) {
         // A quantity that reads no joint (a constant) ignores the configuration.
@@ -97,7 +89,8 @@ pub fn fill(cx: &Context<'_>, joints: Option<&[usize]>) -> TokenStream {
         #read
         #trig
         #lengths
-        #lines
+        #trig_lines
+        #(#lengths_lines)*
         State { c, s, d }
     }
 }
