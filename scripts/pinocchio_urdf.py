@@ -2,7 +2,7 @@
 """Reference values for the URDF input, from Pinocchio, for tests/data/urdf_<name>.json.
 
 For each robot of ROBOTS below, reads tests/data/urdf/<file> and writes tests/data/urdf_<name>.json
-with 20 samples of (q, qd, qdd) and Pinocchio's T, J0, D, Cqd, C, g, tau and fd_qdd.
+with 20 samples (10 for the larger files) of (q, qd, qdd) and Pinocchio's T, J0, D, Cqd, C, g, tau and fd_qdd.
 
 The robot is the serial chain of URDF joints from the root link to the `tip` link:
   - the revolute / continuous / prismatic joints on that path are the robot's joints q, in path
@@ -124,6 +124,51 @@ ROBOTS = [
         "Gepetto team)",
         "tip": "left_hand",
         "seed": 1107,
+    },
+    # Four more from the wild, with fewer samples each (the files are larger than the arms'):
+    {
+        "name": "xarm7",
+        "urdf": "xarm7.urdf",
+        "source_path": "robots/xarm_description/urdf/xarm7.urdf",
+        "licence": "BSD-3-Clause (robots/xarm_description/README.md; upstream "
+        "xArm-Developer/xarm_ros2)",
+        "tip": "link_eef",
+        "seed": 1108,
+        "samples": 10,
+    },
+    {
+        # A humanoid's left arm from the pelvis: three waist joints, then seven; the legs and
+        # the other arm (19 joints) locked.
+        "name": "g1",
+        "urdf": "g1.urdf",
+        "source_path": "robots/g1_description/urdf/g1_29dof_rev_1_0.urdf",
+        "licence": "BSD-3-Clause (robots/g1_description/README.md; upstream "
+        "unitreerobotics/unitree_ros g1_description)",
+        "tip": "left_wrist_yaw_link",
+        "seed": 1109,
+        "samples": 10,
+    },
+    {
+        # One arm of a four-legged, wheeled, two-armed robot.
+        "name": "centauro",
+        "urdf": "centauro.urdf",
+        "source_path": "robots/centauro_description/urdf/centauro.urdf",
+        "licence": "Apache-2.0 (robots/centauro_description/README.md; upstream "
+        "ADVRHumanoids/iit-centauro-ros-pkg)",
+        "tip": "arm1_6",
+        "seed": 1110,
+        "samples": 10,
+    },
+    {
+        # A five-joint arm under a hexacopter's body.
+        "name": "hextilt",
+        "urdf": "hextilt_flying_arm_5.urdf",
+        "source_path": "robots/hextilt_description/urdf/hextilt_flying_arm_5.urdf",
+        "licence": "BSD-2-Clause (robots/hextilt_description/README.md; upstream "
+        "PepMS/hidro_robots)",
+        "tip": "flying_arm_5__gripper",
+        "seed": 1111,
+        "samples": 10,
     },
 ]
 
@@ -464,7 +509,7 @@ def generate(robot):
     def note(k, v):
         worst[k] = max(worst.get(k, 0.0), v)
 
-    for _ in range(SAMPLES):
+    for _ in range(robot.get("samples", SAMPLES)):
         q = sample_q(rng, u, chain)
         qd = rng.uniform(-2, 2, n)
         qdd = rng.uniform(-2, 2, n)
@@ -574,7 +619,7 @@ def generate(robot):
         "gravity": GRAVITY,
         "friction_included": False,
         "joint_dynamics": joint_dynamics,
-        "sampling": {"seed": robot["seed"], "samples": SAMPLES,
+        "sampling": {"seed": robot["seed"], "samples": robot.get("samples", SAMPLES),
                      "q": "uniform in [lower, upper]; uniform in [-pi, pi] for continuous joints",
                      "qd": [-2.0, 2.0], "qdd": [-2.0, 2.0]},
         "conventions": RANDOM_CONVENTIONS if robot.get("generated") else CONVENTIONS,

@@ -51,3 +51,7 @@ dhgen::robot!(pub mod random_urdf_2 = "tests/data/urdf/random_2.urdf", tip = "li
 dhgen::robot!(pub mod random_urdf_3 = "tests/data/urdf/random_3.urdf", tip = "tool");
 dhgen::robot!(pub mod tiago_arm = "tests/data/urdf/tiago.urdf", tip = "arm_7_link");
 dhgen::robot!(pub mod human_arm = "tests/data/urdf/human.urdf", tip = "left_hand");
+dhgen::robot!(pub mod xarm7_urdf = "tests/data/urdf/xarm7.urdf", tip = "link_eef");
+dhgen::robot!(pub mod g1_arm = "tests/data/urdf/g1.urdf", tip = "left_wrist_yaw_link");
+dhgen::robot!(pub mod centauro_arm = "tests/data/urdf/centauro.urdf", tip = "arm1_6");
+dhgen::robot!(pub mod hextilt_arm = "tests/data/urdf/hextilt_flying_arm_5.urdf", tip = "flying_arm_5__gripper");

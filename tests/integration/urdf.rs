@@ -215,6 +215,21 @@ fn tiago_arm_runtime_matches_pinocchio() {
     check_runtime("tiago", 0.0);
 }
 
+/// Four more files from the wild (10 samples each): the xArm 7 (its quarter turns written
+/// `1.5708`, 3.7e-6 rad short, read as written), a humanoid's left arm from the pelvis (Unitree
+/// G1: three waist joints and seven arm joints, shoulders tilted by 0.279 rad, the legs and
+/// the other arm locked), one arm of a wheeled quadruped (Centauro: a torso yaw and six arm
+/// joints, mounted at 10° and −30°, legs, wheels, head and the other arm locked) and a
+/// five-joint arm under a hexacopter, mounted at roll and pitch `1.5708` (next to the RPY
+/// gimbal case).
+#[test]
+fn robots_from_the_wild_runtime_match_pinocchio() {
+    for name in ["xarm7", "g1", "centauro", "hextilt"] {
+        check_runtime(name, UrdfOptions::DEFAULT_SNAP);
+        check_runtime(name, 0.0);
+    }
+}
+
 /// A human model's arm from the root to the left hand: 13 joints, its spherical joints
 /// written as three revolute ones through virtual links with no `<inertial>`, read as massless
 /// (as Pinocchio reads them) and listed.
@@ -277,8 +292,8 @@ fn unphysical_inertials_are_errors_only_where_a_joint_moves_them() {
 mod generated {
     use super::{Worst, data, friction, qdd_matches, robot, vector};
     use crate::catalogue::{
-        baxter_left, double_pendulum_urdf, human_arm, kinova_urdf, panda_urdf, random_urdf_2,
-        random_urdf_3, tiago_arm, ur5_urdf,
+        baxter_left, centauro_arm, double_pendulum_urdf, g1_arm, hextilt_arm, human_arm,
+        kinova_urdf, panda_urdf, random_urdf_2, random_urdf_3, tiago_arm, ur5_urdf, xarm7_urdf,
     };
     use dhgen::model::urdf::UrdfOptions;
     use nalgebra::DMatrix;
@@ -359,6 +374,18 @@ mod generated {
     );
     check!(tiago_arm_generated_matches_pinocchio, tiago_arm, "tiago");
     check!(human_arm_generated_matches_pinocchio, human_arm, "human");
+    check!(xarm7_generated_matches_pinocchio, xarm7_urdf, "xarm7");
+    check!(g1_arm_generated_matches_pinocchio, g1_arm, "g1");
+    check!(
+        centauro_arm_generated_matches_pinocchio,
+        centauro_arm,
+        "centauro"
+    );
+    check!(
+        hextilt_arm_generated_matches_pinocchio,
+        hextilt_arm,
+        "hextilt"
+    );
 
     /// A joint whose offset is a quarter turn (the UR5's shoulder lift and wrist 1, from the
     /// turns of their URDF origins about the joint axis; the Kinova's joints 1 and 3) gets
