@@ -717,6 +717,182 @@ impl<'c, R: Ring> RingChain<'c, R> {
         self.coriolis_from_terms(&t, &t.coriolis_vectors())
     }
 
+    /// C(q, q̇) row by row by Echeandia and Wensing's O(n²) recursion in joint frames (as
+    /// [`mass_matrix`](RingChain::mass_matrix) runs the composite-rigid-body algorithm):
+    /// each body's velocity, momentum and Coriolis factor `B = [[P, 0], [−l×, 0]]` in its own
+    /// frame, the composites `I^C_j` and `B^C_j` carried tip to base through the joint
+    /// transforms (`l' = R l`, `P' = R P Rᵀ + (p·l') 1 − l' pᵀ`: `B` transforms as `X* B X⁻¹`
+    /// and keeps its form), then per joint j the forces `I^C_j Ṡ_j + B^C_j S_j`, `I^C_j S_j`
+    /// and the moment `B^C_jᵀ S_j` carried down the chain, where `S_k` is the local z axis and
+    /// `Ṡ_k = v_k × S_k` has four non-zero entries: `C_kj = S_k·(I^C_j Ṡ_j + B^C_j S_j)` for
+    /// `k ≤ j`, `C_jk = Ṡ_k·(I^C_j S_j) + S_k·(B^C_jᵀ S_j)` for `k < j`. In joint frames the
+    /// axes and the bodies' constant inertias are sparse, which the root frame's
+    /// [`coriolis_matrix`](RingChain::coriolis_matrix) gives up to avoid carrying vectors.
+    pub fn coriolis_matrix_local(&self, qd: &[R]) -> Vec<Vec<R>> {
+        self.coriolis_local(qd, None).0
+    }
+
+    /// [`inverse_dynamics_derivatives`](RingChain::inverse_dynamics_derivatives) (`[∂τ/∂q,
+    /// C]`) in joint frames, beside [`coriolis_matrix_local`](RingChain::coriolis_matrix_local):
+    /// the vectors `I^C_i S_i` and `B^C_iᵀ S_i` it carries down the chain for C are those
+    /// `∂τ_i/∂q_j = (I^C_i S_i)·Ψ̈_j + 2 (B^C_iᵀ S_i)·Ψ̇_j` (`i ≥ j`) needs in frame j, and
+    /// for `i < j` one more force, `S_j ×* F_j + I^C_j Ψ̈_j + 2 B^C_j Ψ̇_j`, is carried down
+    /// from frame j. The accelerations start from the base's, upwards, instead of gravity.
+    pub fn inverse_dynamics_derivatives_local(&self, qd: &[R], qdd: &[R]) -> [Vec<Vec<R>>; 2] {
+        let (c, dq) = self.coriolis_local(qd, Some(qdd));
+        [dq.expect("asked for with the accelerations"), c]
+    }
+
+    /// C(q, q̇) in joint frames, and with `qdd`, ∂τ/∂q too.
+    fn coriolis_local(&self, qd: &[R], qdd: Option<&[R]>) -> (Vec<Vec<R>>, Option<Vec<Vec<R>>>) {
+        let n = self.dof();
+        let z = || k::<R>(0.0);
+        let zero_sv = || -> Sv<R> { ([z(), z(), z()], [z(), z(), z()]) };
+        let axis = |j: usize| -> Sv<R> {
+            match self.kinds[j] {
+                JointKind::Revolute => ([z(), z(), k(1.0)], [z(), z(), z()]),
+                JointKind::Prismatic => ([z(), z(), z()], [z(), z(), k(1.0)]),
+            }
+        };
+        // A motion in frame j − 1 (the root for j = 0) carried into frame j.
+        let outward = |j: usize, (w, u): &Sv<R>| -> Sv<R> {
+            let t = &self.t[j];
+            (rot_t(t, w), rot_t(t, &add3(u, &cross(w, &t.p))))
+        };
+        // A force (moment, force) in frame i + 1 carried into frame i.
+        let carry = |i: usize, (nn, f): &Sv<R>| -> Sv<R> {
+            let t = &self.t[i + 1];
+            let f2 = rot(t, f);
+            (add3(&rot(t, nn), &cross(&t.p, &f2)), f2)
+        };
+        // Outward: velocities, Ṡ_j, each body's P and l in its own frame, and with the
+        // accelerations, Ψ̈_j and each body's force.
+        let mut v = zero_sv();
+        let mut a: Sv<R> = ([z(), z(), z()], self.gravity.clone().map(|x| -x));
+        let mut rates = Vec::with_capacity(n);
+        let mut factors: Vec<([[R; 3]; 3], V3<R>)> = Vec::with_capacity(n);
+        let mut psi_dd = Vec::with_capacity(n);
+        let mut forces = Vec::with_capacity(n);
+        for j in 0..n {
+            let s = axis(j);
+            let before = outward(j, &v);
+            v = add_sv(&before, &scale_sv(&qd[j], &s));
+            let rate = motion_cross(&v, &s);
+            let b = &self.bodies[j];
+            let momentum = b.momentum(&v);
+            if let Some(qdd) = qdd {
+                a = outward(j, &a);
+                psi_dd.push(add_sv(&motion_cross(&a, &s), &motion_cross(&before, &rate)));
+                a = add_sv(
+                    &add_sv(&a, &scale_sv(&qdd[j], &s)),
+                    &scale_sv(&qd[j], &rate),
+                );
+                forces.push(add_sv(&b.momentum(&a), &force_cross(&v, &momentum)));
+            }
+            let (w, u) = &v;
+            let (nn, l) = momentum;
+            // P = ½(İ_ωω − n̂), İ_ωω = ŵĪ − Īŵ + 2(h·u)1 − u hᵀ − h uᵀ.
+            let hu = dot(&b.h, u);
+            let kw: [V3<R>; 3] = core::array::from_fn(|c| {
+                let col = [b.i[0][c].clone(), b.i[1][c].clone(), b.i[2][c].clone()];
+                cross(w, &col)
+            });
+            let nhat = skew(&nn);
+            let half = k::<R>(0.5);
+            let p = core::array::from_fn(|r| {
+                core::array::from_fn(|c| {
+                    let mut x = kw[c][r].clone() + kw[r][c].clone()
+                        - u[r].clone() * b.h[c].clone()
+                        - b.h[r].clone() * u[c].clone();
+                    if r == c {
+                        x = x + k::<R>(2.0) * hu.clone();
+                    }
+                    half.clone() * (x - nhat[r][c].clone())
+                })
+            });
+            rates.push(rate);
+            factors.push((p, l));
+        }
+        // Inward: composite inertias, Coriolis factors and forces, each in its joint's frame.
+        let inertias = self.composites();
+        for j in (0..n - 1).rev() {
+            let t = &self.t[j + 1];
+            let (pc, lc) = factors[j + 1].clone();
+            let l = rot(t, &lc);
+            // R P Rᵀ, by columns of P Rᵀ: (P Rᵀ)_{:,c} = P (row c of R).
+            let prt: [V3<R>; 3] = core::array::from_fn(|c| mat_vec(&pc, &t.r[c]));
+            let pl = dot(&t.p, &l);
+            let carried: [[R; 3]; 3] = core::array::from_fn(|r| {
+                core::array::from_fn(|c| {
+                    let rpr = t.r[r][0].clone() * prt[c][0].clone()
+                        + t.r[r][1].clone() * prt[c][1].clone()
+                        + t.r[r][2].clone() * prt[c][2].clone();
+                    let mut x = rpr - l[r].clone() * t.p[c].clone();
+                    if r == c {
+                        x = x + pl.clone();
+                    }
+                    x
+                })
+            });
+            let (p, own) = &mut factors[j];
+            *p = core::array::from_fn(|r| {
+                core::array::from_fn(|c| p[r][c].clone() + carried[r][c].clone())
+            });
+            *own = add3(own, &l);
+            if qdd.is_some() {
+                let fc = carry(j, &forces[j + 1]);
+                forces[j] = add_sv(&forces[j], &fc);
+            }
+        }
+        let mut c = vec![vec![z(); n]; n];
+        let mut dq = qdd.map(|_| vec![vec![z(); n]; n]);
+        let two = || k::<R>(2.0);
+        for j in 0..n {
+            let s = axis(j);
+            let (p, l) = &factors[j];
+            let ic = &inertias[j];
+            // B^C S = (P ω, ω × l), the moment of Bᵀ S = Pᵀ ω + l × u; B^C Ψ̇ likewise.
+            let b_times = |(w, _): &Sv<R>| (mat_vec(p, w), cross(w, l));
+            let pt = core::array::from_fn(|r| {
+                p[0][r].clone() * s.0[0].clone()
+                    + p[1][r].clone() * s.0[1].clone()
+                    + p[2][r].clone() * s.0[2].clone()
+            });
+            let mut f1 = add_sv(&ic.momentum(&rates[j]), &b_times(&s));
+            let mut f2 = ic.momentum(&s);
+            let mut f3 = add3(&pt, &cross(l, &s.1));
+            // For ∂τ_i/∂q_j, i < j: y_j = S_j ×* F_j + I^C_j Ψ̈_j + 2 B^C_j Ψ̇_j.
+            let mut y = dq.as_ref().map(|_| {
+                let bp = b_times(&rates[j]);
+                add_sv(
+                    &add_sv(&force_cross(&s, &forces[j]), &ic.momentum(&psi_dd[j])),
+                    &scale_sv(&two(), &bp),
+                )
+            });
+            c[j][j] = motion_dot(&s, &f1);
+            let derivative = |f2: &Sv<R>, f3: &V3<R>, m: usize| {
+                motion_dot(&psi_dd[m], f2) + two() * dot(&rates[m].0, f3)
+            };
+            if let Some(dq) = &mut dq {
+                dq[j][j] = derivative(&f2, &f3, j);
+            }
+            for kk in (0..j).rev() {
+                f1 = carry(kk, &f1);
+                f2 = carry(kk, &f2);
+                f3 = rot(&self.t[kk + 1], &f3);
+                let sk = axis(kk);
+                c[kk][j] = motion_dot(&sk, &f1);
+                c[j][kk] = motion_dot(&rates[kk], &f2) + dot(&sk.0, &f3);
+                if let (Some(dq), Some(yv)) = (&mut dq, &mut y) {
+                    *yv = carry(kk, yv);
+                    dq[j][kk] = derivative(&f2, &f3, kk);
+                    dq[kk][j] = motion_dot(&sk, yv);
+                }
+            }
+        }
+        (c, dq)
+    }
+
     /// Every joint frame in the coordinates `at` (joint m moves about their z axis through
     /// their origin).
     pub fn joint_frames_in(&self, at: Coordinates) -> Vec<Frame<R>> {
@@ -941,6 +1117,16 @@ impl<'c, R: Ring> RingChain<'c, R> {
     pub fn joint_frames(&self) -> Vec<Frame<R>> {
         self.joint_frames_from(Frame::identity())
     }
+}
+
+/// `â`, the matrix of `a ×`.
+fn skew<R: Ring>(a: &V3<R>) -> [[R; 3]; 3] {
+    let z = || k::<R>(0.0);
+    [
+        [z(), -a[2].clone(), a[1].clone()],
+        [a[2].clone(), z(), -a[0].clone()],
+        [-a[1].clone(), a[0].clone(), z()],
+    ]
 }
 
 fn mat_vec<R: Ring>(m: &[[R; 3]; 3], v: &V3<R>) -> V3<R> {

@@ -66,10 +66,13 @@ fn coriolis_recursion_equals_the_runtime() {
     for (name, robot, q, qd, _) in arms() {
         let chain = robot.chain();
         let want = robot.coriolis(&q[..], &qd[..]);
+        let rc = RingChain::new(chain, &Numbers(chain, &q));
         for at in coordinates(robot.dof()) {
-            let c = RingChain::new(chain, &Numbers(chain, &q)).coriolis_matrix_in(at, &qd);
+            let c = rc.coriolis_matrix_in(at, &qd);
             worst = worst.max(matches(&format!("{name} in {at:?}: C"), &c, &want));
         }
+        let c = rc.coriolis_matrix_local(&qd);
+        worst = worst.max(matches(&format!("{name} in joint frames: C"), &c, &want));
     }
     println!("Echeandia–Wensing over the ring = runtime C to {worst:.1e}");
 }
@@ -99,8 +102,9 @@ fn mass_matrix_recursions_equal_the_runtime() {
     println!("composite-rigid-body recursions over the ring = runtime D to {worst:.1e}");
 }
 
-/// The closed-form ∂τ/∂q (Carpentier–Mansard in root coordinates) against the runtime's
-/// forward-mode tangents of Newton–Euler, a different algorithm; and the C it returns with it.
+/// The closed-form ∂τ/∂q (Carpentier–Mansard in one frame's coordinates and in joint frames)
+/// against the runtime's forward-mode tangents of Newton–Euler, a different algorithm; and the
+/// C it returns with it.
 #[test]
 fn inverse_dynamics_derivatives_in_closed_form_equal_the_runtime() {
     let mut worst = 0.0f64;
@@ -118,6 +122,11 @@ fn inverse_dynamics_derivatives_in_closed_form_equal_the_runtime() {
             ));
             worst = worst.max(matches(&format!("{name} in {at:?}: C"), &c, &want_c));
         }
+        let [dq, c] = RingChain::new(chain, &Numbers(chain, &q))
+            .inverse_dynamics_derivatives_local(&qd, &qdd);
+        let at = "in joint frames";
+        worst = worst.max(matches(&format!("{name} {at}: dtau/dq"), &dq, &want_dq));
+        worst = worst.max(matches(&format!("{name} {at}: C"), &c, &want_c));
     }
     println!("closed-form dtau/dq over the ring = runtime tangents to {worst:.1e}");
 }

@@ -84,9 +84,13 @@ pub fn coriolis_from(n: usize, graph: &SharedGraph, c: &[E]) -> Vec<E> {
         .collect()
 }
 
-/// `C(q, q̇)` row-major by Echeandia and Wensing's algorithm in root-frame coordinates
+/// `C(q, q̇)` row-major by Echeandia and Wensing's O(n²) algorithm, the cheapest of its
+/// forms: in one frame's coordinates, the root frame's
 /// ([`RingChain::coriolis_matrix`](crate::chain::RingChain::coriolis_matrix), the runtime
-/// path's algorithm): the candidate for arms without structure.
+/// path's algorithm: the candidate for arms without structure) or a joint frame's, or in joint
+/// frames ([`RingChain::coriolis_matrix_local`](crate::chain::RingChain::coriolis_matrix_local),
+/// where the structure of the joint transforms and of the bodies' inertias stays visible:
+/// Panda 2,070 → 1,800 operations, industrial 12-joint arm 4,023 → 3,589).
 pub fn coriolis_spatial(chain: ChainRef<'_>) -> (SharedGraph, Vec<E>) {
     coriolis_spatial_with(chain, |_, _| {})
 }
@@ -98,6 +102,8 @@ pub(crate) fn coriolis_spatial_with<'c>(
     adjust: impl Fn(&mut crate::chain::RingChain<'c, E>, &SharedGraph),
 ) -> (SharedGraph, Vec<E>) {
     let candidates = super::coordinates(chain)
+        .map(Some)
+        .chain(std::iter::once(None))
         .map(|at| {
             let graph = SharedGraph::default();
             let qd: Vec<E> = (0..chain.dof())
@@ -105,12 +111,11 @@ pub(crate) fn coriolis_spatial_with<'c>(
                 .collect();
             let mut rc = super::graph_chain(chain, &graph);
             adjust(&mut rc, &graph);
-            let c = rc
-                .coriolis_matrix_in(at, &qd)
-                .into_iter()
-                .flatten()
-                .collect();
-            (graph, c)
+            let c = match at {
+                Some(at) => rc.coriolis_matrix_in(at, &qd),
+                None => rc.coriolis_matrix_local(&qd),
+            };
+            (graph, c.into_iter().flatten().collect())
         })
         .collect();
     super::cheapest(candidates)

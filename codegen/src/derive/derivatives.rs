@@ -116,15 +116,20 @@ pub fn inverse_dynamics_derivatives(
         twice_c_rows(c, &mut out);
         candidates.push((graph.clone(), out));
     }
-    // The closed form with the C of the same terms, in each coordinate frame.
-    for at in super::coordinates(chain) {
+    // The closed form with the C of the same terms, in each coordinate frame and in joint
+    // frames.
+    for at in super::coordinates(chain)
+        .map(Some)
+        .chain(std::iter::once(None))
+    {
         let graph = SharedGraph::default();
         let sym = |s: fn(usize) -> Sym| (0..n).map(|i| E::sym(&graph, s(i))).collect::<Vec<E>>();
-        let [dq, c] = super::graph_chain(chain, &graph).inverse_dynamics_derivatives(
-            at,
-            &sym(Sym::Qd),
-            &sym(Sym::Qdd),
-        );
+        let rc = super::graph_chain(chain, &graph);
+        let (qd, qdd) = (sym(Sym::Qd), sym(Sym::Qdd));
+        let [dq, c] = match at {
+            Some(at) => rc.inverse_dynamics_derivatives(at, &qd, &qdd),
+            None => rc.inverse_dynamics_derivatives_local(&qd, &qdd),
+        };
         let mut out = dq_rows(&|k, m| dq[k][m].clone());
         twice_c_rows(&c.concat(), &mut out);
         candidates.push((graph, out));
