@@ -35,6 +35,9 @@ dhgen::robot!(pub mod odd_derivatives = "tests/fixtures/odd.toml", derivatives, 
 // τ assembled from small normal forms and differentiated symbolically (the cheapest
 // derivation of its derivatives there).
 dhgen::robot!(pub mod stanford_derivatives = "robots/stanford.toml", derivatives);
+// Echeandia–Wensing's terms and Carpentier–Mansard's closed form in joint frames (the
+// cheapest derivation of C and ∂τ/∂q there), and Cᵀq̇ as the kinetic energy's gradient.
+dhgen::robot!(pub mod panda_derivatives = "robots/panda.toml", derivatives);
 // Past the joints up to which the Cholesky factorisation is unrolled: its looped form, in
 // forward dynamics, D⁻¹ and their derivatives.
 dhgen::robot!(pub mod snake17_derivatives = "tests/fixtures/snake17.toml", derivatives);

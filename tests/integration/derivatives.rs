@@ -6,12 +6,13 @@
 //!
 //! Robots: the PUMA 560, the SCARA (motors and friction), the `odd` fixture (modified DH,
 //! a prismatic joint, base and tool poses, gravity off every axis, products of inertia,
-//! motors, friction), the Stanford arm (derivatives of τ assembled from its normal forms) and the
-//! 17-joint `snake17` (forward dynamics and D⁻¹ by the looped Cholesky factorisation).
+//! motors, friction), the Stanford arm (derivatives of τ assembled from its normal forms), the
+//! Panda (C and ∂τ/∂q in joint frames) and the 17-joint `snake17` (forward dynamics and D⁻¹
+//! by the looped Cholesky factorisation).
 
 use crate::catalogue::{
-    odd_derivatives as odd, puma560_derivatives as puma, scara_derivatives as scara,
-    snake17_derivatives as snake17, stanford_derivatives as stanford,
+    odd_derivatives as odd, panda_derivatives as panda, puma560_derivatives as puma,
+    scara_derivatives as scara, snake17_derivatives as snake17, stanford_derivatives as stanford,
 };
 use crate::support::{fixture, max_abs, runtime};
 use dhgen::Robot;
@@ -146,6 +147,7 @@ derivative_laws!(
     stanford,
     runtime("stanford")
 );
+derivative_laws!(panda_derivatives_obey_the_laws, panda, runtime("panda"));
 
 /// Coulomb friction is constant away from q̇ = 0 and not differentiable at it; the generated
 /// derivative takes its subgradient 0 there too, so ∂τ/∂q̇ at a joint at rest is the smooth
@@ -267,7 +269,7 @@ fn dual_numbers_through_generated_code_give_the_same_derivatives() {
 
 /// Pinocchio's `computeRNEADerivatives` and `computeABADerivatives` on the PUMA 560 and the
 /// Panda (tests/data/derivatives_*.json, made by scripts/pinocchio_derivatives.py): the
-/// generated PUMA 560 and the runtime path on both agree to 1e-9.
+/// generated modules and the runtime path agree to 1e-9 on both.
 #[test]
 fn derivatives_match_pinocchio() {
     fn matrix(v: &serde_json::Value) -> DMatrix<f64> {
@@ -305,13 +307,21 @@ fn derivatives_match_pinocchio() {
             let (rq, rqd) = robot.inverse_dynamics_derivatives(&q, &qd, &qdd);
             let (fq, fqd, minv) = robot.forward_dynamics_derivatives(&q, &qd, &tau).unwrap();
             let mut ours = vec![rq, rqd, fq, fqd, minv];
+            macro_rules! generated {
+                ($m:ident) => {{
+                    const N: usize = $m::DOF;
+                    let a = |v: &[f64]| -> [f64; N] { v.try_into().unwrap() };
+                    let (gq, gqd) = $m::inverse_dynamics_derivatives(&a(&q), &a(&qd), &a(&qdd));
+                    let (hq, hqd, hminv) =
+                        $m::forward_dynamics_derivatives(&a(&q), &a(&qd), &a(&tau)).unwrap();
+                    let dynamic = |m: SMatrix<f64, N, N>| DMatrix::from_fn(N, N, |r, c| m[(r, c)]);
+                    ours.extend([gq, gqd, hq, hqd, hminv].map(dynamic));
+                }};
+            }
             if name == "puma560" {
-                let a = |v: &[f64]| -> [f64; 6] { v.try_into().unwrap() };
-                let (gq, gqd) = puma::inverse_dynamics_derivatives(&a(&q), &a(&qd), &a(&qdd));
-                let (hq, hqd, hminv) =
-                    puma::forward_dynamics_derivatives(&a(&q), &a(&qd), &a(&tau)).unwrap();
-                let dynamic = |m: SMatrix<f64, 6, 6>| DMatrix::from_fn(6, 6, |r, c| m[(r, c)]);
-                ours.extend([gq, gqd, hq, hqd, hminv].map(dynamic));
+                generated!(puma);
+            } else {
+                generated!(panda);
             }
             for (i, m) in ours.iter().enumerate() {
                 let (what, reference) = &expected[i % 5];

@@ -9,7 +9,8 @@
 //!   whichever is cheapest, O(n²) operations;
 //! - Ḋ: one lane along q̇ over the composite-rigid-body recursion, or C + Cᵀ from the O(n²)
 //!   Coriolis recursion, whichever is cheaper;
-//! - Cᵀq̇ from that same C.
+//! - Cᵀq̇ from that same C, or as the gradient of the kinetic energy, ∂T/∂q (for the
+//!   Christoffel-consistent C the two are equal), by n lanes of dual numbers.
 //!
 //! Coulomb friction `coulomb·sign(q̇)` is not differentiable at q̇ = 0 and constant elsewhere:
 //! its derivative is taken as 0 everywhere (the subgradient at 0 that is also the derivative
@@ -249,13 +250,39 @@ pub fn mass_matrix_rate(
     super::cheapest(candidates)
 }
 
-/// Cᵀ(q, q̇) q̇ (entry j is Σ_k C_kj q̇_k), the cheapest over the derivations of C in
-/// `coriolis`.
+/// Cᵀ(q, q̇) q̇ (entry j is Σ_k C_kj q̇_k), the cheapest of: contracted from each derivation
+/// of C in `coriolis`, or the gradient ∂T/∂q of the kinetic energy `T = ½ q̇ᵀ D q̇`, which
+/// it equals for the Christoffel-consistent C (Panda 1,888 → 1,177 operations, PUMA 560
+/// 651 → 259).
 pub fn coriolis_transpose_qd(
     chain: ChainRef<'_>,
     coriolis: &[(SharedGraph, Vec<E>)],
 ) -> (SharedGraph, Vec<E>) {
     let n = chain.dof();
+    // Σ_k C_kj q̇_k = Σ_ik c_ijk q̇_i q̇_k = ½ q̇ᵀ (∂D/∂q_j) q̇ (the symbols' other two terms
+    // cancel in the double sum): the gradient of the kinetic energy, by n lanes of dual
+    // numbers over its recursion; zero along a joint the dynamics cannot see.
+    let gradient = {
+        let graph = SharedGraph::default();
+        let qd: Vec<Dual> = (0..n)
+            .map(|i| Dual {
+                v: E::sym(&graph, Sym::Qd(i)),
+                d: Rc::from(Vec::new()),
+            })
+            .collect();
+        let t = RingChain::new(chain, &DualSymbols { graph: &graph, n }).kinetic_energy(&qd);
+        let e: Vec<E> = (0..n)
+            .map(|j| {
+                if chain.dynamics_ignore(j) {
+                    E::K(0.0)
+                } else {
+                    t.partial(j)
+                }
+            })
+            .collect();
+        let e = super::without_ignored_joints(chain, &graph, &e);
+        (graph, e)
+    };
     let candidates = coriolis
         .iter()
         .map(|(graph, c)| {
@@ -269,6 +296,7 @@ pub fn coriolis_transpose_qd(
                 .collect();
             (graph.clone(), e)
         })
+        .chain(std::iter::once(gradient))
         .collect();
     super::cheapest(candidates)
 }
