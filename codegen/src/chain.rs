@@ -185,6 +185,41 @@ impl<R: Ring> MassMoments<R> {
         )
     }
 
+    /// The ωω block of the rate `v ×* I − I v ×` of the body's spatial inertia moving with
+    /// the motion `(ω, u)`: `ω̂Ī − Īω̂ + 2(h·u)1 − u hᵀ − h uᵀ`, symmetric (`Īω̂ = −(ω̂Ī)ᵀ`
+    /// for a symmetric `Ī`), so six entries are computed.
+    pub fn inertia_rate(&self, (w, u): &(V3<R>, V3<R>)) -> [[R; 3]; 3] {
+        let hu = dot(&self.h, u);
+        // kw[c] = ω̂ Ī_col c, so (ω̂Ī)_rc = kw[c][r].
+        let kw: [V3<R>; 3] = core::array::from_fn(|c| {
+            let col = [
+                self.i[0][c].clone(),
+                self.i[1][c].clone(),
+                self.i[2][c].clone(),
+            ];
+            cross(w, &col)
+        });
+        let upper: [[Option<R>; 3]; 3] = core::array::from_fn(|r| {
+            core::array::from_fn(|c| {
+                (r <= c).then(|| {
+                    let mut x = kw[c][r].clone() + kw[r][c].clone()
+                        - u[r].clone() * self.h[c].clone()
+                        - self.h[r].clone() * u[c].clone();
+                    if r == c {
+                        x = x + k::<R>(2.0) * hu.clone();
+                    }
+                    x
+                })
+            })
+        });
+        core::array::from_fn(|r| {
+            core::array::from_fn(|c| {
+                let (a, b) = if r <= c { (r, c) } else { (c, r) };
+                upper[a][b].clone().expect("the upper triangle is computed")
+            })
+        })
+    }
+
     /// Two bodies' moments about the same origin, combined.
     pub fn plus(&self, o: &MassMoments<R>) -> MassMoments<R> {
         MassMoments {
@@ -595,35 +630,8 @@ impl<'c, R: Ring> RingChain<'c, R> {
                 add3(&velocity.0, &scale3(rate, &axis.0)),
                 add3(&velocity.1, &scale3(rate, &axis.1)),
             );
-            let (w, u) = &velocity;
             rates.push(motion_cross(&velocity, axis));
-            // İ_ωω = ŵK − Kŵ + 2(h·u)1 − u hᵀ − h uᵀ is symmetric (Kŵ = −(ŵK)ᵀ for a
-            // symmetric K): six entries.
-            let hu = dot(&b.h, u);
-            // kw[c] = ŵ K_col c, so (ŵK)_rc = kw[c][r].
-            let kw: [V3<R>; 3] = core::array::from_fn(|c| {
-                let col = [b.i[0][c].clone(), b.i[1][c].clone(), b.i[2][c].clone()];
-                cross(w, &col)
-            });
-            let upper: [[Option<R>; 3]; 3] = core::array::from_fn(|r| {
-                core::array::from_fn(|c| {
-                    (r <= c).then(|| {
-                        let mut x = kw[c][r].clone() + kw[r][c].clone()
-                            - u[r].clone() * b.h[c].clone()
-                            - b.h[r].clone() * u[c].clone();
-                        if r == c {
-                            x = x + k::<R>(2.0) * hu.clone();
-                        }
-                        x
-                    })
-                })
-            });
-            g.push(core::array::from_fn(|r| {
-                core::array::from_fn(|c| {
-                    let (a, b) = if r <= c { (r, c) } else { (c, r) };
-                    upper[a][b].clone().expect("the upper triangle is computed")
-                })
-            }));
+            g.push(b.inertia_rate(&velocity));
             momenta.push(b.momentum(&velocity));
             velocities.push(velocity.clone());
         }
@@ -789,26 +797,13 @@ impl<'c, R: Ring> RingChain<'c, R> {
                 );
                 forces.push(add_sv(&b.momentum(&a), &force_cross(&v, &momentum)));
             }
-            let (w, u) = &v;
             let (nn, l) = momentum;
-            // P = ½(İ_ωω − n̂), İ_ωω = ŵĪ − Īŵ + 2(h·u)1 − u hᵀ − h uᵀ.
-            let hu = dot(&b.h, u);
-            let kw: [V3<R>; 3] = core::array::from_fn(|c| {
-                let col = [b.i[0][c].clone(), b.i[1][c].clone(), b.i[2][c].clone()];
-                cross(w, &col)
-            });
+            // P = ½(İ_ωω − n̂).
+            let g = b.inertia_rate(&v);
             let nhat = skew(&nn);
             let half = k::<R>(0.5);
             let p = core::array::from_fn(|r| {
-                core::array::from_fn(|c| {
-                    let mut x = kw[c][r].clone() + kw[r][c].clone()
-                        - u[r].clone() * b.h[c].clone()
-                        - b.h[r].clone() * u[c].clone();
-                    if r == c {
-                        x = x + k::<R>(2.0) * hu.clone();
-                    }
-                    half.clone() * (x - nhat[r][c].clone())
-                })
+                core::array::from_fn(|c| half.clone() * (g[r][c].clone() - nhat[r][c].clone()))
             });
             rates.push(rate);
             factors.push((p, l));
