@@ -810,7 +810,7 @@ impl<'c, R: Ring> RingChain<'c, R> {
         }
         // Inward: composite inertias, Coriolis factors and forces, each in its joint's frame.
         let inertias = self.composites();
-        for j in (0..n - 1).rev() {
+        for j in (0..n.saturating_sub(1)).rev() {
             let t = &self.t[j + 1];
             let (pc, lc) = factors[j + 1].clone();
             let l = rot(t, &lc);
