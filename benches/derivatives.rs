@@ -6,16 +6,19 @@
 //! `cargo bench --bench derivatives`
 //!
 //! Pinocchio 4.1.0 on the same models and machine (`scripts/pinocchio_bench.sh`: its templates
-//! compiled with `-O3 -march=native`, two rounds alternating with this benchmark, 2026-12-01):
-//! PUMA 560 `rnea` 0.80 µs, `computeRNEADerivatives` 2.76 µs, `computeABADerivatives`
-//! 3.84–3.86 µs; Panda 0.94, 3.25–3.27 and 4.60–4.64 µs. Generated here, the same rounds: PUMA
-//! 560 ∂τ 261 ns, ∂q̈ 505–516 ns; Panda 1.02–1.04 and 1.36–1.37 µs (τ alone: 83 and 135 ns).
-//! Instructions per call (`scripts/pinocchio_bench.sh --callgrind`, `examples/instructions.rs`):
-//! Pinocchio 24,364 and 33,754 (PUMA 560), 29,094 and 40,623 (Panda); generated 3,810 and
-//! 5,847, 9,828 and 13,434. Both for x86-64-v3 (`--callgrind -march=x86-64-v3`, and
-//! `RUSTFLAGS="-C target-cpu=x86-64-v3"` here): Pinocchio 20,431 and 29,907, 24,394 and 35,002;
-//! generated 2,680 and 4,251, 6,997 and 9,739; in time, generated 154 and 292 ns, 829 ns and
-//! 1.06 µs.
+//! compiled with `-O3 -march=native`, which includes AVX-512 on this host; two rounds alternating
+//! with this benchmark, 2026-12-01, a session when the host ran about a quarter faster than in
+//! the one before): PUMA 560 `rnea` 0.56–0.57 µs, `computeRNEADerivatives` 1.95–2.00 µs,
+//! `computeABADerivatives` 2.51–2.56 µs; Panda 0.66–0.69, 2.32–2.35 and 3.03–3.09 µs. Generated
+//! here, the same rounds, default target: PUMA 560 ∂τ 184 ns; Panda ∂τ 759–783 ns, ∂q̈ 952–983
+//! ns; built with `RUSTFLAGS="-C target-cpu=x86-64-v3"`: PUMA 560 148–156 and 295–301 ns, Panda
+//! 521–528 and 751–758 ns. (The PUMA 560's ∂q̈, 411 to 567 ns in three builds with the same
+//! instructions, moves with code layout.) Instructions per call
+//! (`scripts/pinocchio_bench.sh --callgrind`, `examples/instructions.rs`): Pinocchio 24,364 and
+//! 33,754 (PUMA 560), 29,094 and 40,623 (Panda); generated 3,806 and 5,804, 8,400 and 11,752.
+//! Both for x86-64-v3 (`--callgrind -march=x86-64-v3`): Pinocchio 20,431 and 29,907, 24,394
+//! and 35,002; generated 2,680 and 4,251, 5,970 and 8,509. Ḋ and Cᵀq̇ (default target, same
+//! session): PUMA 560 77 and 52 ns (runtime 575 and 615), Panda 163 and 142 ns (705 and 696).
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use dhgen::Robot;
@@ -121,6 +124,18 @@ macro_rules! bench_robot {
             b.iter(|| {
                 let (q, qd, _, _) = next();
                 robot.mass_matrix_rate(black_box(q), black_box(qd))
+            })
+        });
+        g.bench_function("coriolis_transpose_qd/generated", |b| {
+            b.iter(|| {
+                let (q, qd, _, _) = next();
+                $module::coriolis_transpose_qd(black_box(q), black_box(qd))
+            })
+        });
+        g.bench_function("coriolis_transpose_qd/runtime", |b| {
+            b.iter(|| {
+                let (q, qd, _, _) = next();
+                robot.coriolis_transpose_qd(black_box(q), black_box(qd))
             })
         });
         g.finish();
