@@ -173,7 +173,7 @@ impl<'c> Context<'c> {
     /// The derivations of C(q, q̇) (row-major), each built once and shared by the quantities
     /// that start from C: `[0]` the O(n²) recursion on dual numbers, `[1]` C from the
     /// Christoffel symbols, in their shared graph, `[2]` Echeandia and Wensing's O(n²)
-    /// algorithm.
+    /// algorithm (the cheapest of its forms: in joint frames or in one frame's coordinates).
     pub fn coriolis_derivations(&self) -> &[(SharedGraph, Vec<E>)] {
         self.coriolis.get_or_init(|| {
             let (graph, c) = self.christoffel();
