@@ -439,16 +439,22 @@ impl<'c, R: Ring> RingChain<'c, R> {
             };
             d[j][j] = self.component(j, &nn, &f);
             for i in (0..j).rev() {
-                let tf = &self.t[i + 1];
-                let f2 = rot(tf, &f);
-                nn = add3(&rot(tf, &nn), &cross(&tf.p, &f2));
-                f = f2;
+                (nn, f) = force_into_parent(&self.t[i + 1], &(nn, f));
                 let v = self.component(i, &nn, &f);
                 d[i][j] = v.clone();
                 d[j][i] = v;
             }
         }
         d
+    }
+
+    /// Joint i's axis `S_i` in its own frame, as a motion (angular, linear): the z axis.
+    fn local_axis(&self, i: usize) -> Sv<R> {
+        let (z, axis) = ([k(0.0), k(0.0), k(0.0)], [k(0.0), k(0.0), k(1.0)]);
+        match self.kinds[i] {
+            JointKind::Revolute => (axis, z),
+            JointKind::Prismatic => (z, axis),
+        }
     }
 
     fn component(&self, i: usize, n: &V3<R>, f: &V3<R>) -> R {
@@ -491,8 +497,7 @@ impl<'c, R: Ring> RingChain<'c, R> {
         let mut out = Vec::with_capacity(self.dof());
         for ((t, kind), rate) in self.t.iter().zip(&self.kinds).zip(qd) {
             // The parent's motion seen from frame j, then joint j's own rate.
-            v = rot_t(t, &add3(&v, &cross(&w, &t.p)));
-            w = rot_t(t, &w);
+            (w, v) = motion_into_child(t, &(w, v));
             let rate = [z(), z(), rate.clone()];
             match kind {
                 JointKind::Revolute => w = add3(&w, &rate),
@@ -755,34 +760,19 @@ impl<'c, R: Ring> RingChain<'c, R> {
     fn coriolis_local(&self, qd: &[R], qdd: Option<&[R]>) -> (Vec<Vec<R>>, Option<Vec<Vec<R>>>) {
         let n = self.dof();
         let z = || k::<R>(0.0);
-        let zero_sv = || -> Sv<R> { ([z(), z(), z()], [z(), z(), z()]) };
-        let axis = |j: usize| -> Sv<R> {
-            match self.kinds[j] {
-                JointKind::Revolute => ([z(), z(), k(1.0)], [z(), z(), z()]),
-                JointKind::Prismatic => ([z(), z(), z()], [z(), z(), k(1.0)]),
-            }
-        };
-        // A motion in frame j − 1 (the root for j = 0) carried into frame j.
-        let outward = |j: usize, (w, u): &Sv<R>| -> Sv<R> {
-            let t = &self.t[j];
-            (rot_t(t, w), rot_t(t, &add3(u, &cross(w, &t.p))))
-        };
-        // A force (moment, force) in frame i + 1 carried into frame i.
-        let carry = |i: usize, (nn, f): &Sv<R>| -> Sv<R> {
-            let t = &self.t[i + 1];
-            let f2 = rot(t, f);
-            (add3(&rot(t, nn), &cross(&t.p, &f2)), f2)
-        };
+        // Into frame j from frame j − 1 (the root for j = 0), into frame i from frame i + 1.
+        let outward = |j: usize, m: &Sv<R>| motion_into_child(&self.t[j], m);
+        let carry = |i: usize, f: &Sv<R>| force_into_parent(&self.t[i + 1], f);
         // Outward: velocities, Ṡ_j, each body's P and l in its own frame, and with the
         // accelerations, Ψ̈_j and each body's force.
-        let mut v = zero_sv();
+        let mut v: Sv<R> = ([z(), z(), z()], [z(), z(), z()]);
         let mut a: Sv<R> = ([z(), z(), z()], self.gravity.clone().map(|x| -x));
         let mut rates = Vec::with_capacity(n);
         let mut factors: Vec<([[R; 3]; 3], V3<R>)> = Vec::with_capacity(n);
         let mut psi_dd = Vec::with_capacity(n);
         let mut forces = Vec::with_capacity(n);
         for j in 0..n {
-            let s = axis(j);
+            let s = self.local_axis(j);
             let before = outward(j, &v);
             v = add_sv(&before, &scale_sv(&qd[j], &s));
             let rate = motion_cross(&v, &s);
@@ -843,7 +833,7 @@ impl<'c, R: Ring> RingChain<'c, R> {
         let mut dq = qdd.map(|_| vec![vec![z(); n]; n]);
         let two = || k::<R>(2.0);
         for j in 0..n {
-            let s = axis(j);
+            let s = self.local_axis(j);
             let (p, l) = &factors[j];
             let ic = &inertias[j];
             // B^C S = (P ω, ω × l), the moment of Bᵀ S = Pᵀ ω + l × u; B^C Ψ̇ likewise.
@@ -875,7 +865,7 @@ impl<'c, R: Ring> RingChain<'c, R> {
                 f1 = carry(kk, &f1);
                 f2 = carry(kk, &f2);
                 f3 = rot(&self.t[kk + 1], &f3);
-                let sk = axis(kk);
+                let sk = self.local_axis(kk);
                 c[kk][j] = motion_dot(&sk, &f1);
                 c[j][kk] = motion_dot(&rates[kk], &f2) + dot(&sk.0, &f3);
                 if let (Some(dq), Some(yv)) = (&mut dq, &mut y) {
@@ -1056,16 +1046,10 @@ impl<'c, R: Ring> RingChain<'c, R> {
         let mut out = vec![vec![z(); P * n]; n];
         for (i, row) in out.iter_mut().enumerate() {
             // Joint i's axis as a motion vector (direction, and its moment arm), in frame k.
-            let axis = [z(), z(), k(1.0)];
-            let (mut ang, mut lin) = match self.kinds[i] {
-                JointKind::Revolute => (axis, [z(), z(), z()]),
-                JointKind::Prismatic => ([z(), z(), z()], axis),
-            };
+            let (mut ang, mut lin) = self.local_axis(i);
             for kk in i..n {
                 if kk > i {
-                    let t = &self.t[kk];
-                    lin = rot_t(t, &add3(&lin, &cross(&ang, &t.p)));
-                    ang = rot_t(t, &ang);
+                    (ang, lin) = motion_into_child(&self.t[kk], &(ang, lin));
                 }
                 for (p, (f, nn)) in wrenches[kk].iter().enumerate() {
                     row[P * kk + p] = dot(&ang, nn) + dot(&lin, f);
@@ -1112,6 +1096,20 @@ impl<'c, R: Ring> RingChain<'c, R> {
     pub fn joint_frames(&self) -> Vec<Frame<R>> {
         self.joint_frames_from(Frame::identity())
     }
+}
+
+/// A motion (angular, linear at the origin) in a parent frame seen in the child frame `t`
+/// places in it: `(Rᵀ ω, Rᵀ (u + ω × p))`.
+fn motion_into_child<R: Ring>(t: &Frame<R>, (w, u): &Sv<R>) -> Sv<R> {
+    let lin = rot_t(t, &add3(u, &cross(w, &t.p)));
+    (rot_t(t, w), lin)
+}
+
+/// A force (moment about the origin, force) in the child frame `t` places in its parent, seen
+/// in the parent: `(R n + p × R f, R f)`.
+fn force_into_parent<R: Ring>(t: &Frame<R>, (nn, f): &Sv<R>) -> Sv<R> {
+    let f = rot(t, f);
+    (add3(&rot(t, nn), &cross(&t.p, &f)), f)
 }
 
 /// `â`, the matrix of `a ×`.

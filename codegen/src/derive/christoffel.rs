@@ -101,9 +101,7 @@ pub(crate) fn coriolis_spatial_with<'c>(
     chain: ChainRef<'c>,
     adjust: impl Fn(&mut crate::chain::RingChain<'c, E>, &SharedGraph),
 ) -> (SharedGraph, Vec<E>) {
-    let candidates = super::coordinates(chain)
-        .map(Some)
-        .chain(std::iter::once(None))
+    let candidates = super::frames(chain)
         .map(|at| {
             let graph = SharedGraph::default();
             let qd: Vec<E> = (0..chain.dof())

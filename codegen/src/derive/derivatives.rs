@@ -73,14 +73,11 @@ pub fn inverse_dynamics_derivatives(
 ) -> (SharedGraph, Vec<E>) {
     let chain = dv.chain;
     let n = chain.dof();
-    // Column m of ∂τ/∂q from `column`, or zeros where τ does not depend on q_m (a structural
-    // fact: moving joint m is a symmetry of the dynamics), which no candidate need compute.
+    // Column m of ∂τ/∂q from `column`.
     let dq_column = |m: usize, column: &dyn Fn(usize) -> E| -> Vec<E> {
-        if chain.dynamics_ignore(m) {
-            vec![E::K(0.0); n]
-        } else {
+        super::along_joint(chain, m, vec![E::K(0.0); n], || {
             (0..n).map(column).collect()
-        }
+        })
     };
     // ∂τ/∂q row-major from its entries (k, m).
     let dq_rows = |entry: &dyn Fn(usize, usize) -> E| -> Vec<E> {
@@ -117,12 +114,9 @@ pub fn inverse_dynamics_derivatives(
         twice_c_rows(c, &mut out);
         candidates.push((graph.clone(), out));
     }
-    // The closed form with the C of the same terms, in each coordinate frame and in joint
-    // frames.
-    for at in super::coordinates(chain)
-        .map(Some)
-        .chain(std::iter::once(None))
-    {
+    // The closed form with the C of the same terms, in joint frames and in each frame's
+    // coordinates.
+    for at in super::frames(chain) {
         let graph = SharedGraph::default();
         let sym = |s: fn(usize) -> Sym| (0..n).map(|i| E::sym(&graph, s(i))).collect::<Vec<E>>();
         let rc = super::graph_chain(chain, &graph);
@@ -208,11 +202,7 @@ pub fn mass_matrix_beside(dv: &Derivation<'_>, graph: &SharedGraph, outs: &[E]) 
     };
     dv.mass_matrix_exprs(graph)
         .into_iter()
-        .chain(
-            std::iter::once(None)
-                .chain(super::coordinates(chain).map(Some))
-                .map(recursive),
-        )
+        .chain(super::frames(chain).map(recursive))
         .inspect(|d| debug_assert_eq!(d.len(), n * n))
         .map(|d| {
             let added = crate::graph::cost(graph, outs.iter().chain(&d)) - before;
@@ -272,13 +262,7 @@ pub fn coriolis_transpose_qd(
             .collect();
         let t = RingChain::new(chain, &DualSymbols { graph: &graph, n }).kinetic_energy(&qd);
         let e: Vec<E> = (0..n)
-            .map(|j| {
-                if chain.dynamics_ignore(j) {
-                    E::K(0.0)
-                } else {
-                    t.partial(j)
-                }
-            })
+            .map(|j| super::along_joint(chain, j, E::K(0.0), || t.partial(j)))
             .collect();
         let e = super::without_ignored_joints(chain, &graph, &e);
         (graph, e)

@@ -206,6 +206,24 @@ pub fn coordinates(chain: ChainRef<'_>) -> impl Iterator<Item = Coordinates> {
     std::iter::once(Coordinates::Root).chain((0..chain.dof()).map(Coordinates::Joint))
 }
 
+/// Every form the recursions with a spatial form (D, C, ∂τ/∂q) are built in: joint by joint in
+/// joint frames (`None`, carrying vectors through each joint transform, as the CRBA does), then
+/// in each frame's coordinates ([`coordinates`]).
+pub fn frames(chain: ChainRef<'_>) -> impl Iterator<Item = Option<Coordinates>> {
+    std::iter::once(None).chain(coordinates(chain).map(Some))
+}
+
+/// A derivative along joint m by `derivative`, or `zero` where the dynamics do not depend on
+/// q_m ([`ChainRef::dynamics_ignore`]: moving joint m is a symmetry of the dynamics), which no
+/// candidate need compute.
+pub fn along_joint<T>(chain: ChainRef<'_>, m: usize, zero: T, derivative: impl FnOnce() -> T) -> T {
+    if chain.dynamics_ignore(m) {
+        zero
+    } else {
+        derivative()
+    }
+}
+
 /// Dynamics' expressions `exprs` (in `graph`) evaluated at 0 for the joints they do not
 /// depend on ([`ChainRef::dynamics_ignore`]): cos 1, sin 0, displacement 0. Exact, since the
 /// value does not depend on them, and the folding drops what a recursion computes for them
