@@ -780,11 +780,9 @@ impl<'c, R: Ring> RingChain<'c, R> {
             let momentum = b.momentum(&v);
             if let Some(qdd) = qdd {
                 a = outward(j, &a);
-                psi_dd.push(add_sv(&motion_cross(&a, &s), &motion_cross(&before, &rate)));
-                a = add_sv(
-                    &add_sv(&a, &scale_sv(&qdd[j], &s)),
-                    &scale_sv(&qd[j], &rate),
-                );
+                psi_dd.push(joint_acceleration(
+                    &mut a, &before, &s, &rate, &qd[j], &qdd[j],
+                ));
                 forces.push(add_sv(&b.momentum(&a), &force_cross(&v, &momentum)));
             }
             let (nn, l) = momentum;
@@ -959,11 +957,14 @@ impl<'c, R: Ring> RingChain<'c, R> {
         let mut forces = Vec::with_capacity(n);
         for j in 0..n {
             let s = &t.axes[j];
-            psi_dd.push(add_sv(&motion_cross(&a, s), &motion_cross(&v, &t.rates[j])));
-            a = add_sv(
-                &add_sv(&a, &scale_sv(&qdd[j], s)),
-                &scale_sv(&qd[j], &t.rates[j]),
-            );
+            psi_dd.push(joint_acceleration(
+                &mut a,
+                &v,
+                s,
+                &t.rates[j],
+                &qd[j],
+                &qdd[j],
+            ));
             v = t.velocities[j].clone();
             forces.push(add_sv(
                 &t.bodies[j].momentum(&a),
@@ -1110,6 +1111,23 @@ fn motion_into_child<R: Ring>(t: &Frame<R>, (w, u): &Sv<R>) -> Sv<R> {
 fn force_into_parent<R: Ring>(t: &Frame<R>, (nn, f): &Sv<R>) -> Sv<R> {
     let f = rot(t, f);
     (add3(&rot(t, nn), &cross(&t.p, &f)), f)
+}
+
+/// One joint's step of the closed-form ∂τ/∂q's outward pass, all in one frame's coordinates:
+/// from the parent's acceleration `a` and velocity `parent`, joint j's axis `s` and
+/// `Ψ̇_j = v_j × S_j` (`rate`), returns `Ψ̈_j = a × S_j + v_parent × Ψ̇_j` and makes `a` the
+/// body's, `a + S_j q̈_j + Ψ̇_j q̇_j`.
+fn joint_acceleration<R: Ring>(
+    a: &mut Sv<R>,
+    parent: &Sv<R>,
+    s: &Sv<R>,
+    rate: &Sv<R>,
+    qd: &R,
+    qdd: &R,
+) -> Sv<R> {
+    let psi_dd = add_sv(&motion_cross(a, s), &motion_cross(parent, rate));
+    *a = add_sv(&add_sv(a, &scale_sv(qdd, s)), &scale_sv(qd, rate));
+    psi_dd
 }
 
 /// `â`, the matrix of `a ×`.
