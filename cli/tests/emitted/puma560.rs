@@ -1441,62 +1441,71 @@ pub mod puma560 {
                     dm[(5, 5)],
                 ),
             );
-            let l0_0: T = dm[(0, 0)];
-            let ok = na::SimdPartialOrd::simd_gt(l0_0, floor);
-            let l0_0: T = na::SimdComplexField::simd_sqrt(l0_0);
-            let inv0: T = T::one() / l0_0;
-            let l1_0: T = (dm[(1, 0)]) * inv0;
-            let l2_0: T = (dm[(2, 0)]) * inv0;
-            let l3_0: T = (dm[(3, 0)]) * inv0;
-            let l4_0: T = (dm[(4, 0)]) * inv0;
-            let l5_0: T = (dm[(5, 0)]) * inv0;
-            let l1_1: T = dm[(1, 1)] - l1_0 * l1_0;
-            let ok = ok & na::SimdPartialOrd::simd_gt(l1_1, floor);
-            let l1_1: T = na::SimdComplexField::simd_sqrt(l1_1);
-            let inv1: T = T::one() / l1_1;
-            let l2_1: T = (dm[(2, 1)] - l2_0 * l1_0) * inv1;
-            let l3_1: T = (dm[(3, 1)] - l3_0 * l1_0) * inv1;
-            let l4_1: T = (dm[(4, 1)] - l4_0 * l1_0) * inv1;
-            let l5_1: T = (dm[(5, 1)] - l5_0 * l1_0) * inv1;
-            let l2_2: T = dm[(2, 2)] - l2_0 * l2_0 - l2_1 * l2_1;
-            let ok = ok & na::SimdPartialOrd::simd_gt(l2_2, floor);
-            let l2_2: T = na::SimdComplexField::simd_sqrt(l2_2);
-            let inv2: T = T::one() / l2_2;
-            let l3_2: T = (dm[(3, 2)] - l3_0 * l2_0 - l3_1 * l2_1) * inv2;
-            let l4_2: T = (dm[(4, 2)] - l4_0 * l2_0 - l4_1 * l2_1) * inv2;
-            let l5_2: T = (dm[(5, 2)] - l5_0 * l2_0 - l5_1 * l2_1) * inv2;
-            let l3_3: T = dm[(3, 3)] - l3_0 * l3_0 - l3_1 * l3_1 - l3_2 * l3_2;
-            let ok = ok & na::SimdPartialOrd::simd_gt(l3_3, floor);
-            let l3_3: T = na::SimdComplexField::simd_sqrt(l3_3);
-            let inv3: T = T::one() / l3_3;
-            let l4_3: T = (dm[(4, 3)] - l4_0 * l3_0 - l4_1 * l3_1 - l4_2 * l3_2) * inv3;
-            let l5_3: T = (dm[(5, 3)] - l5_0 * l3_0 - l5_1 * l3_1 - l5_2 * l3_2) * inv3;
-            let l4_4: T = dm[(4, 4)] - l4_0 * l4_0 - l4_1 * l4_1 - l4_2 * l4_2
-                - l4_3 * l4_3;
-            let ok = ok & na::SimdPartialOrd::simd_gt(l4_4, floor);
-            let l4_4: T = na::SimdComplexField::simd_sqrt(l4_4);
-            let inv4: T = T::one() / l4_4;
-            let l5_4: T = (dm[(5, 4)] - l5_0 * l4_0 - l5_1 * l4_1 - l5_2 * l4_2
-                - l5_3 * l4_3) * inv4;
-            let l5_5: T = dm[(5, 5)] - l5_0 * l5_0 - l5_1 * l5_1 - l5_2 * l5_2
-                - l5_3 * l5_3 - l5_4 * l5_4;
-            let ok = ok & na::SimdPartialOrd::simd_gt(l5_5, floor);
-            let l5_5: T = na::SimdComplexField::simd_sqrt(l5_5);
-            let inv5: T = T::one() / l5_5;
-            let y0: T = (rhs[0]) * inv0;
-            let y1: T = (rhs[1] - l1_0 * y0) * inv1;
-            let y2: T = (rhs[2] - l2_0 * y0 - l2_1 * y1) * inv2;
-            let y3: T = (rhs[3] - l3_0 * y0 - l3_1 * y1 - l3_2 * y2) * inv3;
-            let y4: T = (rhs[4] - l4_0 * y0 - l4_1 * y1 - l4_2 * y2 - l4_3 * y3) * inv4;
-            let y5: T = (rhs[5] - l5_0 * y0 - l5_1 * y1 - l5_2 * y2 - l5_3 * y3
-                - l5_4 * y4) * inv5;
-            let x5: T = (y5) * inv5;
-            let x4: T = (y4 - l5_4 * x5) * inv4;
-            let x3: T = (y3 - l4_3 * x4 - l5_3 * x5) * inv3;
-            let x2: T = (y2 - l3_2 * x3 - l4_2 * x4 - l5_2 * x5) * inv2;
-            let x1: T = (y1 - l2_1 * x2 - l3_1 * x3 - l4_1 * x4 - l5_1 * x5) * inv1;
-            let x0: T = (y0 - l1_0 * x1 - l2_0 * x2 - l3_0 * x3 - l4_0 * x4 - l5_0 * x5)
-                * inv0;
+            let pivot: T = dm[(0, 0)];
+            let ok = na::SimdPartialOrd::simd_gt(pivot, floor);
+            let inv0: T = T::one() / pivot;
+            let u1_0: T = dm[(1, 0)];
+            let l1_0: T = u1_0 * inv0;
+            let u2_0: T = dm[(2, 0)];
+            let l2_0: T = u2_0 * inv0;
+            let u3_0: T = dm[(3, 0)];
+            let l3_0: T = u3_0 * inv0;
+            let u4_0: T = dm[(4, 0)];
+            let l4_0: T = u4_0 * inv0;
+            let u5_0: T = dm[(5, 0)];
+            let l5_0: T = u5_0 * inv0;
+            let pivot: T = dm[(1, 1)] - u1_0 * l1_0;
+            let ok = ok & na::SimdPartialOrd::simd_gt(pivot, floor);
+            let inv1: T = T::one() / pivot;
+            let u2_1: T = dm[(2, 1)] - u2_0 * l1_0;
+            let l2_1: T = u2_1 * inv1;
+            let u3_1: T = dm[(3, 1)] - u3_0 * l1_0;
+            let l3_1: T = u3_1 * inv1;
+            let u4_1: T = dm[(4, 1)] - u4_0 * l1_0;
+            let l4_1: T = u4_1 * inv1;
+            let u5_1: T = dm[(5, 1)] - u5_0 * l1_0;
+            let l5_1: T = u5_1 * inv1;
+            let pivot: T = dm[(2, 2)] - u2_0 * l2_0 - u2_1 * l2_1;
+            let ok = ok & na::SimdPartialOrd::simd_gt(pivot, floor);
+            let inv2: T = T::one() / pivot;
+            let u3_2: T = dm[(3, 2)] - u3_0 * l2_0 - u3_1 * l2_1;
+            let l3_2: T = u3_2 * inv2;
+            let u4_2: T = dm[(4, 2)] - u4_0 * l2_0 - u4_1 * l2_1;
+            let l4_2: T = u4_2 * inv2;
+            let u5_2: T = dm[(5, 2)] - u5_0 * l2_0 - u5_1 * l2_1;
+            let l5_2: T = u5_2 * inv2;
+            let pivot: T = dm[(3, 3)] - u3_0 * l3_0 - u3_1 * l3_1 - u3_2 * l3_2;
+            let ok = ok & na::SimdPartialOrd::simd_gt(pivot, floor);
+            let inv3: T = T::one() / pivot;
+            let u4_3: T = dm[(4, 3)] - u4_0 * l3_0 - u4_1 * l3_1 - u4_2 * l3_2;
+            let l4_3: T = u4_3 * inv3;
+            let u5_3: T = dm[(5, 3)] - u5_0 * l3_0 - u5_1 * l3_1 - u5_2 * l3_2;
+            let l5_3: T = u5_3 * inv3;
+            let pivot: T = dm[(4, 4)] - u4_0 * l4_0 - u4_1 * l4_1 - u4_2 * l4_2
+                - u4_3 * l4_3;
+            let ok = ok & na::SimdPartialOrd::simd_gt(pivot, floor);
+            let inv4: T = T::one() / pivot;
+            let u5_4: T = dm[(5, 4)] - u5_0 * l4_0 - u5_1 * l4_1 - u5_2 * l4_2
+                - u5_3 * l4_3;
+            let l5_4: T = u5_4 * inv4;
+            let pivot: T = dm[(5, 5)] - u5_0 * l5_0 - u5_1 * l5_1 - u5_2 * l5_2
+                - u5_3 * l5_3 - u5_4 * l5_4;
+            let ok = ok & na::SimdPartialOrd::simd_gt(pivot, floor);
+            let inv5: T = T::one() / pivot;
+            let y0: T = rhs[0];
+            let y1: T = rhs[1] - l1_0 * y0;
+            let y2: T = rhs[2] - l2_0 * y0 - l2_1 * y1;
+            let y3: T = rhs[3] - l3_0 * y0 - l3_1 * y1 - l3_2 * y2;
+            let y4: T = rhs[4] - l4_0 * y0 - l4_1 * y1 - l4_2 * y2 - l4_3 * y3;
+            let y5: T = rhs[5] - l5_0 * y0 - l5_1 * y1 - l5_2 * y2 - l5_3 * y3
+                - l5_4 * y4;
+            let x5: T = y5 * inv5;
+            let x4: T = y4 * inv4 - l5_4 * x5;
+            let x3: T = y3 * inv3 - l4_3 * x4 - l5_3 * x5;
+            let x2: T = y2 * inv2 - l3_2 * x3 - l4_2 * x4 - l5_2 * x5;
+            let x1: T = y1 * inv1 - l2_1 * x2 - l3_1 * x3 - l4_1 * x4 - l5_1 * x5;
+            let x0: T = y0 * inv0 - l1_0 * x1 - l2_0 * x2 - l3_0 * x3 - l4_0 * x4
+                - l5_0 * x5;
             let ok = ok & ::dhgen::Real::is_finite_lanes(x0)
                 & ::dhgen::Real::is_finite_lanes(x1) & ::dhgen::Real::is_finite_lanes(x2)
                 & ::dhgen::Real::is_finite_lanes(x3) & ::dhgen::Real::is_finite_lanes(x4)
@@ -1547,62 +1556,71 @@ pub mod puma560 {
                     dm[(5, 5)],
                 ),
             );
-            let l0_0: T = dm[(0, 0)];
-            let ok = na::SimdPartialOrd::simd_gt(l0_0, floor);
-            let l0_0: T = na::SimdComplexField::simd_sqrt(l0_0);
-            let inv0: T = T::one() / l0_0;
-            let l1_0: T = (dm[(1, 0)]) * inv0;
-            let l2_0: T = (dm[(2, 0)]) * inv0;
-            let l3_0: T = (dm[(3, 0)]) * inv0;
-            let l4_0: T = (dm[(4, 0)]) * inv0;
-            let l5_0: T = (dm[(5, 0)]) * inv0;
-            let l1_1: T = dm[(1, 1)] - l1_0 * l1_0;
-            let ok = ok & na::SimdPartialOrd::simd_gt(l1_1, floor);
-            let l1_1: T = na::SimdComplexField::simd_sqrt(l1_1);
-            let inv1: T = T::one() / l1_1;
-            let l2_1: T = (dm[(2, 1)] - l2_0 * l1_0) * inv1;
-            let l3_1: T = (dm[(3, 1)] - l3_0 * l1_0) * inv1;
-            let l4_1: T = (dm[(4, 1)] - l4_0 * l1_0) * inv1;
-            let l5_1: T = (dm[(5, 1)] - l5_0 * l1_0) * inv1;
-            let l2_2: T = dm[(2, 2)] - l2_0 * l2_0 - l2_1 * l2_1;
-            let ok = ok & na::SimdPartialOrd::simd_gt(l2_2, floor);
-            let l2_2: T = na::SimdComplexField::simd_sqrt(l2_2);
-            let inv2: T = T::one() / l2_2;
-            let l3_2: T = (dm[(3, 2)] - l3_0 * l2_0 - l3_1 * l2_1) * inv2;
-            let l4_2: T = (dm[(4, 2)] - l4_0 * l2_0 - l4_1 * l2_1) * inv2;
-            let l5_2: T = (dm[(5, 2)] - l5_0 * l2_0 - l5_1 * l2_1) * inv2;
-            let l3_3: T = dm[(3, 3)] - l3_0 * l3_0 - l3_1 * l3_1 - l3_2 * l3_2;
-            let ok = ok & na::SimdPartialOrd::simd_gt(l3_3, floor);
-            let l3_3: T = na::SimdComplexField::simd_sqrt(l3_3);
-            let inv3: T = T::one() / l3_3;
-            let l4_3: T = (dm[(4, 3)] - l4_0 * l3_0 - l4_1 * l3_1 - l4_2 * l3_2) * inv3;
-            let l5_3: T = (dm[(5, 3)] - l5_0 * l3_0 - l5_1 * l3_1 - l5_2 * l3_2) * inv3;
-            let l4_4: T = dm[(4, 4)] - l4_0 * l4_0 - l4_1 * l4_1 - l4_2 * l4_2
-                - l4_3 * l4_3;
-            let ok = ok & na::SimdPartialOrd::simd_gt(l4_4, floor);
-            let l4_4: T = na::SimdComplexField::simd_sqrt(l4_4);
-            let inv4: T = T::one() / l4_4;
-            let l5_4: T = (dm[(5, 4)] - l5_0 * l4_0 - l5_1 * l4_1 - l5_2 * l4_2
-                - l5_3 * l4_3) * inv4;
-            let l5_5: T = dm[(5, 5)] - l5_0 * l5_0 - l5_1 * l5_1 - l5_2 * l5_2
-                - l5_3 * l5_3 - l5_4 * l5_4;
-            let ok = ok & na::SimdPartialOrd::simd_gt(l5_5, floor);
-            let l5_5: T = na::SimdComplexField::simd_sqrt(l5_5);
-            let inv5: T = T::one() / l5_5;
-            let y0: T = (rhs[0]) * inv0;
-            let y1: T = (rhs[1] - l1_0 * y0) * inv1;
-            let y2: T = (rhs[2] - l2_0 * y0 - l2_1 * y1) * inv2;
-            let y3: T = (rhs[3] - l3_0 * y0 - l3_1 * y1 - l3_2 * y2) * inv3;
-            let y4: T = (rhs[4] - l4_0 * y0 - l4_1 * y1 - l4_2 * y2 - l4_3 * y3) * inv4;
-            let y5: T = (rhs[5] - l5_0 * y0 - l5_1 * y1 - l5_2 * y2 - l5_3 * y3
-                - l5_4 * y4) * inv5;
-            let x5: T = (y5) * inv5;
-            let x4: T = (y4 - l5_4 * x5) * inv4;
-            let x3: T = (y3 - l4_3 * x4 - l5_3 * x5) * inv3;
-            let x2: T = (y2 - l3_2 * x3 - l4_2 * x4 - l5_2 * x5) * inv2;
-            let x1: T = (y1 - l2_1 * x2 - l3_1 * x3 - l4_1 * x4 - l5_1 * x5) * inv1;
-            let x0: T = (y0 - l1_0 * x1 - l2_0 * x2 - l3_0 * x3 - l4_0 * x4 - l5_0 * x5)
-                * inv0;
+            let pivot: T = dm[(0, 0)];
+            let ok = na::SimdPartialOrd::simd_gt(pivot, floor);
+            let inv0: T = T::one() / pivot;
+            let u1_0: T = dm[(1, 0)];
+            let l1_0: T = u1_0 * inv0;
+            let u2_0: T = dm[(2, 0)];
+            let l2_0: T = u2_0 * inv0;
+            let u3_0: T = dm[(3, 0)];
+            let l3_0: T = u3_0 * inv0;
+            let u4_0: T = dm[(4, 0)];
+            let l4_0: T = u4_0 * inv0;
+            let u5_0: T = dm[(5, 0)];
+            let l5_0: T = u5_0 * inv0;
+            let pivot: T = dm[(1, 1)] - u1_0 * l1_0;
+            let ok = ok & na::SimdPartialOrd::simd_gt(pivot, floor);
+            let inv1: T = T::one() / pivot;
+            let u2_1: T = dm[(2, 1)] - u2_0 * l1_0;
+            let l2_1: T = u2_1 * inv1;
+            let u3_1: T = dm[(3, 1)] - u3_0 * l1_0;
+            let l3_1: T = u3_1 * inv1;
+            let u4_1: T = dm[(4, 1)] - u4_0 * l1_0;
+            let l4_1: T = u4_1 * inv1;
+            let u5_1: T = dm[(5, 1)] - u5_0 * l1_0;
+            let l5_1: T = u5_1 * inv1;
+            let pivot: T = dm[(2, 2)] - u2_0 * l2_0 - u2_1 * l2_1;
+            let ok = ok & na::SimdPartialOrd::simd_gt(pivot, floor);
+            let inv2: T = T::one() / pivot;
+            let u3_2: T = dm[(3, 2)] - u3_0 * l2_0 - u3_1 * l2_1;
+            let l3_2: T = u3_2 * inv2;
+            let u4_2: T = dm[(4, 2)] - u4_0 * l2_0 - u4_1 * l2_1;
+            let l4_2: T = u4_2 * inv2;
+            let u5_2: T = dm[(5, 2)] - u5_0 * l2_0 - u5_1 * l2_1;
+            let l5_2: T = u5_2 * inv2;
+            let pivot: T = dm[(3, 3)] - u3_0 * l3_0 - u3_1 * l3_1 - u3_2 * l3_2;
+            let ok = ok & na::SimdPartialOrd::simd_gt(pivot, floor);
+            let inv3: T = T::one() / pivot;
+            let u4_3: T = dm[(4, 3)] - u4_0 * l3_0 - u4_1 * l3_1 - u4_2 * l3_2;
+            let l4_3: T = u4_3 * inv3;
+            let u5_3: T = dm[(5, 3)] - u5_0 * l3_0 - u5_1 * l3_1 - u5_2 * l3_2;
+            let l5_3: T = u5_3 * inv3;
+            let pivot: T = dm[(4, 4)] - u4_0 * l4_0 - u4_1 * l4_1 - u4_2 * l4_2
+                - u4_3 * l4_3;
+            let ok = ok & na::SimdPartialOrd::simd_gt(pivot, floor);
+            let inv4: T = T::one() / pivot;
+            let u5_4: T = dm[(5, 4)] - u5_0 * l4_0 - u5_1 * l4_1 - u5_2 * l4_2
+                - u5_3 * l4_3;
+            let l5_4: T = u5_4 * inv4;
+            let pivot: T = dm[(5, 5)] - u5_0 * l5_0 - u5_1 * l5_1 - u5_2 * l5_2
+                - u5_3 * l5_3 - u5_4 * l5_4;
+            let ok = ok & na::SimdPartialOrd::simd_gt(pivot, floor);
+            let inv5: T = T::one() / pivot;
+            let y0: T = rhs[0];
+            let y1: T = rhs[1] - l1_0 * y0;
+            let y2: T = rhs[2] - l2_0 * y0 - l2_1 * y1;
+            let y3: T = rhs[3] - l3_0 * y0 - l3_1 * y1 - l3_2 * y2;
+            let y4: T = rhs[4] - l4_0 * y0 - l4_1 * y1 - l4_2 * y2 - l4_3 * y3;
+            let y5: T = rhs[5] - l5_0 * y0 - l5_1 * y1 - l5_2 * y2 - l5_3 * y3
+                - l5_4 * y4;
+            let x5: T = y5 * inv5;
+            let x4: T = y4 * inv4 - l5_4 * x5;
+            let x3: T = y3 * inv3 - l4_3 * x4 - l5_3 * x5;
+            let x2: T = y2 * inv2 - l3_2 * x3 - l4_2 * x4 - l5_2 * x5;
+            let x1: T = y1 * inv1 - l2_1 * x2 - l3_1 * x3 - l4_1 * x4 - l5_1 * x5;
+            let x0: T = y0 * inv0 - l1_0 * x1 - l2_0 * x2 - l3_0 * x3 - l4_0 * x4
+                - l5_0 * x5;
             let ok = ok & ::dhgen::Real::is_finite_lanes(x0)
                 & ::dhgen::Real::is_finite_lanes(x1) & ::dhgen::Real::is_finite_lanes(x2)
                 & ::dhgen::Real::is_finite_lanes(x3) & ::dhgen::Real::is_finite_lanes(x4)

@@ -1003,7 +1003,7 @@ pub const QUANTITIES: &[Quantity] = &[
                             let Some((inverse, ok)) = factor else {
                                 return None;
                             };
-                            let (dq, dqd, _) = terms;
+                            let (dq, dqd, _) = &terms;
                         },
                         &["forward_dynamics_terms", "gravity"],
                     )
@@ -1015,7 +1015,7 @@ pub const QUANTITIES: &[Quantity] = &[
                             let qdd = self.inverse_dynamics_derivatives_then(qd, |(_, dqd)| {
                                 #acceleration
                             }, &mut terms);
-                            let (dq, dqd) = terms;
+                            let (dq, dqd) = &terms;
                         },
                         &[
                             "mass_matrix_inverse_lanes",
@@ -1046,21 +1046,22 @@ pub const QUANTITIES: &[Quantity] = &[
                     // column m of X), in plain loops the compiler unrolls: 40 % fewer
                     // instructions than nalgebra's general product at 6 × 6.
                     let columns = &inverse.data.0;
-                    let minus_inverse_times = |x: &mut na::SMatrix<T, DOF, DOF>, used: [bool; DOF]| {
-                        for (x, _) in x.data.0.iter_mut().zip(used).filter(|(_, u)| *u) {
-                            let mut out = [T::zero(); DOF];
-                            for (column, &xk) in columns.iter().zip(&*x) {
-                                for (o, &a) in out.iter_mut().zip(column) {
-                                    *o -= a * xk;
+                    let minus_inverse_times = |x: &na::SMatrix<T, DOF, DOF>, used: [bool; DOF]| {
+                        let mut product = zero();
+                        for ((p, x), _) in product.data.0.iter_mut().zip(&x.data.0).zip(used).filter(|(_, u)| *u) {
+                            for (column, &xk) in columns.iter().zip(x) {
+                                for (o, &a) in p.iter_mut().zip(column) {
+                                    *o = ::dhgen::Real::mul_add_fast(-a, xk, *o);
                                 }
                             }
-                            *x = out;
                         }
+                        product
                     };
-                    let (mut dq, mut dqd) = (dq, dqd);
-                    minus_inverse_times(&mut dq, [#(#used_q),*]);
-                    minus_inverse_times(&mut dqd, [#(#used_qd),*]);
-                    na::SimdBool::all(ok).then_some((dq, dqd, inverse))
+                    na::SimdBool::all(ok).then(|| (
+                        minus_inverse_times(&dq, [#(#used_q),*]),
+                        minus_inverse_times(&dqd, [#(#used_qd),*]),
+                        inverse,
+                    ))
                 },
                 reads,
             )
