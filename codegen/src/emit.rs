@@ -354,10 +354,8 @@ pub fn emit_staged(
             }
         }
         let mut load = |id: Id, stmts: &mut Vec<TokenStream>| {
-            if let Ok(i) = needed.binary_search(&id) {
-                if let Some(s) = loads[i].take() {
-                    stmts.push(s);
-                }
+            if let Some(s) = needed.binary_search(&id).ok().and_then(|i| loads[i].take()) {
+                stmts.push(s);
             }
         };
         let factors = |m: Id| match graph.node(m) {
