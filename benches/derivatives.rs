@@ -7,18 +7,19 @@
 //!
 //! Pinocchio 4.1.0 on the same models and machine (`scripts/pinocchio_bench.sh`: its templates
 //! compiled with `-O3 -march=native`, which includes AVX-512 on this host; two rounds alternating
-//! with this benchmark, 2026-12-01, a session when the host ran about a quarter faster than in
-//! the one before): PUMA 560 `rnea` 0.56–0.57 µs, `computeRNEADerivatives` 1.95–2.00 µs,
-//! `computeABADerivatives` 2.51–2.56 µs; Panda 0.66–0.69, 2.32–2.35 and 3.03–3.09 µs. Generated
-//! here, the same rounds, default target: PUMA 560 ∂τ 184 ns; Panda ∂τ 759–783 ns, ∂q̈ 952–983
-//! ns; built with `RUSTFLAGS="-C target-cpu=x86-64-v3"`: PUMA 560 148–156 and 295–301 ns, Panda
-//! 521–528 and 751–758 ns. (The PUMA 560's ∂q̈, 411 to 567 ns in three builds with the same
-//! instructions, moves with code layout.) Instructions per call
+//! with this benchmark, 2026-12-01, a later session): PUMA 560 `rnea` 0.57–0.58 µs,
+//! `computeRNEADerivatives` 1.96–2.08 µs, `computeABADerivatives` 2.51–2.61 µs; Panda
+//! 0.67–0.68, 2.35–2.45 and 3.07–3.18 µs. Generated here, the same rounds, default target:
+//! PUMA 560 ∂τ 184–187 and ∂q̈ 439–445 ns; Panda 816–819 and 900–916 ns; built with
+//! `RUSTFLAGS="-C target-cpu=x86-64-v3"`: PUMA 560 148–151 and 280–284 ns, Panda 435–451 and
+//! 668–670 ns. (These large functions move with code layout: the Panda's ∂τ took 672 ns for the
+//! default target in another build the same day, the PUMA 560's ∂q̈ 411 to 567 ns in three
+//! builds of an earlier session with the same instructions.) Instructions per call
 //! (`scripts/pinocchio_bench.sh --callgrind`, `examples/instructions.rs`): Pinocchio 24,364 and
-//! 33,754 (PUMA 560), 29,094 and 40,623 (Panda); generated 3,806 and 5,804, 8,400 and 11,752.
+//! 33,754 (PUMA 560), 29,094 and 40,623 (Panda); generated 3,855 and 6,057, 7,991 and 11,123.
 //! Both for x86-64-v3 (`--callgrind -march=x86-64-v3`): Pinocchio 20,431 and 29,907, 24,394
-//! and 35,002; generated 2,680 and 4,251, 5,970 and 8,509. Ḋ and Cᵀq̇ (default target, same
-//! session): PUMA 560 77 and 52 ns (runtime 575 and 615), Panda 163 and 142 ns (705 and 696).
+//! and 35,002; generated 2,667 and 4,024, 5,401 and 7,302. Ḋ and Cᵀq̇ (default target, an
+//! earlier session): PUMA 560 77 and 52 ns (runtime 575 and 615), Panda 163 and 142 ns (705 and 696).
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use dhgen::Robot;

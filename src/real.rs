@@ -210,7 +210,8 @@ impl<const N: usize> Real for num_dual::DualSVec64<N> {}
 
 /// The rule for "the inertia matrix is singular", the same on the generated and the runtime
 /// path: forward dynamics factors `D(q)` by Cholesky and returns `None` when a pivot (the
-/// square of a diagonal entry of the factor) is at or below
+/// square of a diagonal entry of the factor `L` in `L Lᵀ`, the same as an entry of `Δ` in the
+/// square-root-free `L Δ Lᵀ` generated code uses) is at or below
 /// `8 · n · ε · max_i D_ii`, with `ε` the scalar's machine epsilon.
 ///
 /// Rounding errors of the factorisation are of the order of `n · ε · max_i D_ii`, so a pivot
