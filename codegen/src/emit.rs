@@ -2,15 +2,28 @@
 //!
 //! rustc's debug-info generation overflows its stack on functions with a few thousand
 //! `let`s, and release compile time grows superlinearly with function size, so the outputs
-//! of one quantity are split into parts of at most [`MAX_STATEMENTS`] statements, each
-//! its own function writing into the caller's output.
+//! of one quantity of more than [`WHOLE_STATEMENTS`] statements are split into parts of at
+//! most [`MAX_STATEMENTS`] statements, each its own function writing into the caller's
+//! output.
 
 use crate::graph::{E, Id, Node, OpCount, SharedGraph, Sym, count};
 use proc_macro2::{Ident, Literal, Span, TokenStream};
 use quote::quote;
 
-/// The most statements one generated function may hold.
+/// The most statements one part of a split function may hold, as estimated while cutting
+/// (operations and stores, and two loads per operation: about 300 operations).
 pub const MAX_STATEMENTS: usize = 900;
+
+/// The most statements (operations, stores and loads, each counted once) of a function
+/// emitted whole, in one part. Above, it is cut into parts of [`MAX_STATEMENTS`]: each value
+/// crossing a cut is stored and loaded again, which costs more than the register pressure of
+/// one longer function up to this size, and less beyond (instructions per call, callgrind, one
+/// part up to 1,300 statements against parts of ~300 operations: a general 12-joint arm's fk
+/// 2,437 → 2,120 and J 2,925 → 2,387 on the default x86-64 target, 1,314 → 1,068 and 1,561 →
+/// 1,179 on x86-64-v3; Panda D 1,598 → 1,512 and q̈ 2,145 → 2,024 (x86-64-v3); Panda τ
+/// 2,042 → 2,104 on the default target, 1,213 → 1,123 on x86-64-v3; with parts of up to
+/// 1,500 statements for every function, Panda ∂τ took 8 % more).
+pub const WHOLE_STATEMENTS: usize = 1_300;
 
 /// One output: where to store it (an lvalue) and its expression.
 pub struct Output {
@@ -166,6 +179,23 @@ pub fn emit_staged(
     }
     // Cut the operation nodes into parts by statement budget (operations + stores +
     // values read from earlier parts, estimated generously by the operands).
+    // A function that fits in [`WHOLE_STATEMENTS`] (each operation, store and load counted
+    // once) stays whole.
+    let whole: usize = order
+        .iter()
+        .map(|&id| {
+            if is_op(id) {
+                1 + stored_at[id as usize].len()
+            } else {
+                1
+            }
+        })
+        .sum();
+    let limit = if whole <= WHOLE_STATEMENTS {
+        usize::MAX
+    } else {
+        MAX_STATEMENTS
+    };
     let mut part_of = vec![NONE; size];
     let mut parts_nodes: Vec<Vec<Id>> = vec![Vec::new()];
     let mut budget = 0usize;
@@ -180,7 +210,7 @@ pub fn emit_staged(
             continue;
         }
         let cost = 1 + stored_at[id as usize].len() + 2;
-        if budget + cost > MAX_STATEMENTS && !parts_nodes.last().expect("non-empty").is_empty() {
+        if budget + cost > limit && !parts_nodes.last().expect("non-empty").is_empty() {
             parts_nodes.push(Vec::new());
             budget = 0;
         }
