@@ -177,10 +177,9 @@ pub fn emit_staged(
             stored_at[*id as usize].push(i);
         }
     }
-    // Cut the operation nodes into parts by statement budget (operations + stores +
-    // values read from earlier parts, estimated generously by the operands).
     // A function that fits in [`WHOLE_STATEMENTS`] (each operation, store and load counted
-    // once) stays whole.
+    // once) stays whole; a larger one is cut into parts by statement budget (operations +
+    // stores + values read from earlier parts, estimated generously by the operands).
     let whole: usize = order
         .iter()
         .map(|&id| {

@@ -1042,9 +1042,11 @@ pub const QUANTITIES: &[Quantity] = &[
                     let zero = || na::SMatrix::<T, DOF, DOF>::from_data(na::ArrayStorage([[T::zero(); DOF]; DOF]));
                     #derivatives
                     let ok = ok #(& ::dhgen::Real::is_finite_lanes(qdd[#joints]))*;
-                    // −D⁻¹ X column by column, in place (column m of the product reads only
-                    // column m of X), in plain loops the compiler unrolls: 40 % fewer
-                    // instructions than nalgebra's general product at 6 × 6.
+                    // −D⁻¹ X column by column (column m of the product reads only column m
+                    // of X), in plain loops the compiler unrolls (40 % fewer instructions
+                    // than nalgebra's general product at 6 × 6), with fused multiply-adds,
+                    // each product built where the result holds it: copying X and the
+                    // products into the result took 6 % of the Panda's instructions.
                     let columns = &inverse.data.0;
                     let minus_inverse_times = |x: &na::SMatrix<T, DOF, DOF>, used: [bool; DOF]| {
                         let mut product = zero();
