@@ -13,8 +13,9 @@
 //! PUMA 560 ∂τ 184–187 and ∂q̈ 439–445 ns; Panda 816–819 and 900–916 ns; built with
 //! `RUSTFLAGS="-C target-cpu=x86-64-v3"`: PUMA 560 148–151 and 280–284 ns, Panda 435–451 and
 //! 668–670 ns. (These large functions move with code layout: the Panda's ∂τ took 672 ns for the
-//! default target in another build the same day, the PUMA 560's ∂q̈ 411 to 567 ns in three
-//! builds of an earlier session with the same instructions.) Instructions per call
+//! default target in another build the same session with the same instructions, the PUMA
+//! 560's ∂q̈ 411 to 567 ns in three builds of an earlier session with the same instructions.)
+//! Instructions per call
 //! (`scripts/pinocchio_bench.sh --callgrind`, `examples/instructions.rs`): Pinocchio 24,364 and
 //! 33,754 (PUMA 560), 29,094 and 40,623 (Panda); generated 3,855 and 6,057, 7,991 and 11,123.
 //! Both for x86-64-v3 (`--callgrind -march=x86-64-v3`): Pinocchio 20,431 and 29,907, 24,394
