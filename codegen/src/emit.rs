@@ -195,27 +195,29 @@ pub fn emit_staged(
     } else {
         MAX_STATEMENTS
     };
+    let cost = |id: Id| {
+        if is_op(id) {
+            1 + stored_at[id as usize].len() + 2
+        } else {
+            0
+        }
+    };
+    let cuts = cuts(&graph, &order, early_count, limit, &cost, &is_op);
     let mut part_of = vec![NONE; size];
     let mut parts_nodes: Vec<Vec<Id>> = vec![Vec::new()];
-    let mut budget = 0usize;
     let mut late_part = None;
     for (i, &id) in order.iter().enumerate() {
         if late.is_some() && i >= early_count && late_part.is_none() {
             parts_nodes.push(Vec::new());
-            budget = 0;
             late_part = Some(parts_nodes.len() - 1);
         }
-        if !is_op(id) {
-            continue;
+        if is_op(id) {
+            part_of[id as usize] = (parts_nodes.len() - 1) as u32;
+            parts_nodes.last_mut().expect("non-empty").push(id);
         }
-        let cost = 1 + stored_at[id as usize].len() + 2;
-        if budget + cost > limit && !parts_nodes.last().expect("non-empty").is_empty() {
+        if cuts[i] && !parts_nodes.last().expect("non-empty").is_empty() {
             parts_nodes.push(Vec::new());
-            budget = 0;
         }
-        budget += cost;
-        part_of[id as usize] = (parts_nodes.len() - 1) as u32;
-        parts_nodes.last_mut().expect("non-empty").push(id);
     }
     if late.is_some() && late_part.is_none() {
         parts_nodes.push(Vec::new());
@@ -492,6 +494,85 @@ pub fn emit_staged(
     }
 }
 
+/// Where to cut `order` into parts: `cuts[i]` when a part ends after `order[i]`. Each stage
+/// (`..early_count`, then the rest) is cut on its own, every part costing at most `limit`
+/// (by `cost`); within the last quarter of each part's budget the cut goes where the fewest
+/// values computed before it are read after it (each is stored to the scratch array and
+/// loaded again).
+fn cuts(
+    graph: &crate::graph::Graph,
+    order: &[Id],
+    early_count: usize,
+    limit: usize,
+    cost: &dyn Fn(Id) -> usize,
+    is_op: &dyn Fn(Id) -> bool,
+) -> Vec<bool> {
+    let len = order.len();
+    let mut cuts = vec![false; len];
+    if limit == usize::MAX {
+        return cuts;
+    }
+    // live[p]: the operations at positions ≤ p read at a position > p.
+    let mut position = vec![usize::MAX; graph.nodes().len()];
+    for (i, &id) in order.iter().enumerate() {
+        position[id as usize] = i;
+    }
+    let mut last_read = vec![0usize; len];
+    for (i, &id) in order.iter().enumerate() {
+        for c in children(graph.node(id)) {
+            if is_op(c) {
+                let d = position[c as usize];
+                last_read[d] = last_read[d].max(i);
+            }
+        }
+    }
+    let mut delta = vec![0i64; len + 1];
+    for d in 0..len {
+        if last_read[d] > d {
+            delta[d] += 1;
+            delta[last_read[d]] -= 1;
+        }
+    }
+    let mut live = vec![0i64; len];
+    let mut running = 0i64;
+    for p in 0..len {
+        running += delta[p];
+        live[p] = running;
+    }
+    for (start, end) in [(0, early_count), (early_count, len)] {
+        let mut s = start;
+        loop {
+            let mut total = 0usize;
+            let mut last_fit = None;
+            let mut window = None;
+            for (i, &id) in order.iter().enumerate().take(end).skip(s) {
+                total += cost(id);
+                if total > limit {
+                    break;
+                }
+                last_fit = Some(i);
+                if window.is_none() && total * 4 >= limit * 3 {
+                    window = Some(i);
+                }
+            }
+            if total <= limit {
+                break;
+            }
+            let Some(e) = last_fit else {
+                // One node over budget (a store to many outputs): a part of its own.
+                cuts[s] = s + 1 < end;
+                s += 1;
+                continue;
+            };
+            let w = window.unwrap_or(e);
+            let p = (w..=e).rev().min_by_key(|&p| live[p]).expect("w ≤ e");
+            cuts[p] = true;
+            s = p + 1;
+        }
+    }
+    cuts
+}
+
 fn children(node: Node) -> Vec<Id> {
     match node {
         Node::Add(a, b) | Node::Sub(a, b) | Node::Mul(a, b) => vec![a, b],
@@ -548,6 +629,30 @@ mod tests {
             })
             .map(|(p, _)| p)
             .collect()
+    }
+
+    #[test]
+    fn a_long_function_is_cut_where_no_value_crosses() {
+        // 40 independent chains of 60 operations each, too long to stay whole: cut where one
+        // chain ends and the next begins, no value passes from part to part.
+        let graph = SharedGraph::default();
+        let (x, y) = (E::sym(&graph, Sym::Qd(0)), E::sym(&graph, Sym::Qd(1)));
+        let outputs: Vec<Output> = (0..40)
+            .map(|k| {
+                let mut v = x.clone();
+                for step in 0..30 {
+                    v = v * E::K(2.0 + f64::from(k * 30 + step)) + y.clone();
+                }
+                Output {
+                    target: format!("out[{k}]").parse().expect("an lvalue"),
+                    value: v,
+                }
+            })
+            .collect();
+        let emitted = emit(&graph, outputs);
+        assert_eq!(emitted.ops.total(), 40 * 60);
+        assert!(emitted.parts.len() >= 8, "{} parts", emitted.parts.len());
+        assert_eq!(emitted.scratch, 0);
     }
 
     #[test]
