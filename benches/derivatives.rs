@@ -7,19 +7,19 @@
 //!
 //! Pinocchio 4.1.0 on the same models and machine (`scripts/pinocchio_bench.sh`: its templates
 //! compiled with `-O3 -march=native`, which includes AVX-512 on this host; two rounds alternating
-//! with this benchmark, 2026-12-01, a later session): PUMA 560 `rnea` 0.57–0.58 µs,
-//! `computeRNEADerivatives` 1.96–2.08 µs, `computeABADerivatives` 2.51–2.61 µs; Panda
-//! 0.67–0.68, 2.35–2.45 and 3.07–3.18 µs. Generated here, the same rounds, default target:
-//! PUMA 560 ∂τ 184–187 and ∂q̈ 439–445 ns; Panda 816–819 and 900–916 ns; built with
-//! `RUSTFLAGS="-C target-cpu=x86-64-v3"`: PUMA 560 148–151 and 280–284 ns, Panda 435–451 and
-//! 668–670 ns. (These large functions move with code layout: the Panda's ∂τ took 672 ns for the
-//! default target in another build the same session with the same instructions, the PUMA
-//! 560's ∂q̈ 411 to 567 ns in three builds of an earlier session with the same instructions.)
-//! Instructions per call
-//! (`scripts/pinocchio_bench.sh --callgrind`, `examples/instructions.rs`): Pinocchio 24,364 and
-//! 33,754 (PUMA 560), 29,094 and 40,623 (Panda); generated 3,855 and 6,057, 7,991 and 11,123.
-//! Both for x86-64-v3 (`--callgrind -march=x86-64-v3`): Pinocchio 20,431 and 29,907, 24,394
-//! and 35,002; generated 2,667 and 4,024, 5,401 and 7,302. Ḋ and Cᵀq̇ (default target, an
+//! with this benchmark, 2026-12-01, a later session): PUMA 560 `rnea` 0.58–0.61 µs,
+//! `computeRNEADerivatives` 2.03–2.05 µs, `computeABADerivatives` 2.57–2.60 µs; Panda
+//! 0.69–0.71, 2.41–2.43 and 3.13–3.21 µs. Generated here, the same rounds, default target:
+//! PUMA 560 ∂τ 183–185 and ∂q̈ 398–416 ns; Panda 704–720 and 951–960 ns; built with
+//! `RUSTFLAGS="-C target-cpu=x86-64-v3"`: PUMA 560 159–162 and 277–279 ns, Panda 416–417 and
+//! 649–652 ns. (These large functions move with code layout: the same code took 598 and 877 ns
+//! for the Panda on the default target in another build the same session; the PUMA 560's ∂q̈
+//! 411 to 567 ns in three builds of an earlier session with the same instructions.)
+//! Instructions per call (`scripts/pinocchio_bench.sh --callgrind`,
+//! `examples/instructions.rs`): Pinocchio 24,364 and 33,754 (PUMA 560), 29,094 and 40,623
+//! (Panda); generated 3,783 and 6,021, 7,459 and 10,656. Both for x86-64-v3 (`--callgrind
+//! -march=x86-64-v3`): Pinocchio 20,431 and 29,907, 24,394
+//! and 35,002; generated 2,692 and 4,012, 5,353 and 7,197. Ḋ and Cᵀq̇ (default target, an
 //! earlier session): PUMA 560 77 and 52 ns (runtime 575 and 615), Panda 163 and 142 ns (705 and 696).
 
 use criterion::{Criterion, criterion_group, criterion_main};
