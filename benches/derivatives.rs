@@ -18,9 +18,9 @@
 //! Instructions per call (`scripts/pinocchio_bench.sh --callgrind`,
 //! `examples/instructions.rs`): Pinocchio 24,364 and 33,754 (PUMA 560), 29,094 and 40,623
 //! (Panda); generated 3,783 and 6,021, 7,459 and 10,656. Both for x86-64-v3 (`--callgrind
-//! -march=x86-64-v3`): Pinocchio 20,431 and 29,907, 24,394
-//! and 35,002; generated 2,692 and 4,012, 5,353 and 7,197. Ḋ and Cᵀq̇ (default target, an
-//! earlier session): PUMA 560 77 and 52 ns (runtime 575 and 615), Panda 163 and 142 ns (705 and 696).
+//! -march=x86-64-v3`): Pinocchio 20,431 and 29,907, 24,394 and 35,002; generated 2,692 and
+//! 4,012, 5,353 and 7,197. Ḋ and Cᵀq̇ (default target, an earlier session): PUMA 560 77 and
+//! 52 ns (runtime 575 and 615), Panda 163 and 142 ns (705 and 696).
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use dhgen::Robot;

@@ -114,9 +114,10 @@ pub fn constant(x: f64) -> TokenStream {
 
 /// Emits the outputs; constants that are outputs are stored directly.
 ///
-/// The nodes are cut, in dependency order, into parts of at most [`MAX_STATEMENTS`]
-/// statements. A value that a later part needs is passed through a scratch array
-/// (`w[slot]`), so every node is computed exactly once however the function is split.
+/// A function of more than [`WHOLE_STATEMENTS`] statements is cut, in dependency order, into
+/// parts of at most [`MAX_STATEMENTS`] statements, each cut where few values cross it. A value
+/// that a later part needs is passed through a scratch array (`w[slot]`), so every node is
+/// computed exactly once however the function is split.
 pub fn emit(graph: &SharedGraph, outputs: Vec<Output>) -> Emitted {
     emit_staged(graph, outputs, None)
 }
@@ -190,11 +191,6 @@ pub fn emit_staged(
             }
         })
         .sum();
-    let limit = if whole <= WHOLE_STATEMENTS {
-        usize::MAX
-    } else {
-        MAX_STATEMENTS
-    };
     let cost = |id: Id| {
         if is_op(id) {
             1 + stored_at[id as usize].len() + 2
@@ -202,7 +198,11 @@ pub fn emit_staged(
             0
         }
     };
-    let cuts = cuts(&graph, &order, early_count, limit, &cost, &is_op);
+    let cuts = if whole <= WHOLE_STATEMENTS {
+        vec![false; order.len()]
+    } else {
+        cuts(&graph, &order, early_count, &cost, &is_op)
+    };
     let mut part_of = vec![NONE; size];
     let mut parts_nodes: Vec<Vec<Id>> = vec![Vec::new()];
     let mut late_part = None;
@@ -495,23 +495,20 @@ pub fn emit_staged(
 }
 
 /// Where to cut `order` into parts: `cuts[i]` when a part ends after `order[i]`. Each stage
-/// (`..early_count`, then the rest) is cut on its own, every part costing at most `limit`
-/// (by `cost`); within the last quarter of each part's budget the cut goes where the fewest
-/// values computed before it are read after it (each is stored to the scratch array and
-/// loaded again).
+/// (`..early_count`, then the rest) is cut on its own, every part costing at most
+/// [`MAX_STATEMENTS`] (by `cost`); within the last quarter of each part's budget the cut goes
+/// where the fewest values computed before it are read after it (each is stored to the
+/// scratch array and loaded again).
 fn cuts(
     graph: &crate::graph::Graph,
     order: &[Id],
     early_count: usize,
-    limit: usize,
     cost: &dyn Fn(Id) -> usize,
     is_op: &dyn Fn(Id) -> bool,
 ) -> Vec<bool> {
     let len = order.len();
+    let limit = MAX_STATEMENTS;
     let mut cuts = vec![false; len];
-    if limit == usize::MAX {
-        return cuts;
-    }
     // live[p]: the operations at positions ≤ p read at a position > p.
     let mut position = vec![usize::MAX; graph.nodes().len()];
     for (i, &id) in order.iter().enumerate() {
