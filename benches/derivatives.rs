@@ -5,16 +5,20 @@
 //!
 //! `cargo bench --bench derivatives`
 //!
-//! Pinocchio 4.1.0 on the same models and machine (`scripts/pinocchio_bench.sh`: its templates
-//! compiled with `-O3 -march=native`, which includes AVX-512 on this host; two rounds alternating
-//! with this benchmark, 2026-12-01, a later session): PUMA 560 `rnea` 0.58–0.61 µs,
-//! `computeRNEADerivatives` 2.03–2.05 µs, `computeABADerivatives` 2.57–2.60 µs; Panda
-//! 0.69–0.71, 2.41–2.43 and 3.13–3.21 µs. Generated here, the same rounds, default target:
-//! PUMA 560 ∂τ 183–185 and ∂q̈ 398–416 ns; Panda 704–720 and 951–960 ns; built with
-//! `RUSTFLAGS="-C target-cpu=x86-64-v3"`: PUMA 560 159–162 and 277–279 ns, Panda 416–417 and
-//! 649–652 ns. (These large functions move with code layout: the same code took 598 and 877 ns
-//! for the Panda on the default target in another build the same session; the PUMA 560's ∂q̈
-//! 411 to 567 ns in three builds of an earlier session with the same instructions.)
+//! Pinocchio 4.1.0 on the same models and machine, each side built for the same target
+//! (`scripts/pinocchio_bench.sh --time ""` for baseline x86-64, `--time -march=x86-64-v3`;
+//! two rounds alternating with this benchmark, 2026-12-01, a busy hour of the host; ratios
+//! within a round). Default x86-64: PUMA 560 `computeRNEADerivatives` 2.14–2.19 µs against
+//! generated ∂τ 193–196 ns (11×), `computeABADerivatives` 2.58–2.71 µs against ∂q̈ 412–421 ns
+//! (6.3–6.4×); Panda 2.55–2.66 µs against 622–661 ns (4.0–4.1×), 3.23–3.35 µs against 934–958
+//! ns (3.5×). x86-64-v3 (`RUSTFLAGS="-C target-cpu=x86-64-v3"` here): PUMA 560 2.20–2.29 µs
+//! against 173–176 ns (13×), 2.58–2.84 µs against 295–302 ns (8.7–9.4×); Panda 2.63–2.66 µs
+//! against 449–459 ns (5.8×), 3.17–3.41 µs against 713–765 ns (4.1–4.8×). Pinocchio built
+//! `-march=native` (AVX-512 on this host) was no faster: Panda 2.52–2.58 and 3.32–3.70 µs in
+//! the same rounds; in a quieter earlier session 2.41–2.43 and 3.13–3.21 µs against generated
+//! (x86-64-v3) 416–417 and 649–652 ns. (These large functions move with code layout: the same
+//! code took 598 and 877 ns for the Panda on the default target in another build; the PUMA
+//! 560's ∂q̈ 411 to 567 ns in three builds of a session with the same instructions.)
 //! Instructions per call (`scripts/pinocchio_bench.sh --callgrind`,
 //! `examples/instructions.rs`): Pinocchio 24,364 and 33,754 (PUMA 560), 29,094 and 40,623
 //! (Panda); generated 3,783 and 6,021, 7,459 and 10,656. Both for x86-64-v3 (`--callgrind

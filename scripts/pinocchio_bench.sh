@@ -9,12 +9,14 @@
 # 1,000 times under callgrind, its inclusive count divided by its calls;
 # `--callgrind -march=x86-64-v3` counts the build for AVX2 and FMA instead (to compare with
 # dhgen built with `RUSTFLAGS="-C target-cpu=x86-64-v3"`).
+# `--time FLAGS` times a build with FLAGS instead of -march=native: `--time ""` for baseline
+# x86-64 (like `cargo bench`), `--time -march=x86-64-v3` (like dhgen's x86-64-v3 build).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 out="${TMPDIR:-/tmp}/dhgen-pinocchio-bench"
 source scripts/pinocchio_cxx.sh
 march=-march=native
-[[ "${1:-}" == --callgrind ]] && march="${2:-}"
+[[ "${1:-}" == --callgrind || "${1:-}" == --time ]] && march="${2:-}"
 pinocchio_cxx benches/pinocchio/derivatives.cpp "$out/bench" -O3 $march
 if [[ "${1:-}" != --callgrind ]]; then
     "$out/bench" "$out/puma560.bin" "$out/panda.bin"
