@@ -6,11 +6,17 @@
 # `dhgen::Robot`, best of seven runs of 20,000 calls (ns per call; the ratio is runtime /
 # generated, above 1 where the generated code is faster).
 #
-#   scripts/scale_speed.sh [general|industrial] [N ...]     (default: general 16 20 30)
+#   scripts/scale_speed.sh [--more] [general|industrial] [N ...]   (default: general 16 20 30)
 #
-# A 30-joint arm takes about five minutes to build. Scratch files in target/scale-speed/.
+# `--more` also expands the derivatives (`robot!(..., derivatives)`) and times c_ijk, the
+# payload's D, g, τ, q̈ and C (against `dhgen::payload`'s functions on `Robot`; C against the
+# runtime's C without the payload, which has no payload variant: its cost is the same), Ḋ,
+# Cᵀq̇, ∂τ, ∂q̈ and D⁻¹. A 30-joint arm takes about five minutes to build (about eight with
+# `--more`). Scratch files in target/scale-speed/.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+more=false
+if [[ "${1:-}" == --more ]]; then more=true; shift; fi
 style=general
 if [[ "${1:-}" == general || "${1:-}" == industrial ]]; then style=$1; shift; fi
 sizes=("$@")
@@ -21,9 +27,26 @@ mkdir -p "$crate/src"
 cargo build -q --release -p dhgen-cli
 mods=""
 calls=""
+options=""
+extra=""
+if $more; then
+  options=", derivatives"
+  extra='
+            ("christoffel", time(|i| $m::christoffel(&black_box(&s[i % 64])[0])), time(|i| robot.christoffel(&black_box(&d[i % 64])[0]))),
+            ("mass_matrix_with_payload", time(|i| $m::mass_matrix_with_payload(&black_box(&s[i % 64])[0], &pp)), time(|i| dhgen::payload::mass_matrix(&robot, &pl, &black_box(&d[i % 64])[0]))),
+            ("gravity_with_payload", time(|i| $m::gravity_with_payload(&black_box(&s[i % 64])[0], &pp)), time(|i| dhgen::payload::gravity(&robot, &pl, &black_box(&d[i % 64])[0]))),
+            ("inverse_dynamics_with_payload", time(|i| { let [q, qd, qdd] = black_box(&s[i % 64]); $m::inverse_dynamics_with_payload(q, qd, qdd, &pp) }), time(|i| { let [q, qd, qdd] = black_box(&d[i % 64]); dhgen::payload::inverse_dynamics(&robot, &pl, q, qd, qdd) })),
+            ("forward_dynamics_with_payload", time(|i| { let [q, qd, t] = black_box(&s[i % 64]); $m::forward_dynamics_with_payload(q, qd, t, &pp) }), time(|i| { let [q, qd, t] = black_box(&d[i % 64]); dhgen::payload::forward_dynamics(&robot, &pl, q, qd, t) })),
+            ("coriolis_with_payload", time(|i| { let [q, qd, _] = black_box(&s[i % 64]); $m::coriolis_with_payload(q, qd, &pp) }), time(|i| { let [q, qd, _] = black_box(&d[i % 64]); robot.coriolis(q, qd) })),
+            ("mass_matrix_rate", time(|i| { let [q, qd, _] = black_box(&s[i % 64]); $m::mass_matrix_rate(q, qd) }), time(|i| { let [q, qd, _] = black_box(&d[i % 64]); robot.mass_matrix_rate(q, qd) })),
+            ("coriolis_transpose_qd", time(|i| { let [q, qd, _] = black_box(&s[i % 64]); $m::coriolis_transpose_qd(q, qd) }), time(|i| { let [q, qd, _] = black_box(&d[i % 64]); robot.coriolis_transpose_qd(q, qd) })),
+            ("inverse_dynamics_derivatives", time(|i| { let [q, qd, qdd] = black_box(&s[i % 64]); $m::inverse_dynamics_derivatives(q, qd, qdd) }), time(|i| { let [q, qd, qdd] = black_box(&d[i % 64]); robot.inverse_dynamics_derivatives(q, qd, qdd) })),
+            ("forward_dynamics_derivatives", time(|i| { let [q, qd, t] = black_box(&s[i % 64]); $m::forward_dynamics_derivatives(q, qd, t) }), time(|i| { let [q, qd, t] = black_box(&d[i % 64]); robot.forward_dynamics_derivatives(q, qd, t) })),
+            ("mass_matrix_inverse", time(|i| $m::mass_matrix_inverse(&black_box(&s[i % 64])[0])), time(|i| robot.mass_matrix_inverse(&black_box(&d[i % 64])[0]))),'
+fi
 for n in "${sizes[@]}"; do
   target/release/dhgen random --dof "$n" --style "$style" --seed 1 -o "$crate/${style}_$n.toml"
-  mods+="dhgen::robot!(mod ${style}_$n = \"${style}_$n.toml\");"$'\n'
+  mods+="dhgen::robot!(mod ${style}_$n = \"${style}_$n.toml\"$options);"$'\n'
   calls+="    arm!(${style}_$n);"$'\n'
 done
 cat > "$crate/Cargo.toml" <<TOML
@@ -76,14 +99,17 @@ macro_rules! arm {
             .collect();
         let g = \$m::Robot;
         let (s, d) = (&s, &d);
-        let rows: [(&str, f64, f64); 7] = [
+        let pl = dhgen::payload::Payload::new(1.5, [0.01, -0.02, 0.05], [[0.01, 0.0, 0.0], [0.0, 0.012, 0.0], [0.0, 0.0, 0.008]]).unwrap();
+        let pp = pl.parameters();
+        let _ = (&pl, &pp);
+        let rows: Vec<(&str, f64, f64)> = vec![
             ("fk", time(|i| g.fk(&black_box(&s[i % 64])[0])), time(|i| robot.fk(&black_box(&d[i % 64])[0]))),
             ("jacobian", time(|i| g.jacobian(&black_box(&s[i % 64])[0])), time(|i| robot.jacobian(&black_box(&d[i % 64])[0]))),
             ("mass_matrix", time(|i| g.mass_matrix(&black_box(&s[i % 64])[0])), time(|i| robot.mass_matrix(&black_box(&d[i % 64])[0]))),
             ("coriolis", time(|i| { let [q, qd, _] = black_box(&s[i % 64]); g.coriolis(q, qd) }), time(|i| { let [q, qd, _] = black_box(&d[i % 64]); robot.coriolis(q, qd) })),
             ("gravity", time(|i| g.gravity(&black_box(&s[i % 64])[0])), time(|i| robot.gravity(&black_box(&d[i % 64])[0]))),
             ("inverse_dynamics", time(|i| { let [q, qd, qdd] = black_box(&s[i % 64]); g.inverse_dynamics(q, qd, qdd) }), time(|i| { let [q, qd, qdd] = black_box(&d[i % 64]); robot.inverse_dynamics(q, qd, qdd) })),
-            ("forward_dynamics", time(|i| { let [q, qd, t] = black_box(&s[i % 64]); g.forward_dynamics(q, qd, t) }), time(|i| { let [q, qd, t] = black_box(&d[i % 64]); robot.forward_dynamics(q, qd, t) })),
+            ("forward_dynamics", time(|i| { let [q, qd, t] = black_box(&s[i % 64]); g.forward_dynamics(q, qd, t) }), time(|i| { let [q, qd, t] = black_box(&d[i % 64]); robot.forward_dynamics(q, qd, t) })),$extra
         ];
         for (what, generated, runtime) in rows {
             println!("| {} | {what} | {generated:.0} | {runtime:.0} | {:.2}× |", stringify!(\$m), runtime / generated);

@@ -1,13 +1,17 @@
 //! The recursive rigid-body algorithms on caller-owned memory, over any [`Real`]: the
-//! composite rigid body algorithm for `D(q)`, the O(n²) Coriolis recursion for `C(q, q̇)` and
-//! recursive Newton–Euler for the bias torques, without allocation and without `std`.
+//! composite rigid body algorithm for `D(q)`, the O(n²) Coriolis recursion for `C(q, q̇)`
+//! (also with a payload held by the tool), the Christoffel symbols from the analytic
+//! derivatives of `D` and recursive Newton–Euler for the bias torques, without allocation and
+//! without `std`.
 //!
 //! They are the runtime path's algorithms — [`Robot`](crate::Robot) runs them on `f64` with
 //! its bodies in a `Vec` — and generated modules of more than 12 joints (the code generator's
 //! `LOOPED_ABOVE`) call them with their `CHAIN` and stack arrays: there, the straight-line
 //! form of `D(q)` and `C(q, q̇)` outgrows the instruction cache (a general 12-joint arm's
 //! unrolled `C` already streams about 90 KB of code per call) and loses to these loops, so a
-//! generated module is never slower than the runtime path. Smaller modules call them only
+//! generated module is never slower than the runtime path (the same holds for the n³
+//! Christoffel symbols, and for `Ḋ = C + Cᵀ` and `Cᵀq̇`, which such a module takes from
+//! [`coriolis`]). Smaller modules call them only
 //! where the cheapest symbolic derivation of D or C costs more operations per joint than the
 //! loops take time for (the generator's `LOOP_D_ABOVE_PER_JOINT` and
 //! `LOOP_C_ABOVE_PER_JOINT`); elsewhere the symbolic derivations win and are emitted. The
@@ -118,13 +122,13 @@ pub(crate) fn walk<T: Real>(
 }
 
 /// The world-frame joint axes and body inertias at the joint values `value(k)` (offsets
-/// applied), by [`walk`], passed base to tip to `put(k, state)`. A kinematics-only body has
-/// zero inertia.
+/// applied), by [`walk`], passed base to tip to `put(k, state)`; returns the last joint frame
+/// (`walk`'s). A kinematics-only body has zero inertia.
 pub(crate) fn body_states<T: Real>(
     chain: ChainRef<'_>,
     value: impl FnMut(usize) -> JointValue<T>,
     mut put: impl FnMut(usize, BodyState<T>),
-) {
+) -> (Matrix3<T>, Vector3<T>) {
     walk(chain, value, |i, r, p| {
         let Some(body) = chain.bodies.get(i) else {
             return;
@@ -146,7 +150,7 @@ pub(crate) fn body_states<T: Real>(
                 composite: inertia,
             },
         );
-    });
+    })
 }
 
 /// `put` for a fixed-size array: `out[i] = v` (every index is below N; `get_mut` keeps the
@@ -409,6 +413,159 @@ pub fn coriolis<T: Real, const N: usize>(
     coriolis_into(&mut states, qd, &mut scratch, |i, j, v| {
         set(&mut out, i, j, v)
     });
+    out
+}
+
+/// [`coriolis`] with a payload held by the tool: `payload` is its ten inertial parameters
+/// (mass, first moment `m·c` and inertia about the tool origin, in tool axes: the order of
+/// `dhgen::parameters::BODY_PARAMETER_NAMES`, as [`Payload::parameters`] gives them), added to
+/// the last body.
+///
+/// [`Payload::parameters`]: crate::payload::Payload::parameters
+#[must_use]
+pub fn coriolis_with_payload<T: Real, const N: usize>(
+    chain: ChainRef<'_>,
+    cos: &[T; N],
+    sin: &[T; N],
+    d: &[T; N],
+    qd: &[T; N],
+    payload: &[T; 10],
+) -> SMatrix<T, N, N> {
+    let mut states = [BodyState::zero(); N];
+    let (r, p) = body_states(chain, prepared(chain, cos, sin, d), into(&mut states));
+    if let Some(last) = states.last_mut() {
+        last.inertia += &held(chain, &r, &p, payload);
+        last.composite = last.inertia;
+    }
+    let mut scratch = [CoriolisBody::zero(); N];
+    let mut out = SMatrix::<T, N, N>::zeros();
+    coriolis_into(&mut states, qd, &mut scratch, |i, j, v| {
+        set(&mut out, i, j, v)
+    });
+    out
+}
+
+/// A payload's inertia about the world origin, held by the tool of `chain` whose last joint
+/// frame is `(r, p)`; `payload` as for [`coriolis_with_payload`].
+fn held<T: Real>(
+    chain: ChainRef<'_>,
+    r: &Matrix3<T>,
+    p: &Vector3<T>,
+    payload: &[T; 10],
+) -> Inertia<T> {
+    // The tool frame, `P_n` placed in the last joint frame (the identity without one).
+    let (rt, pt) = match chain.placements.get(chain.bodies.len()) {
+        Some(tool) => (
+            r * Matrix3::from_fn(|a, b| k::<T>(tool.r[a][b])),
+            p + r * Vector3::from_fn(|a, _| k::<T>(tool.p[a])),
+        ),
+        None => (*r, *p),
+    };
+    let mass = payload[0];
+    // First moment and inertia about the tool origin, in world axes.
+    let h = rt * Vector3::new(payload[1], payload[2], payload[3]);
+    let entries = dhgen_model::parameters::INERTIA_ENTRIES;
+    let kt = rt * Matrix3::from_fn(|a, b| payload[entries[a][b]]) * rt.transpose();
+    // About the world origin: Σ m (|p + y|² 1 − (p + y)(p + y)ᵀ) over the payload's points
+    // y about the tool origin p.
+    let pp = Matrix3::from_diagonal_element(pt.norm_squared()) - pt * pt.transpose();
+    let cross = Matrix3::from_diagonal_element(pt.dot(&h) * k(2.0))
+        - pt * h.transpose()
+        - h * pt.transpose();
+    Inertia {
+        mass,
+        h: h + pt * mass,
+        k: kt + pp * mass + cross,
+    }
+}
+
+/// The Christoffel symbols `c_ijk` (k the equation index) into `out`, row-major
+/// (`out[(i·n + j)·n + k]`, n = `states.len()`), from body states whose composites are
+/// accumulated, with `moved` and `screw` scratch of n² entries each. With `S_i` the joint
+/// screws, `I^C_l` the composite inertias and `×` the spatial cross product, for `a ≤ b`:
+/// `∂D_ab/∂q_l` is 0 for `l ≤ a`, `(S_a × S_l)·I^C_b S_b` for `a < l < b`, and
+/// `(S_a × S_l)·I^C_l S_b + (S_b × S_l)·I^C_l S_a` for `l ≥ b`; these derivatives are written
+/// into `out` first, then each triple of indices is turned into its symbols in place
+/// (`c_ijk = ½(∂d_kj/∂q_i + ∂d_ki/∂q_j − ∂d_ij/∂q_k)` reads three derivatives and gives three
+/// symbols, each at the places its symmetries put it), so no third array of n³ is needed.
+pub(crate) fn christoffel_into<T: Real>(
+    states: &[BodyState<T>],
+    moved: &mut [Force<T>],
+    screw: &mut [Motion<T>],
+    out: &mut [T],
+) {
+    let n = states.len();
+    if moved.len() < n * n || screw.len() < n * n || out.len() < n * n * n {
+        return;
+    }
+    // moved[l·n + j] = I^C_l S_j for j ≤ l; screw[a·n + l] = S_a × S_l for a < l.
+    for (l, sl) in states.iter().enumerate() {
+        for (j, sj) in states.iter().enumerate().take(l + 1) {
+            moved[l * n + j] = sl.composite.apply(&sj.axis);
+        }
+        for (a, sa) in states.iter().enumerate().take(l) {
+            screw[a * n + l] = sa.axis.cross(&sl.axis);
+        }
+    }
+    // out[(l·n + a)·n + b] = ∂D_ab/∂q_l.
+    out.fill(T::zero());
+    for a in 0..n {
+        for b in a..n {
+            for l in a + 1..n {
+                let mut v = screw[a * n + l].dot(&moved[l.max(b) * n + b]);
+                if l > b {
+                    v += screw[b * n + l].dot(&moved[l * n + a]);
+                }
+                out[(l * n + a) * n + b] = v;
+                out[(l * n + b) * n + a] = v;
+            }
+        }
+    }
+    // Per triple x ≤ y ≤ z: the derivatives d_x = ∂D_yz/∂q_x, d_y = ∂D_xz/∂q_y,
+    // d_z = ∂D_xy/∂q_z, and the symbols c_xyz = c_yxz = ½(d_x + d_y − d_z),
+    // c_xzy = c_zxy = ½(d_x + d_z − d_y), c_yzx = c_zyx = ½(d_y + d_z − d_x).
+    let half: T = k(0.5);
+    let at = |i: usize, j: usize, k: usize| (i * n + j) * n + k;
+    for x in 0..n {
+        for y in x..n {
+            for z in y..n {
+                let (dx, dy, dz) = (out[at(x, y, z)], out[at(y, x, z)], out[at(z, x, y)]);
+                let c_xyz = half * ((dx + dy) - dz);
+                let c_xzy = half * ((dx + dz) - dy);
+                let c_yzx = half * ((dy + dz) - dx);
+                out[at(x, y, z)] = c_xyz;
+                out[at(y, x, z)] = c_xyz;
+                out[at(x, z, y)] = c_xzy;
+                out[at(z, x, y)] = c_xzy;
+                out[at(y, z, x)] = c_yzx;
+                out[at(z, y, x)] = c_yzx;
+            }
+        }
+    }
+}
+
+/// The Christoffel symbols of `chain`'s `D(q)`, `[i][j][k]` = `c_ijk` (k the equation index),
+/// at the configuration given as for [`mass_matrix`]: the runtime path's algorithm
+/// ([`Robot::christoffel`](crate::Robot::christoffel)), O(n³), from the analytic derivatives
+/// of D. Motor inertias are constant and do not enter.
+#[must_use]
+pub fn christoffel<T: Real, const N: usize>(
+    chain: ChainRef<'_>,
+    cos: &[T; N],
+    sin: &[T; N],
+    d: &[T; N],
+) -> [[[T; N]; N]; N] {
+    let mut states = states_at(chain, cos, sin, d);
+    accumulate_composites(&mut states);
+    let mut moved = [[Force::zero(); N]; N];
+    let mut screw = [[Motion::zero(); N]; N];
+    let mut out = [[[T::zero(); N]; N]; N];
+    christoffel_into(
+        &states,
+        moved.as_flattened_mut(),
+        screw.as_flattened_mut(),
+        out.as_flattened_mut().as_flattened_mut(),
+    );
     out
 }
 

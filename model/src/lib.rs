@@ -36,7 +36,6 @@ pub mod convert;
 pub mod hostile;
 mod math;
 mod model;
-#[cfg(feature = "std")]
 pub mod parameters;
 #[cfg(feature = "std")]
 pub mod random;

@@ -50,8 +50,11 @@
 //! assert_eq!(pi[9], 0.1 + 2.0 * 0.25); // Izz about the frame's origin
 //! ```
 
+#[cfg(feature = "std")]
 use crate::random::Stream;
+#[cfg(feature = "std")]
 use crate::{ChainRef, RobotModel};
+#[cfg(feature = "std")]
 use nalgebra::{DMatrix, DVector};
 
 /// The number of inertial parameters of one body.
@@ -109,6 +112,7 @@ pub enum Column {
 
 /// The regressor's columns, in order: ten per link, then the joint-side terms the description
 /// has.
+#[cfg(feature = "std")]
 pub fn columns(model: &RobotModel) -> Vec<Column> {
     let mut out: Vec<Column> = (0..model.dof())
         .flat_map(|link| (0..BODY_PARAMETERS).map(move |k| Column::Body { link, k }))
@@ -127,6 +131,7 @@ pub fn columns(model: &RobotModel) -> Vec<Column> {
 
 /// The parameters' names, in order: `m1, mx1, ..., Izz1, m2, ...`, then `Ia3` (armature of
 /// joint 3), `fv3`, `fc3` (viscous and Coulomb friction of joint 3).
+#[cfg(feature = "std")]
 pub fn names(model: &RobotModel) -> Vec<String> {
     columns(model)
         .into_iter()
@@ -141,6 +146,7 @@ pub fn names(model: &RobotModel) -> Vec<String> {
 
 /// The robot's own parameters `π`, in the order of [`columns`]; `None` when a link has no
 /// mass properties.
+#[cfg(feature = "std")]
 pub fn values(model: &RobotModel) -> Option<Vec<f64>> {
     let body: Vec<[f64; BODY_PARAMETERS]> = model
         .links
@@ -169,6 +175,7 @@ pub fn values(model: &RobotModel) -> Option<Vec<f64>> {
 /// The regrouping of a robot's parameters into base parameters (see the
 /// [module](self)).
 #[derive(Clone, Debug, PartialEq)]
+#[cfg(feature = "std")]
 pub struct BaseParameters {
     /// The independent parameters, by index into `π`, in pivot order: base parameter `k` is
     /// `π[independent[k]] + Σ_m β[k][m] π[dependent[m]]`.
@@ -179,6 +186,7 @@ pub struct BaseParameters {
     pub beta: DMatrix<f64>,
 }
 
+#[cfg(feature = "std")]
 impl BaseParameters {
     /// The number of base parameters.
     pub fn count(&self) -> usize {
@@ -224,6 +232,7 @@ impl BaseParameters {
 }
 
 /// A coefficient to 10 significant digits, without trailing zeros.
+#[cfg(feature = "std")]
 fn trim(x: f64) -> String {
     let s = format!("{x:.10}");
     let s = s.trim_end_matches('0').trim_end_matches('.');
@@ -231,11 +240,13 @@ fn trim(x: f64) -> String {
 }
 
 /// A state `(q, q̇, q̈)`.
+#[cfg(feature = "std")]
 pub type State = (Vec<f64>, Vec<f64>, Vec<f64>);
 
 /// The states the reduction samples for a chain with `parameters` columns: `max(20, 4·p/n)`
 /// of them from a fixed seed, positions in the joint limits (±π without), velocities and
 /// accelerations in ±2.
+#[cfg(feature = "std")]
 pub fn sample_states(chain: ChainRef<'_>, parameters: usize) -> Vec<State> {
     let n = chain.dof();
     let count = (4 * parameters).div_ceil(n).max(20);
@@ -259,6 +270,7 @@ pub fn sample_states(chain: ChainRef<'_>, parameters: usize) -> Vec<State> {
 
 /// The base parameters of the robot `model`, from its regressor `regressor(q, q̇, q̈)` (`n ×
 /// columns(model).len()`) stacked over [`sample_states`] and reduced by [`reduce`].
+#[cfg(feature = "std")]
 pub fn base_parameters(
     model: &RobotModel,
     mut regressor: impl FnMut(&[f64], &[f64], &[f64]) -> DMatrix<f64>,
@@ -282,6 +294,7 @@ pub fn base_parameters(
 /// original index. Rounding (two derivations of the same regressor differ in the last bits)
 /// cannot then change the choice, so the runtime and generated regressors regroup alike, and
 /// the earliest parameters (the links nearer the base, masses before inertias) are kept.
+#[cfg(feature = "std")]
 fn pivoted_qr(mut a: DMatrix<f64>) -> (Vec<usize>, DMatrix<f64>) {
     let (rows, p) = a.shape();
     let mut order: Vec<usize> = (0..p).collect();
@@ -320,6 +333,7 @@ fn pivoted_qr(mut a: DMatrix<f64>) -> (Vec<usize>, DMatrix<f64>) {
 }
 
 /// Gautier's reduction of a stacked regressor: column-pivoted QR of the unit-norm columns.
+#[cfg(feature = "std")]
 pub fn reduce(stacked: &DMatrix<f64>) -> BaseParameters {
     let p = stacked.ncols();
     let norms: Vec<f64> = (0..p).map(|c| stacked.column(c).norm()).collect();

@@ -2,6 +2,7 @@
 
 use super::accumulate_composites;
 use crate::Joints;
+use crate::recursive::christoffel_into;
 use crate::robot::Robot;
 use crate::spatial::{Force, Motion};
 use core::ops::Index;
@@ -82,42 +83,15 @@ impl Robot {
         let n = self.dof();
         let mut states = self.body_states(q);
         accumulate_composites(&mut states);
-        // moved[l * n + j] = I^C_l S_j for j ≤ l; screw[a * n + l] = S_a × S_l for a < l.
         let mut moved = vec![Force::zero(); n * n];
         let mut screw = vec![Motion::zero(); n * n];
-        for l in 0..n {
-            for j in 0..=l {
-                moved[l * n + j] = states[l].composite.apply(&states[j].axis);
-            }
-            for a in 0..l {
-                screw[a * n + l] = states[a].axis.cross(&states[l].axis);
-            }
-        }
-        // dd[(l * n + a) * n + b] = ∂D_ab/∂q_l.
-        let mut dd = vec![0.0; n * n * n];
-        for a in 0..n {
-            for b in a..n {
-                for l in a + 1..n {
-                    let mut v = screw[a * n + l].dot(&moved[l.max(b) * n + b]);
-                    if l > b {
-                        v += screw[b * n + l].dot(&moved[l * n + a]);
-                    }
-                    dd[(l * n + a) * n + b] = v;
-                    dd[(l * n + b) * n + a] = v;
-                }
-            }
-        }
-        let planes = (0..n)
-            .map(|i| {
-                let mut values = vec![0.0; n * n];
-                for j in 0..n {
-                    for k in 0..n {
-                        values[j * n + k] = 0.5
-                            * (dd[(i * n + k) * n + j] + dd[(j * n + k) * n + i]
-                                - dd[(k * n + i) * n + j]);
-                    }
-                }
-                ChristoffelPlane { n, values }
+        let mut all = vec![0.0; n * n * n];
+        christoffel_into(&states, &mut moved, &mut screw, &mut all);
+        let planes = all
+            .chunks_exact(n * n)
+            .map(|plane| ChristoffelPlane {
+                n,
+                values: plane.to_vec(),
             })
             .collect();
         Christoffel { planes }

@@ -4,7 +4,7 @@
 //! module emits as straight-line code whenever it is the cheapest candidate, checked on arms
 //! where the catalogue would never select it; and, past 12 joints, the symbolic engine's
 //! recursions checking the runtime's loops that generated modules call there
-//! (`dhgen::recursive`).
+//! (`dhgen::recursive`: D, C, c_ijk).
 
 use dhgen::Robot;
 use dhgen::model::random::{ArmStyle, random_arm};
@@ -75,6 +75,41 @@ fn coriolis_recursion_equals_the_runtime() {
         worst = worst.max(matches(&format!("{name} in joint frames: C"), &c, &want));
     }
     println!("Echeandia–Wensing over the ring = runtime C to {worst:.1e}");
+}
+
+/// The runtime path's Christoffel symbols (the loop generated modules call past 12 joints,
+/// `dhgen::recursive::christoffel`) are symmetric in their first two indices and contract to
+/// the C of the generator's recursion in joint frames, another algorithm: `Σ_i c_ijk q̇_i =
+/// C_kj`, at every size.
+#[test]
+fn christoffel_symbols_contract_to_the_coriolis_recursion() {
+    let mut worst = 0.0f64;
+    for (name, robot, q, qd, _) in arms() {
+        let n = robot.dof();
+        let chain = robot.chain();
+        let c = robot.christoffel(&q[..]);
+        for i in 0..n {
+            for j in 0..n {
+                for k in 0..n {
+                    assert_eq!(c[i][j][k], c[j][i][k], "{name}: c_{i}{j}{k}");
+                }
+            }
+        }
+        let contracted: Vec<Vec<f64>> = (0..n)
+            .map(|k| {
+                (0..n)
+                    .map(|j| (0..n).map(|i| c[i][j][k] * qd[i]).sum())
+                    .collect()
+            })
+            .collect();
+        let rc = RingChain::new(chain, &Numbers(chain, &q));
+        let want = dhgen::nalgebra::DMatrix::from_fn(n, n, {
+            let local = rc.coriolis_matrix_local(&qd);
+            move |r, col| local[r][col]
+        });
+        worst = worst.max(matches(&format!("{name}: Σ c q̇"), &contracted, &want));
+    }
+    println!("runtime c_ijk contracted = C over the ring to {worst:.1e}");
 }
 
 /// The composite-rigid-body algorithm in one frame's coordinates (with each joint's armature

@@ -40,12 +40,14 @@ pub struct Generated {
     pub looped: Vec<String>,
 }
 
-/// The most joints for which D(q), C(q, q̇) and the Cholesky factorisation may be emitted as
-/// straight-line code. Above, forward dynamics' factorisation is emitted as loops
-/// ([`cholesky`]) and D and C call the runtime path's loops (`dhgen::recursive`): a general
-/// arm's straight-line D and C outgrow the instruction cache there (at 16 joints generated D
-/// took 0.78× the runtime's time, at 30 joints D 0.63× and C 0.72×, with thousands of
-/// instruction-cache misses per call against fewer than one), and the loops make the module
+/// The most joints for which D(q), C(q, q̇), c_ijk and the Cholesky factorisation may be
+/// emitted as straight-line code. Above, forward dynamics' factorisation is emitted as loops
+/// ([`cholesky`]), D, C (with a payload too) and c_ijk call the runtime path's loops
+/// (`dhgen::recursive`), and Ḋ = C + Cᵀ and Cᵀq̇ are taken from that C: a general arm's
+/// straight-line code for them outgrows the instruction cache there (at 16 joints generated
+/// D took 0.78× the runtime's time, at 30 joints D 0.63× and C 0.72×, with thousands of
+/// instruction-cache misses per call against fewer than one; c_ijk at 20 joints 0.72×, Ḋ and
+/// Cᵀq̇ at 30 joints 0.84× and 0.91×, C with a payload 0.81×), and the loops make the module
 /// as fast as the runtime path by construction.
 pub const LOOPED_ABOVE: usize = 12;
 
@@ -61,11 +63,32 @@ pub const LOOPED_ABOVE: usize = 12;
 /// the grouping of inertial parameters, general 12's D costs 2,762 operations and general 10's
 /// C 3,772, just under the thresholds, and straight-line they are faster than the loops,
 /// timed side by side on 2026-12-01: D 629 ns against 711, C 1,003 against 1,028; Panda D 106
-/// against 382, C 403 against 651.)
+/// against 382, C 403 against 651.) C's threshold was then lowered from 400 to 375 per joint,
+/// which sends general 10's C (3,772, 377 per joint) to the loop: its straight-line code
+/// took 773 and 1,109 ns in two builds of the same session (the runtime's 897 and 916), so
+/// close to the instruction cache's size that code placement decides, where the loop is steady.
 pub const LOOP_D_ABOVE_PER_JOINT: usize = 240;
 
 /// See [`LOOP_D_ABOVE_PER_JOINT`].
-pub const LOOP_C_ABOVE_PER_JOINT: usize = 400;
+pub const LOOP_C_ABOVE_PER_JOINT: usize = 375;
+
+/// Up to [`LOOPED_ABOVE`] joints, C(q, q̇) with a payload calls the loop (as C does, with the
+/// payload's inertia added to the last body) where C does, and where its own straight-line
+/// code costs more than this many operations per joint. Its straight-line code runs slower
+/// per operation than C's: measured side by side (2026-12-01, `scripts/scale_speed.sh
+/// --more`), general 8 (2,566 operations, 321 per joint) 502 ns against the runtime C's 695,
+/// general 10 (3,902, 390 per joint) 1,162 ns against 919, when C itself (3,772) took 773.
+pub const LOOP_C_WITH_PAYLOAD_ABOVE_PER_JOINT: usize = 350;
+
+/// Up to [`LOOPED_ABOVE`] joints, the Christoffel symbols call the runtime's loop
+/// (`dhgen::recursive::christoffel`) where their straight-line code costs more than this many
+/// operations per n³ (n the joints). Measured side by side (2026-12-01, `scripts/scale_speed.sh
+/// --more`): the straight-line symbols take 0.18–0.20 ns per operation (general 8, 10 and 12
+/// joints: 5,055 operations, 9.9 per n³, in 898 ns; 9,098, 9.1 per n³, in 1,858; 19,209, 11.1
+/// per n³, in 3,797, slower than the runtime's 3,558), the loop 2.4, 2.0 and 1.8 ns per n³
+/// (1,210, 2,035 and 3,090 ns), 1.6 at 30 joints: so general 12's symbols call the loop, general
+/// 8's and 10's and the Panda's (1,732 operations, 5 per n³) stay straight-line.
+pub const LOOP_CHRISTOFFEL_ABOVE_PER_CUBE: usize = 10;
 
 /// What a module holds beyond the default set of functions, chosen where it is generated
 /// (`robot!(pub mod arm = "arm.toml", derivatives)`, `dhgen emit --derivatives`).
@@ -237,6 +260,41 @@ impl<'c> Context<'c> {
         self.chain.dof() > LOOPED_ABOVE
     }
 
+    /// The derivation `coriolis` emits: the index of the cheapest of C from the symbols
+    /// (`0`), the recursion on dual numbers (`1`), Echeandia and Wensing's algorithm (`2`)
+    /// and the symbols contracted at run time (`3`); `None` where it calls the runtime's loop
+    /// instead (above [`LOOPED_ABOVE`] joints, or where the cheapest costs more than the
+    /// loop, [`coriolis_loop_cost`](Self::coriolis_loop_cost)). Ḋ and Cᵀq̇ follow it.
+    pub fn coriolis_choice(&self) -> Option<usize> {
+        if self.looped() {
+            return None;
+        }
+        let n = self.chain.dof();
+        let (graph, c) = self.christoffel();
+        let [
+            (recursive_graph, recursive),
+            (_, direct),
+            (spatial_graph, spatial),
+        ] = self.coriolis_derivations()
+        else {
+            unreachable!("three derivations of C")
+        };
+        let costs = [
+            crate::graph::cost(graph, direct),
+            crate::graph::cost(recursive_graph, recursive),
+            crate::graph::cost(spatial_graph, spatial),
+            crate::graph::cost(graph, c) + 2 * n * n * n,
+        ];
+        let best = (0..4).min_by_key(|&i| costs[i]).unwrap_or(0);
+        (costs[best] <= self.coriolis_loop_cost()).then_some(best)
+    }
+
+    /// What C's loop costs, in operations of straight-line code that take as long
+    /// ([`LOOP_C_ABOVE_PER_JOINT`] per joint).
+    pub fn coriolis_loop_cost(&self) -> usize {
+        LOOP_C_ABOVE_PER_JOINT * self.chain.dof()
+    }
+
     /// The cheapest derivation of D(q), built once; `None` where the module calls the
     /// runtime's loops for it instead (above [`LOOPED_ABOVE`] joints, or where it costs more
     /// than [`LOOP_D_ABOVE_PER_JOINT`] operations per joint).
@@ -380,6 +438,9 @@ impl Items {
                 self.joints.insert(q.name, joints);
                 if let Some((what, count)) = ops {
                     self.ops.push((what.to_string(), count));
+                } else if q.public && reads.iter().all(|r| self.looped.iter().any(|l| l == r)) {
+                    // Arithmetic of its own aside, the loops it calls (Ḋ = C + Cᵀ).
+                    self.looped.push(q.name.to_string());
                 }
                 body
             }

@@ -383,7 +383,23 @@ pub const QUANTITIES: &[Quantity] = &[
         available: Availability::Dynamics,
         public: true,
         make: |cx| {
+            // Above `LOOPED_ABOVE` joints, the runtime's loops, as for D and C: the n³
+            // symbols' straight-line code outgrows the instruction cache (general 20-joint
+            // arm: 40 µs against the runtime's 29); below, where the straight-line code costs
+            // more than the loop (`LOOP_CHRISTOFFEL_ABOVE_PER_CUBE`).
+            let looped = || {
+                Made::Looped(quote!(::dhgen::recursive::christoffel(
+                    CHAIN, &self.c, &self.s, &self.d
+                )))
+            };
+            if cx.looped() {
+                return looped();
+            }
             let (graph, c) = cx.christoffel();
+            let n = cx.chain.dof();
+            if crate::graph::cost(graph, c) > super::LOOP_CHRISTOFFEL_ABOVE_PER_CUBE * n * n * n {
+                return looped();
+            }
             derived(graph.clone(), c.clone())
         },
         arm: Some(ArmMethod::Custom(true, || {
@@ -417,11 +433,10 @@ pub const QUANTITIES: &[Quantity] = &[
                     CHAIN, &self.c, &self.s, &self.d, qd
                 )))
             };
-            if cx.looped() {
+            let Some(best) = cx.coriolis_choice() else {
                 return looped_coriolis();
-            }
-            let n = cx.chain.dof();
-            let (graph, c) = cx.christoffel();
+            };
+            let (graph, _) = cx.christoffel();
             let [
                 (recursive_graph, recursive),
                 (_, direct),
@@ -430,16 +445,6 @@ pub const QUANTITIES: &[Quantity] = &[
             else {
                 unreachable!("three derivations of C")
             };
-            let costs = [
-                crate::graph::cost(graph, direct),
-                crate::graph::cost(recursive_graph, recursive),
-                crate::graph::cost(spatial_graph, spatial),
-                crate::graph::cost(graph, c) + 2 * n * n * n,
-            ];
-            let best = (0..4).min_by_key(|&i| costs[i]).unwrap_or(0);
-            if costs[best] > super::LOOP_C_ABOVE_PER_JOINT * n {
-                return looped_coriolis();
-            }
             match best {
                 0 => derived(graph.clone(), direct.clone()),
                 1 => derived(recursive_graph.clone(), recursive.clone()),
@@ -624,7 +629,21 @@ pub const QUANTITIES: &[Quantity] = &[
         available: Availability::Dynamics,
         public: true,
         make: |cx| {
+            // Where C calls the runtime's loop, so does C with the payload, and where its own
+            // straight-line code costs more than `LOOP_C_WITH_PAYLOAD_ABOVE_PER_JOINT`.
+            let looped = || {
+                Made::Looped(quote!(::dhgen::recursive::coriolis_with_payload(
+                    CHAIN, &self.c, &self.s, &self.d, qd, payload
+                )))
+            };
+            if cx.coriolis_choice().is_none() {
+                return looped();
+            }
             let (graph, c) = payload::coriolis(cx.chain);
+            let n = cx.chain.dof();
+            if crate::graph::cost(&graph, &c) > super::LOOP_C_WITH_PAYLOAD_ABOVE_PER_JOINT * n {
+                return looped();
+            }
             derived(graph, c)
         },
         arm: None,
@@ -870,7 +889,23 @@ pub const QUANTITIES: &[Quantity] = &[
         available: Availability::Derivatives,
         public: true,
         make: |cx| {
+            // Where C calls the runtime's loop, C + Cᵀ from it (the runtime path's own way)
+            // unless the straight-line Ḋ costs less than the loop.
+            let from_loop = || {
+                composed(
+                    quote!(let c = self.coriolis(qd); c + c.transpose()),
+                    &["coriolis"],
+                )
+            };
+            if cx.looped() {
+                return from_loop();
+            }
             let (graph, e) = derivatives::mass_matrix_rate(cx.chain, cx.coriolis_derivations());
+            if cx.coriolis_choice().is_none()
+                && crate::graph::cost(&graph, &e) > cx.coriolis_loop_cost()
+            {
+                return from_loop();
+            }
             derived(graph, e)
         },
         arm: None,
@@ -885,8 +920,24 @@ pub const QUANTITIES: &[Quantity] = &[
         available: Availability::Derivatives,
         public: true,
         make: |cx| {
+            // As `mass_matrix_rate`: Cᵀ q̇ from C's loop where C calls it, unless the
+            // straight-line code costs less.
+            let from_loop = || {
+                composed(
+                    quote!(self.coriolis(qd).transpose() * na::SVector::<T, DOF>::from(*qd)),
+                    &["coriolis"],
+                )
+            };
+            if cx.looped() {
+                return from_loop();
+            }
             let (graph, e) =
                 derivatives::coriolis_transpose_qd(cx.chain, cx.coriolis_derivations());
+            if cx.coriolis_choice().is_none()
+                && crate::graph::cost(&graph, &e) > cx.coriolis_loop_cost()
+            {
+                return from_loop();
+            }
             derived(graph, e)
         },
         arm: None,
