@@ -407,7 +407,15 @@ pub fn coriolis<T: Real, const N: usize>(
     d: &[T; N],
     qd: &[T; N],
 ) -> SMatrix<T, N, N> {
-    let mut states = states_at(chain, cos, sin, d);
+    coriolis_of(states_at(chain, cos, sin, d), qd)
+}
+
+/// C(q, q̇) of the bodies `states` (composites not yet accumulated) at the joint velocities
+/// `qd`, by [`coriolis_into`] on stack arrays.
+fn coriolis_of<T: Real, const N: usize>(
+    mut states: [BodyState<T>; N],
+    qd: &[T; N],
+) -> SMatrix<T, N, N> {
     let mut scratch = [CoriolisBody::zero(); N];
     let mut out = SMatrix::<T, N, N>::zeros();
     coriolis_into(&mut states, qd, &mut scratch, |i, j, v| {
@@ -437,12 +445,7 @@ pub fn coriolis_with_payload<T: Real, const N: usize>(
         last.inertia += &held(chain, &r, &p, payload);
         last.composite = last.inertia;
     }
-    let mut scratch = [CoriolisBody::zero(); N];
-    let mut out = SMatrix::<T, N, N>::zeros();
-    coriolis_into(&mut states, qd, &mut scratch, |i, j, v| {
-        set(&mut out, i, j, v)
-    });
-    out
+    coriolis_of(states, qd)
 }
 
 /// A payload's inertia about the world origin, held by the tool of `chain` whose last joint

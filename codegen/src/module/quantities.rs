@@ -436,19 +436,16 @@ pub const QUANTITIES: &[Quantity] = &[
             let Some(best) = cx.coriolis_choice() else {
                 return looped_coriolis();
             };
-            let (graph, _) = cx.christoffel();
-            let [
-                (recursive_graph, recursive),
-                (_, direct),
-                (spatial_graph, spatial),
-            ] = cx.coriolis_derivations()
-            else {
-                unreachable!("three derivations of C")
+            // The derivations in `coriolis_choice`'s numbering (`coriolis_derivations` has the
+            // recursion first, then C from the symbols).
+            let pick = |i: usize| {
+                let (graph, c) = &cx.coriolis_derivations()[i];
+                derived(graph.clone(), c.clone())
             };
             match best {
-                0 => derived(graph.clone(), direct.clone()),
-                1 => derived(recursive_graph.clone(), recursive.clone()),
-                2 => derived(spatial_graph.clone(), spatial.clone()),
+                0 => pick(1),
+                1 => pick(0),
+                2 => pick(2),
                 _ => composed(
                     {
                         let zeros = Shape::Square.init();
