@@ -264,7 +264,7 @@ impl<'c> Context<'c> {
     /// (`0`), the recursion on dual numbers (`1`), Echeandia and Wensing's algorithm (`2`)
     /// and the symbols contracted at run time (`3`); `None` where it calls the runtime's loop
     /// instead (above [`LOOPED_ABOVE`] joints, or where the cheapest costs more than the
-    /// loop, [`coriolis_loop_cost`](Self::coriolis_loop_cost)). Ḋ and Cᵀq̇ follow it.
+    /// loop, [`LOOP_C_ABOVE_PER_JOINT`] per joint). C with a payload follows it.
     pub fn coriolis_choice(&self) -> Option<usize> {
         if self.looped() {
             return None;
@@ -286,13 +286,7 @@ impl<'c> Context<'c> {
             crate::graph::cost(graph, c) + 2 * n * n * n,
         ];
         let best = (0..4).min_by_key(|&i| costs[i]).unwrap_or(0);
-        (costs[best] <= self.coriolis_loop_cost()).then_some(best)
-    }
-
-    /// What C's loop costs, in operations of straight-line code that take as long
-    /// ([`LOOP_C_ABOVE_PER_JOINT`] per joint).
-    pub fn coriolis_loop_cost(&self) -> usize {
-        LOOP_C_ABOVE_PER_JOINT * self.chain.dof()
+        (costs[best] <= LOOP_C_ABOVE_PER_JOINT * n).then_some(best)
     }
 
     /// The cheapest derivation of D(q), built once; `None` where the module calls the

@@ -886,23 +886,17 @@ pub const QUANTITIES: &[Quantity] = &[
         available: Availability::Derivatives,
         public: true,
         make: |cx| {
-            // Where C calls the runtime's loop, C + Cᵀ from it (the runtime path's own way)
-            // unless the straight-line Ḋ costs less than the loop.
-            let from_loop = || {
-                composed(
+            // Past `LOOPED_ABOVE` joints, C + Cᵀ from C's loop (the runtime path's own way):
+            // straight-line, general 30 took 0.84× the runtime's time. Below, straight-line
+            // even where C calls its loop (general 10 and 12: 744–780 and 1,022 ns, against
+            // 839 and 968–1,034 from the loop).
+            if cx.looped() {
+                return composed(
                     quote!(let c = self.coriolis(qd); c + c.transpose()),
                     &["coriolis"],
-                )
-            };
-            if cx.looped() {
-                return from_loop();
+                );
             }
             let (graph, e) = derivatives::mass_matrix_rate(cx.chain, cx.coriolis_derivations());
-            if cx.coriolis_choice().is_none()
-                && crate::graph::cost(&graph, &e) > cx.coriolis_loop_cost()
-            {
-                return from_loop();
-            }
             derived(graph, e)
         },
         arm: None,
@@ -917,24 +911,17 @@ pub const QUANTITIES: &[Quantity] = &[
         available: Availability::Derivatives,
         public: true,
         make: |cx| {
-            // As `mass_matrix_rate`: Cᵀ q̇ from C's loop where C calls it, unless the
-            // straight-line code costs less.
-            let from_loop = || {
-                composed(
+            // As `mass_matrix_rate`: from C's loop past `LOOPED_ABOVE` joints (straight-line,
+            // general 30 took 0.91× the runtime's time), straight-line below (general 12: 751–784
+            // ns against 1,029 from the loop).
+            if cx.looped() {
+                return composed(
                     quote!(self.coriolis(qd).transpose() * na::SVector::<T, DOF>::from(*qd)),
                     &["coriolis"],
-                )
-            };
-            if cx.looped() {
-                return from_loop();
+                );
             }
             let (graph, e) =
                 derivatives::coriolis_transpose_qd(cx.chain, cx.coriolis_derivations());
-            if cx.coriolis_choice().is_none()
-                && crate::graph::cost(&graph, &e) > cx.coriolis_loop_cost()
-            {
-                return from_loop();
-            }
             derived(graph, e)
         },
         arm: None,
