@@ -464,22 +464,13 @@ fn held<T: Real>(
         ),
         None => (*r, *p),
     };
-    let mass = payload[0];
-    // First moment and inertia about the tool origin, in world axes.
-    let h = rt * Vector3::new(payload[1], payload[2], payload[3]);
     let entries = dhgen_model::parameters::INERTIA_ENTRIES;
-    let kt = rt * Matrix3::from_fn(|a, b| payload[entries[a][b]]) * rt.transpose();
-    // About the world origin: Σ m (|p + y|² 1 − (p + y)(p + y)ᵀ) over the payload's points
-    // y about the tool origin p.
-    let pp = Matrix3::from_diagonal_element(pt.norm_squared()) - pt * pt.transpose();
-    let cross = Matrix3::from_diagonal_element(pt.dot(&h) * k(2.0))
-        - pt * h.transpose()
-        - h * pt.transpose();
-    Inertia {
-        mass,
-        h: h + pt * mass,
-        k: kt + pp * mass + cross,
-    }
+    let in_tool = Inertia {
+        mass: payload[0],
+        h: Vector3::new(payload[1], payload[2], payload[3]),
+        k: Matrix3::from_fn(|a, b| payload[entries[a][b]]),
+    };
+    in_tool.placed(&rt, &pt)
 }
 
 /// The Christoffel symbols `c_ijk` (k the equation index) into `out`, row-major
@@ -491,6 +482,7 @@ fn held<T: Real>(
 /// into `out` first, then each triple of indices is turned into its symbols in place
 /// (`c_ijk = ½(∂d_kj/∂q_i + ∂d_ki/∂q_j − ∂d_ij/∂q_k)` reads three derivatives and gives three
 /// symbols, each at the places its symmetries put it), so no third array of n³ is needed.
+/// Slices shorter than that are left as they are (callers size them; no panic either way).
 pub(crate) fn christoffel_into<T: Real>(
     states: &[BodyState<T>],
     moved: &mut [Force<T>],

@@ -147,6 +147,29 @@ impl<T: Real> Inertia<T> {
         }
     }
 
+    /// This inertia, given about a frame's origin in that frame's axes (mass, first moment
+    /// `h`, rotational inertia `k` about the origin), in world coordinates for the frame at
+    /// rotation `r` and origin `p`: turned (`r h`, `r k rᵀ`), then moved from `p` to the world
+    /// origin by the parallel axis theorem with a first moment,
+    /// `k_O = k' + m (|p|² 1 − p pᵀ) + 2 (p·h') 1 − p h'ᵀ − h' pᵀ`, `h_O = h' + m p`
+    /// (no division by the mass, which may be zero).
+    #[inline]
+    pub fn placed(&self, r: &Matrix3<T>, p: &Vector3<T>) -> Inertia<T> {
+        let h = r * self.h;
+        let k = r * self.k * r.transpose();
+        let two: T = nalgebra::convert(2.0);
+        let moved = (Matrix3::from_diagonal_element(p.norm_squared()) - p * p.transpose())
+            * self.mass
+            + Matrix3::from_diagonal_element(p.dot(&h) * two)
+            - p * h.transpose()
+            - h * p.transpose();
+        Inertia {
+            mass: self.mass,
+            h: h + p * self.mass,
+            k: k + moved,
+        }
+    }
+
     /// The momentum (or force) `I·v`.
     #[inline]
     pub fn apply(&self, v: &Motion<T>) -> Force<T> {

@@ -145,6 +145,7 @@ pub struct Context<'c> {
     christoffel: OnceCell<(SharedGraph, Vec<E>)>,
     mass_matrix: OnceCell<Option<(SharedGraph, Vec<E>)>>,
     coriolis: OnceCell<Vec<(SharedGraph, Vec<E>)>>,
+    coriolis_choice: OnceCell<Option<usize>>,
     assembled: OnceCell<Option<(SharedGraph, Vec<E>)>>,
     tau_derivatives: OnceCell<(SharedGraph, Vec<E>)>,
     with_mass_matrix: OnceCell<Option<(SharedGraph, Vec<E>)>>,
@@ -163,6 +164,7 @@ impl<'c> Context<'c> {
             christoffel: OnceCell::new(),
             mass_matrix: OnceCell::new(),
             coriolis: OnceCell::new(),
+            coriolis_choice: OnceCell::new(),
             assembled: OnceCell::new(),
             tau_derivatives: OnceCell::new(),
             with_mass_matrix: OnceCell::new(),
@@ -264,29 +266,32 @@ impl<'c> Context<'c> {
     /// (`0`), the recursion on dual numbers (`1`), Echeandia and Wensing's algorithm (`2`)
     /// and the symbols contracted at run time (`3`); `None` where it calls the runtime's loop
     /// instead (above [`LOOPED_ABOVE`] joints, or where the cheapest costs more than the
-    /// loop, [`LOOP_C_ABOVE_PER_JOINT`] per joint). C with a payload follows it.
+    /// loop, [`LOOP_C_ABOVE_PER_JOINT`] per joint). C with a payload follows it. Decided
+    /// once.
     pub fn coriolis_choice(&self) -> Option<usize> {
-        if self.looped() {
-            return None;
-        }
-        let n = self.chain.dof();
-        let (graph, c) = self.christoffel();
-        let [
-            (recursive_graph, recursive),
-            (_, direct),
-            (spatial_graph, spatial),
-        ] = self.coriolis_derivations()
-        else {
-            unreachable!("three derivations of C")
-        };
-        let costs = [
-            crate::graph::cost(graph, direct),
-            crate::graph::cost(recursive_graph, recursive),
-            crate::graph::cost(spatial_graph, spatial),
-            crate::graph::cost(graph, c) + 2 * n * n * n,
-        ];
-        let best = (0..4).min_by_key(|&i| costs[i]).unwrap_or(0);
-        (costs[best] <= LOOP_C_ABOVE_PER_JOINT * n).then_some(best)
+        *self.coriolis_choice.get_or_init(|| {
+            if self.looped() {
+                return None;
+            }
+            let n = self.chain.dof();
+            let (graph, c) = self.christoffel();
+            let [
+                (recursive_graph, recursive),
+                (_, direct),
+                (spatial_graph, spatial),
+            ] = self.coriolis_derivations()
+            else {
+                unreachable!("three derivations of C")
+            };
+            let costs = [
+                crate::graph::cost(graph, direct),
+                crate::graph::cost(recursive_graph, recursive),
+                crate::graph::cost(spatial_graph, spatial),
+                crate::graph::cost(graph, c) + 2 * n * n * n,
+            ];
+            let best = (0..4).min_by_key(|&i| costs[i]).unwrap_or(0);
+            (costs[best] <= LOOP_C_ABOVE_PER_JOINT * n).then_some(best)
+        })
     }
 
     /// The cheapest derivation of D(q), built once; `None` where the module calls the
