@@ -581,9 +581,10 @@ impl Items {
     /// array.
     ///
     /// With a `late` input ([`Made::Staged`]), the body calls a private method
-    /// `<name>_then(&self, <other inputs>, late: impl FnOnce(&Out) -> [T; DOF], out: &mut
+    /// `<name>_then(&self, <other inputs>, late: impl FnOnce(&mut Out) -> [T; DOF], out: &mut
     /// Out) -> [T; DOF]`, which computes the outputs that do not read `late` into `out`, then
-    /// `late` from them by the closure, then the rest, and returns the value of `late` it
+    /// `late` from them by the closure (which may overwrite what the later stage does not
+    /// write: `forward_dynamics_derivatives` turns D into D⁻¹ in place), then the rest, and returns the value of `late` it
     /// used.
     fn straight_line(
         &mut self,
@@ -640,7 +641,7 @@ impl Items {
                 q.name,
                 i.name()
             );
-            quote!(let #l = &#l(&*out);)
+            quote!(let #l = &#l(&mut *out);)
         });
         let computed = if emitted.parts.len() == 1 || (hook.is_some() && emitted.parts.len() == 2) {
             // Inline, the stages (if any) in turn; values crossing them pass through `w`.
@@ -718,7 +719,7 @@ impl Items {
                 fn #then(
                     &self,
                     #(#early: #early_tys,)*
-                    #l: impl FnOnce(&#ty) -> [T; DOF],
+                    #l: impl FnOnce(&mut #ty) -> [T; DOF],
                     out: &mut #ty,
                 ) -> [T; DOF] {
                     #computed

@@ -1020,47 +1020,7 @@ pub const QUANTITIES: &[Quantity] = &[
                 #coulomb
                 (inverse * (applied - na::SVector::<T, DOF>::from(tau))).into()
             };
-            // ∂τ/∂q, ∂τ/∂q̇ (and D, factorised between the stages, where it is cheaper beside
-            // them) with q̈ computed between the stages.
-            let (derivatives, reads): (_, &'static [&'static str]) =
-                if cx.derivatives_with_mass_matrix().is_some() {
-                    // Its entries need no check of their own: q̈ = D⁻¹(τ − h) is checked.
-                    let (inverse, _) = cholesky::inverse(n, false);
-                    (
-                        quote! {
-                            let mut factor = None;
-                            let mut terms = (zero(), zero(), zero());
-                            let qdd = self.forward_dynamics_terms_then(qd, |(_, dqd, dm)| {
-                                let (inverse, ok) = { #inverse };
-                                factor = Some((inverse, ok));
-                                #acceleration
-                            }, &mut terms);
-                            let Some((inverse, ok)) = factor else {
-                                return None;
-                            };
-                            let (dq, dqd, _) = &terms;
-                        },
-                        &["forward_dynamics_terms", "gravity"],
-                    )
-                } else {
-                    (
-                        quote! {
-                            let (inverse, ok) = self.mass_matrix_inverse_lanes();
-                            let mut terms = (zero(), zero());
-                            let qdd = self.inverse_dynamics_derivatives_then(qd, |(_, dqd)| {
-                                #acceleration
-                            }, &mut terms);
-                            let (dq, dqd) = &terms;
-                        },
-                        &[
-                            "mass_matrix_inverse_lanes",
-                            "gravity",
-                            "inverse_dynamics_derivatives",
-                        ],
-                    )
-                };
-            // Per column of ∂τ/∂q and of ∂τ/∂q̇, whether it may be non-zero: −D⁻¹ times a
-            // structurally zero column is zero, and is not computed.
+            // Per column of ∂τ/∂q and of ∂τ/∂q̇, whether it may be non-zero.
             let (_, e) = cx.inverse_dynamics_derivatives();
             let used = |half: usize| -> Vec<bool> {
                 (0..n)
@@ -1070,35 +1030,86 @@ pub const QUANTITIES: &[Quantity] = &[
                     .collect()
             };
             let (used_q, used_qd) = (used(0), used(1));
+            // −D⁻¹ X column by column, in place (column m of the product reads only column m
+            // of X), in plain loops the compiler unrolls (40 % fewer instructions than
+            // nalgebra's general product at 6 × 6), with fused multiply-adds; `used`: the
+            // columns of X that may be non-zero (−D⁻¹ times a structurally zero column is
+            // zero, and is not computed). Building the products where the result holds them
+            // and D⁻¹ where D was leaves one copy, of the result.
+            let products = quote! {
+                let columns = &inverse.data.0;
+                let minus_inverse_times = |x: &mut na::SMatrix<T, DOF, DOF>, used: [bool; DOF]| {
+                    for (x, _) in x.data.0.iter_mut().zip(used).filter(|(_, u)| *u) {
+                        let mut p = [T::zero(); DOF];
+                        for (column, &xk) in columns.iter().zip(&*x) {
+                            for (o, &a) in p.iter_mut().zip(column) {
+                                *o = ::dhgen::Real::mul_add_fast(-a, xk, *o);
+                            }
+                        }
+                        *x = p;
+                    }
+                };
+                minus_inverse_times(dq, [#(#used_q),*]);
+                minus_inverse_times(dqd, [#(#used_qd),*]);
+            };
+            let finite = quote!(let ok = ok #(& ::dhgen::Real::is_finite_lanes(qdd[#joints]))*;);
+            // ∂τ/∂q, ∂τ/∂q̇ (and D, factorised between the stages, where it is cheaper beside
+            // them) with q̈ computed between the stages.
+            let (body, reads): (_, &'static [&'static str]) =
+                if cx.derivatives_with_mass_matrix().is_some() {
+                    // Its entries need no check of their own: q̈ = D⁻¹(τ − h) is checked.
+                    let (inverse, _) = cholesky::inverse(n, false);
+                    (
+                        quote! {
+                            let mut factored = None;
+                            let mut terms = (zero(), zero(), zero());
+                            let qdd = self.forward_dynamics_terms_then(qd, |(_, dqd, dm)| {
+                                let (inverse, ok) = { #inverse };
+                                // D⁻¹ where D was, for the result; q̈ from the local copy (read
+                                // back from memory right after its stores, the Panda's q̈ took
+                                // 40 % longer: the loads wait for the stores).
+                                *dm = inverse;
+                                factored = Some(ok);
+                                let inverse = &inverse;
+                                #acceleration
+                            }, &mut terms);
+                            let Some(ok) = factored else {
+                                return None;
+                            };
+                            #finite
+                            let (dq, dqd, inverse) = &mut terms;
+                            #products
+                            na::SimdBool::all(ok).then_some(terms)
+                        },
+                        &["forward_dynamics_terms", "gravity"],
+                    )
+                } else {
+                    (
+                        quote! {
+                            let (inverse, ok) = self.mass_matrix_inverse_lanes();
+                            let mut terms = (zero(), zero());
+                            let qdd = self.inverse_dynamics_derivatives_then(qd, |(_, dqd)| {
+                                let inverse = &inverse;
+                                #acceleration
+                            }, &mut terms);
+                            #finite
+                            let (dq, dqd) = &mut terms;
+                            #products
+                            na::SimdBool::all(ok).then(|| (terms.0, terms.1, inverse))
+                        },
+                        &[
+                            "mass_matrix_inverse_lanes",
+                            "gravity",
+                            "inverse_dynamics_derivatives",
+                        ],
+                    )
+                };
             composed(
                 quote! {
                     let g = self.gravity();
                     let applied = na::SVector::<T, DOF>::from(*tau);
                     let zero = || na::SMatrix::<T, DOF, DOF>::from_data(na::ArrayStorage([[T::zero(); DOF]; DOF]));
-                    #derivatives
-                    let ok = ok #(& ::dhgen::Real::is_finite_lanes(qdd[#joints]))*;
-                    // −D⁻¹ X column by column (column m of the product reads only column m
-                    // of X), in plain loops the compiler unrolls (40 % fewer instructions
-                    // than nalgebra's general product at 6 × 6), with fused multiply-adds,
-                    // each product built where the result holds it: copying X and the
-                    // products into the result took 6 % of the Panda's instructions.
-                    let columns = &inverse.data.0;
-                    let minus_inverse_times = |x: &na::SMatrix<T, DOF, DOF>, used: [bool; DOF]| {
-                        let mut product = zero();
-                        for ((p, x), _) in product.data.0.iter_mut().zip(&x.data.0).zip(used).filter(|(_, u)| *u) {
-                            for (column, &xk) in columns.iter().zip(x) {
-                                for (o, &a) in p.iter_mut().zip(column) {
-                                    *o = ::dhgen::Real::mul_add_fast(-a, xk, *o);
-                                }
-                            }
-                        }
-                        product
-                    };
-                    na::SimdBool::all(ok).then(|| (
-                        minus_inverse_times(&dq, [#(#used_q),*]),
-                        minus_inverse_times(&dqd, [#(#used_qd),*]),
-                        inverse,
-                    ))
+                    #body
                 },
                 reads,
             )
