@@ -1,8 +1,9 @@
 //! `dhgen eval`: T, J, D, C, g and τ at one configuration, on the runtime path.
 
+use crate::table::{degrees, trimmed};
 use dhgen::Robot;
 use dhgen::nalgebra::{DMatrix, DVector, Matrix4};
-use dhgen_model::{Angle, JointKind};
+use dhgen_model::{Angle, JointKind, validate};
 use serde_json::{Value, json};
 use std::fmt::Write as _;
 
@@ -54,12 +55,25 @@ pub fn positions(robot: &Robot, values: &[String]) -> Result<Vec<f64>, String> {
         .collect()
 }
 
-/// The values of a list argument: separated by commas or white space.
-pub fn split(list: &str) -> Vec<String> {
-    list.split(|c: char| c == ',' || c.is_whitespace())
-        .filter(|v| !v.is_empty())
-        .map(str::to_string)
-        .collect()
+/// The values of the list argument `flag` (`--q`): separated by commas or white space. An
+/// empty entry between commas (`0,,0`, a leading or trailing comma) is an error naming its
+/// position, not skipped; an empty list has no values.
+pub fn split(flag: &str, list: &str) -> Result<Vec<String>, String> {
+    if list.trim().is_empty() {
+        return Ok(Vec::new());
+    }
+    let mut values = Vec::new();
+    for field in list.split(',') {
+        let before = values.len();
+        values.extend(field.split_whitespace().map(str::to_string));
+        if values.len() == before {
+            return Err(format!(
+                "{flag}: entry {} is empty in {list:?} (one value per joint, separated by commas or spaces)",
+                before + 1
+            ));
+        }
+    }
+    Ok(values)
 }
 
 /// Reads joint velocities or accelerations (`flag` names them): one finite number per
@@ -68,7 +82,7 @@ pub fn rates(robot: &Robot, flag: &str, list: Option<&str>) -> Result<Vec<f64>, 
     let Some(list) = list else {
         return Ok(vec![0.0; robot.dof()]);
     };
-    let values = split(list);
+    let values = split(flag, list)?;
     check_len(robot, flag, values.len())?;
     values
         .iter()
@@ -96,8 +110,99 @@ pub fn check_len(robot: &Robot, flag: &str, len: usize) -> Result<(), String> {
     }
 }
 
-/// Evaluates at `q`, `qd`, `qdd` (lengths already checked, values finite).
-pub fn evaluate(robot: &Robot, q: Vec<f64>, qd: Vec<f64>, qdd: Vec<f64>) -> Evaluation {
+/// Evaluates at `q`, `qd`, `qdd` (lengths already checked, values finite), the one place
+/// `eval` checks its input against the robot (docs/conventions.md, "Non-finite input": the
+/// runtime path does not check, so the command does):
+///
+/// - a joint position beyond the range of any robot (magnitude above 1e3 rad or m, the
+///   bound of the description format on angles and lengths) is an error naming the joint;
+/// - a result that is not finite (velocities or accelerations so large that the arithmetic
+///   overflows) is an error naming the result and entry;
+/// - a joint position outside the joint's limits is evaluated, with a warning on standard
+///   error naming the joint and its limits (printed only when the evaluation succeeds, so a
+///   failure stays one line).
+pub fn evaluate(
+    robot: &Robot,
+    q: Vec<f64>,
+    qd: Vec<f64>,
+    qdd: Vec<f64>,
+) -> Result<Evaluation, String> {
+    let mut warnings = Vec::new();
+    for (i, (l, &x)) in robot.model().links.iter().zip(&q).enumerate() {
+        let range = match l.joint {
+            JointKind::Revolute => validate::ANGLE,
+            JointKind::Prismatic => validate::LENGTH,
+        };
+        let unit = range.unit;
+        if x.abs() > range.max {
+            return Err(format!(
+                "--q, joint {}: {} {unit} is outside the range of any joint (magnitude at most {:e} {unit}, \
+                 the range of {}s in a description)",
+                i + 1,
+                trimmed(x, 6),
+                range.max,
+                range.what
+            ));
+        }
+        if let Some([lo, hi]) = l.limits
+            && !(lo..=hi).contains(&x)
+        {
+            let degrees = match l.joint {
+                JointKind::Revolute => {
+                    format!(" ({} to {})", degrees(lo), degrees(hi))
+                }
+                JointKind::Prismatic => String::new(),
+            };
+            warnings.push(format!(
+                "dhgen: warning: --q, joint {}: {} {unit} is outside the joint's limits [{}, {}] {unit}{degrees}",
+                i + 1,
+                trimmed(x, 6),
+                trimmed(lo, 6),
+                trimmed(hi, 6)
+            ));
+        }
+    }
+    let e = compute(robot, q, qd, qdd);
+    let matrices: [(&str, DMatrix<f64>); 2] = [
+        ("T", DMatrix::from_fn(4, 4, |r, c| e.pose[(r, c)])),
+        ("J", e.jacobian.clone()),
+    ];
+    let dynamics = e.dynamics.iter().flat_map(|Dynamics { d, c, g, tau }| {
+        [
+            ("D(q)", d.clone()),
+            ("C(q, q̇)", c.clone()),
+            ("g(q)", DMatrix::from_row_slice(1, g.len(), g.as_slice())),
+            ("τ", DMatrix::from_row_slice(1, tau.len(), tau.as_slice())),
+        ]
+    });
+    for (name, m) in matrices.into_iter().chain(dynamics) {
+        let bad = (0..m.nrows())
+            .flat_map(|r| (0..m.ncols()).map(move |c| (r, c)))
+            .find(|&rc| !m[rc].is_finite());
+        if let Some((r, c)) = bad {
+            let entry = if m.nrows() == 1 {
+                format!("entry {}", c + 1)
+            } else {
+                format!("entry ({}, {})", r + 1, c + 1)
+            };
+            let largest = |v: &[f64]| trimmed(v.iter().fold(0.0_f64, |m, x| m.max(x.abs())), 6);
+            return Err(format!(
+                "the result is not finite: {name} {entry} is {}; the input overflows f64 \
+                 arithmetic (largest |q̇| {}, |q̈| {}: give smaller --qd and --qdd)",
+                m[(r, c)],
+                largest(&e.qd),
+                largest(&e.qdd)
+            ));
+        }
+    }
+    for w in warnings {
+        eprintln!("{w}");
+    }
+    Ok(e)
+}
+
+/// T, J and (with mass properties) D, C, g and τ at `q`, `qd`, `qdd`, unchecked.
+fn compute(robot: &Robot, q: Vec<f64>, qd: Vec<f64>, qdd: Vec<f64>) -> Evaluation {
     let pose = robot.fk(&q).to_homogeneous();
     let j = robot.jacobian(&q);
     let jacobian = DMatrix::from_column_slice(6, robot.dof(), j.as_slice());
@@ -197,7 +302,7 @@ impl Evaluation {
 }
 
 fn list(v: &[f64]) -> String {
-    let parts: Vec<String> = v.iter().map(|x| crate::table::trimmed(*x, 6)).collect();
+    let parts: Vec<String> = v.iter().map(|x| trimmed(*x, 6)).collect();
     format!("[{}]", parts.join(", "))
 }
 

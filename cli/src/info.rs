@@ -304,6 +304,17 @@ pub fn urdf_report(u: &dhgen_model::urdf::UrdfRobot) -> String {
             )
         },
     );
+    if !u.left_out.is_empty() {
+        field(
+            &mut out,
+            "left out",
+            &format!(
+                "{} (floating or planar joints off the chain: the free bodies they join are not \
+                 attached, and no mass of theirs is merged)",
+                u.left_out.join(", ")
+            ),
+        );
+    }
     if !u.massless.is_empty() {
         field(
             &mut out,

@@ -92,8 +92,9 @@ enum Command {
         /// that shortens an entry.
         #[arg(long)]
         cumulative: bool,
-        /// Significant digits of the coefficients.
-        #[arg(long, default_value_t = 4, value_parser = clap::value_parser!(u8).range(1..=17))]
+        /// Significant digits of the coefficients (1 to 17).
+        #[arg(long, default_value_t = 4, allow_negative_numbers = true,
+              value_parser = clap::value_parser!(u8).range(1..=17))]
         digits: u8,
     },
     /// Print the operation count of every generated function and the generation time.
@@ -135,19 +136,27 @@ enum Command {
     /// benchmarks: `general` (no exact angles, full inertias) or `industrial` (twists and
     /// offsets in {0, ±90°}).
     Random {
-        /// Number of joints.
-        #[arg(long, value_parser = clap::value_parser!(u16).range(1..=1000))]
+        /// Number of joints (1 to 1000).
+        #[arg(long, allow_negative_numbers = true,
+              value_parser = clap::value_parser!(u16).range(1..=1000))]
         dof: u16,
         /// `general` or `industrial`.
         #[arg(long, default_value = "general")]
         style: RandomStyle,
-        /// The seed: the same seed and size give the same arm.
-        #[arg(long, default_value_t = 1)]
+        /// The seed: the same seed and size give the same arm (0 to 2⁶⁴ − 1).
+        #[arg(long, default_value_t = 1, allow_negative_numbers = true, value_parser = seed)]
         seed: u64,
         /// Output file; standard output if omitted.
         #[arg(short, long)]
         output: Option<PathBuf>,
     },
+}
+
+/// `--seed`: a whole number that fits 64 bits, said so when it does not (`-1`, `1.5`).
+fn seed(value: &str) -> Result<u64, String> {
+    value
+        .parse()
+        .map_err(|_| format!("the seed is a whole number from 0 to {}", u64::MAX))
 }
 
 /// A description file and, for a URDF file, how to read it.
@@ -161,9 +170,9 @@ struct Source {
     /// URDF: the first link of the chain, fixed in the world (default: the root link).
     #[arg(long, value_name = "LINK")]
     base: Option<String>,
-    /// URDF: read angles within this many radians of a multiple of 90° as exact (default
-    /// 1e-9; `dhgen info` lists every value read so).
-    #[arg(long, value_name = "RAD")]
+    /// URDF: read angles within this many radians (0 to 0.1) of a multiple of 90° as exact
+    /// (default 1e-9; `dhgen info` lists every value read so).
+    #[arg(long, value_name = "RAD", allow_negative_numbers = true)]
     snap: Option<f64>,
 }
 
@@ -264,10 +273,10 @@ fn run(command: Command) -> Result<String, String> {
             json,
         } => {
             let r = load(&robot)?;
-            let q = eval::positions(&r, &eval::split(&q))?;
+            let q = eval::positions(&r, &eval::split("--q", &q)?)?;
             let qd = eval::rates(&r, "--qd", qd.as_deref())?;
             let qdd = eval::rates(&r, "--qdd", qdd.as_deref())?;
-            let e = eval::evaluate(&r, q, qd, qdd);
+            let e = eval::evaluate(&r, q, qd, qdd)?;
             Ok(if json {
                 format!("{}\n", e.json(&r))
             } else {
@@ -316,16 +325,41 @@ fn run(command: Command) -> Result<String, String> {
         )
         .map_err(|e| format!("{}: {e}", robot.display())),
         Command::Convert { robot, to, output } => {
-            use dhgen_model::convert::{to_dh, to_urdf};
+            use dhgen_model::convert::{ConvertError, to_dh, to_urdf};
             let r = load(&robot)?;
             let model = r.model();
+            // The model read is valid, so a failure of the conversion is the converted
+            // description's: a value re-expressed in the new frames outside the format's
+            // ranges, which the input need not show (the input's com 1000 m can become
+            // 1000 m plus rounding). Said so, with the field of the converted description.
+            let converted = |convention, name| {
+                to_dh(model, convention).map_err(|e| {
+                    let (what, message) = match e {
+                        ConvertError::Invalid {
+                            joint,
+                            field,
+                            message,
+                        } => {
+                            let what = match (joint, field) {
+                                (Some(j), Some(f)) => format!("the converted `{f}` of link {j}"),
+                                (Some(j), None) => format!("link {j} of the converted description"),
+                                (None, Some(f)) => format!("the converted `{f}`"),
+                                (None, None) => "the converted description".to_string(),
+                            };
+                            (what, message)
+                        }
+                        other => ("the converted description".to_string(), other.to_string()),
+                    };
+                    format!(
+                        "{}: converting to {name}: {what} is not valid (a value the conversion \
+                         computed; the input's are valid): {message}",
+                        robot.display()
+                    )
+                })
+            };
             let text = match to {
-                ConvertTo::Dh => to_dh(model, dhgen::Convention::Standard)
-                    .map_err(|e| format!("{}: {e}", robot.display()))?
-                    .to_toml(),
-                ConvertTo::Mdh => to_dh(model, dhgen::Convention::Modified)
-                    .map_err(|e| format!("{}: {e}", robot.display()))?
-                    .to_toml(),
+                ConvertTo::Dh => converted(dhgen::Convention::Standard, "standard DH")?.to_toml(),
+                ConvertTo::Mdh => converted(dhgen::Convention::Modified, "modified DH")?.to_toml(),
                 ConvertTo::Toml => model.to_toml(),
                 ConvertTo::Urdf => to_urdf(model),
             };
@@ -337,6 +371,16 @@ fn run(command: Command) -> Result<String, String> {
                 return Err(format!(
                     "{}: the robot has no mass properties, so no inertial parameters",
                     robot.display()
+                ));
+            }
+            if r.dof() > MAX_PARAMS_DOF {
+                return Err(format!(
+                    "{}: field `links`: the robot has {} joints; `dhgen params` finds the base \
+                     parameters of at most {MAX_PARAMS_DOF} joints (the work grows as n³: about \
+                     2 s at {MAX_PARAMS_DOF} joints, 15 s at 200). Use the runtime path, \
+                     `dhgen::Robot::base_parameters`, for longer chains",
+                    robot.display(),
+                    r.dof()
                 ));
             }
             Ok(params_report(&r, latex))
@@ -357,6 +401,15 @@ fn run(command: Command) -> Result<String, String> {
         }
     }
 }
+
+/// The most joints `dhgen params` takes. The base parameters come from a pivoted QR of the
+/// regressor (10 columns per joint, more with motors and friction) stacked over at least 40
+/// random states: time grows as n³ and memory as n². Measured on the release build
+/// (2026-12-01, a 2-core host): 32 joints 0.04 s, 50 joints 0.13 s, 80 joints 0.7 s, 100
+/// joints 1.8 to 2.1 s and 75 MB, 120 joints 3.8 to 4.5 s, 200 joints 15 s, 400 joints over
+/// two minutes and 1.1 GB. The generator's limits (`dhgen_codegen::limits`) do not apply:
+/// `params` runs the runtime path, not the generator.
+const MAX_PARAMS_DOF: usize = 100;
 
 /// `dhgen params`: π by name, then the base parameters and what each regroups.
 fn params_report(r: &Robot, latex: bool) -> String {

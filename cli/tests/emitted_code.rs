@@ -12,6 +12,13 @@ pub mod emitted {
     include!("emitted/puma560.rs");
 }
 
+/// A one-joint arm emitted with every option: functions that read none of some inputs (its
+/// C(q, q̇) is zero) and friction-free bias terms, checked to compile without a warning.
+#[deny(warnings)]
+pub mod emitted_one_joint {
+    include!("emitted/one_joint.rs");
+}
+
 dhgen::robot!(mod generated = "../robots/puma560.toml");
 
 use emitted::puma560 as emitted_puma;
@@ -86,4 +93,23 @@ fn emitted_module_implements_arm() {
         b.to_homogeneous().as_slice(),
     );
     assert_eq!(Arm::dof(&emitted_puma::Robot), 6);
+}
+
+#[test]
+fn one_joint_module_is_a_pendulum() {
+    use emitted_one_joint::one_joint as pendulum;
+    // A rod of 1 kg with its centre of mass 0.5 m from the axis (the link frame sits at the
+    // rod's far end, a = 1 m), gravity along −z of the base, the axis along z: no torque
+    // from gravity, inertia zz + m·0.5² about the axis, no Coriolis term.
+    for q in [-2.0_f64, -0.3, 0.0, 1.1, 3.0] {
+        let d = pendulum::mass_matrix(&[q]);
+        assert!((d[(0, 0)] - (0.1 + 0.25)).abs() < 1e-15, "D = {d}");
+        assert_eq!(pendulum::gravity(&[q])[0], 0.0);
+        assert_eq!(pendulum::coriolis(&[q], &[0.7])[(0, 0)], 0.0);
+        let (dq, dqd) = pendulum::inverse_dynamics_derivatives(&[q], &[0.7], &[0.2]);
+        assert_eq!((dq[(0, 0)], dqd[(0, 0)]), (0.0, 0.0));
+        let (_, _, inverse) =
+            pendulum::forward_dynamics_derivatives(&[q], &[0.7], &[1.0]).expect("D > 0");
+        assert!((inverse[(0, 0)] * d[(0, 0)] - 1.0_f64).abs() < 1e-15);
+    }
 }

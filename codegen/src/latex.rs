@@ -181,12 +181,30 @@ pub enum Unavailable {
     /// The description has no mass properties.
     #[error("the description has no mass properties, so there is no D(q), c_ijk or g(q) to print")]
     NoDynamics,
-    /// The normal form is too large to build (or the arm has more than 16 joints).
+    /// More joints than a normal form has variables for (two per joint).
     #[error(
-        "the closed forms of D(q) and g(q) are too large to build and print for this arm \
-         (no exactly parallel or perpendicular axes to simplify them, or more than 16 joints)"
+        "the robot has {joints} joints; the closed forms of D(q), c_ijk and g(q) are built \
+         for at most {most} joints (two variables per joint in a monomial)"
     )]
-    TooLarge,
+    TooManyJoints {
+        /// The robot's joints.
+        joints: usize,
+        /// The most the normal form takes.
+        most: usize,
+    },
+    /// Building a closed form ran out of its budget of term operations.
+    #[error(
+        "the closed form of {quantity} is too large to print: building it takes more than the \
+         {budget} term operations allowed (multiplying polynomials of a and b terms counts \
+         a·b, adding them a + b); `dhgen eval` evaluates the dynamics at any configuration"
+    )]
+    TooLarge {
+        /// What could not be built: `D(q)` (from which c_ijk is derived) or `g(q)`.
+        quantity: &'static str,
+        /// Its budget ([`MASS_MATRIX_WORK`](crate::derive::MASS_MATRIX_WORK) or
+        /// [`GRAVITY_WORK`](crate::derive::GRAVITY_WORK)).
+        budget: u64,
+    },
 }
 
 /// D(q) (`d_ij`, i ≤ j), the Christoffel symbols (`c_ijk`, i ≤ j) and g(q) of `model` as
@@ -206,14 +224,24 @@ pub fn dynamics_equations(model: &RobotModel, style: &Style) -> Result<String, U
     } else {
         plain.clone()
     };
+    let most = crate::derive::NORMAL_FORM_JOINTS;
+    if n > most {
+        return Err(Unavailable::TooManyJoints { joints: n, most });
+    }
     let dv = Derivation::new(chain);
-    let (Some(d), Some(c), Some(g)) = (
-        dv.mass_matrix_polys(),
-        dv.christoffel_polys(),
-        dv.gravity_polys(),
-    ) else {
-        return Err(Unavailable::TooLarge);
-    };
+    let too_large = |quantity, budget| Unavailable::TooLarge { quantity, budget };
+    let d = dv.mass_matrix_polys().ok_or(too_large(
+        "D(q) (from which c_ijk is derived)",
+        crate::derive::MASS_MATRIX_WORK,
+    ))?;
+    // c_ijk are D's derivatives: built whenever D is.
+    let c = dv.christoffel_polys().ok_or(too_large(
+        "D(q) (from which c_ijk is derived)",
+        crate::derive::MASS_MATRIX_WORK,
+    ))?;
+    let g = dv
+        .gravity_polys()
+        .ok_or(too_large("g(q)", crate::derive::GRAVITY_WORK))?;
 
     let idx = |ids: &[usize]| {
         let parts: Vec<String> = ids.iter().map(|i| (i + 1).to_string()).collect();

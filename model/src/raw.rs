@@ -79,21 +79,22 @@ impl core::fmt::Display for Position {
     }
 }
 
-/// Byte offsets to [`Position`]s: the start of every line, searched by bisection.
-struct LineIndex<'t> {
+/// Byte offsets to [`Position`]s: the start of every line, searched by bisection (the TOML
+/// and URDF readers locate every value through one, in O(log n) each).
+pub(crate) struct LineIndex<'t> {
     text: &'t str,
     starts: Vec<usize>,
 }
 
 impl<'t> LineIndex<'t> {
-    fn new(text: &'t str) -> Self {
+    pub(crate) fn new(text: &'t str) -> Self {
         let starts = core::iter::once(0)
             .chain(text.match_indices('\n').map(|(i, _)| i + 1))
             .collect();
         LineIndex { text, starts }
     }
 
-    fn position(&self, offset: usize) -> Position {
+    pub(crate) fn position(&self, offset: usize) -> Position {
         let offset = offset.min(self.text.len());
         let line = self.starts.partition_point(|&s| s <= offset) - 1;
         let start = self.starts[line];
@@ -216,16 +217,26 @@ pub fn from_toml_text(text: &str) -> Result<Table<Position>, SyntaxError> {
     }
 
     let lines = LineIndex::new(text);
-    let doc = DeTable::parse(text).map_err(|e| SyntaxError {
-        loc: lines.position(e.span().map_or(0, |s| s.start)),
+    let doc = DeTable::parse(text).map_err(|e| {
         // The parser's own message, without the quoted line it adds when displayed.
-        message: e
+        let mut message = e
             .message()
             .lines()
             .map(str::trim)
             .filter(|l| !l.is_empty())
             .collect::<Vec<_>>()
-            .join("; "),
+            .join("; ");
+        // A URDF file under another name: say so rather than leave a TOML puzzle.
+        if text
+            .trim_start_matches(['\u{feff}', ' ', '\t', '\r', '\n'])
+            .starts_with('<')
+        {
+            message.push_str("; this looks like XML (URDF): name the file .urdf");
+        }
+        SyntaxError {
+            loc: lines.position(e.span().map_or(0, |s| s.start)),
+            message,
+        }
     })?;
     table(&lines, doc.get_ref(), doc.span())
 }

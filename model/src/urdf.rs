@@ -15,8 +15,11 @@
 //!   the last joint, and their links' mass properties into the body they are fixed to (as
 //!   Pinocchio does). Movable joints off the chain (a gripper's fingers, the other arm of a
 //!   two-arm robot) are held at `q = 0` and merged the same way; so are the links above
-//!   `base`, whose mass the fixed base carries;
-//! - `<inertial>` with its own `<origin>` (the tensor is rotated into the link frame);
+//!   `base`, whose mass the fixed base carries. A `floating` or `planar` joint off the chain
+//!   joins a free body (an object, a cart), which does not load the arm: it is left out with
+//!   everything below it and listed in [`UrdfRobot::left_out`];
+//! - `<inertial>` with its own `<origin>` (the tensor is rotated into the link frame), its
+//!   `<mass value>` and all six attributes of `<inertia>` (as ROS's urdfdom requires);
 //!   a file with no `<inertial>` at all is a kinematics-only robot; otherwise a body the
 //!   joints move with none (after merging) is massless, as in Pinocchio and KDL, and listed
 //!   in [`UrdfRobot::massless`];
@@ -26,12 +29,14 @@
 //!
 //! Errors (floating, planar and mimic joints on the chain, closed chains, unknown links, a
 //! negative mass or an inertia tensor that is not
-//! positive semi-definite on a link a moving body carries, a zero axis) name the file, line
-//! and column, the link or joint and the attribute. The links the fixed base carries (with
-//! every branch that leaves the chain before its first moving joint) may hold any mass
-//! properties: a published URDF's 1 mg antenna on the base, with a tensor no body can have,
-//! does not stop its arm from loading. Inertia tensors need not obey the triangle inequality: published URDFs often
-//! do not, and Pinocchio accepts them.
+//! positive semi-definite on a link a moving body carries, a zero axis, a number outside the
+//! description format's [ranges](crate::validate::Range), wherever it is in the file) name the
+//! file, line and column, the link or joint and the attribute as URDF writes it
+//! (``joint `j1` <limit lower>``). The links the fixed base carries (with every branch that
+//! leaves the chain before its first moving joint) may hold mass properties no body can have
+//! (within the ranges): a published URDF's 1 mg antenna on the base, with a tensor that is not
+//! positive semi-definite, does not stop its arm from loading. Inertia tensors need not obey
+//! the triangle inequality: published URDFs often do not, and Pinocchio accepts them.
 //!
 //! # Exact quarter turns
 //! URDF angles are decimals (`1.5707963267948966`, `1.5708`). An angle within
@@ -41,11 +46,12 @@
 //! (and by `dhgen info`); a wider tolerance (`1e-4` reads `1.5708` as π/2) is an explicit
 //! choice of the user.
 
-use crate::raw::{Position, Table, Value};
-use crate::{Angle, Frame, Inertial, LoadError, Pose, RobotModel, validate};
+use crate::raw::{LineIndex, Position, Table, Value};
+use crate::validate::{self, ANGLE, FRICTION, INERTIA, LENGTH, MASS, Range};
+use crate::{Angle, Frame, Inertial, LoadError, Pose, RobotModel};
 use core::f64::consts::FRAC_PI_2;
 use nalgebra::Vector3;
-use std::collections::HashMap;
+use std::collections::{HashMap, HashSet};
 
 /// How to read a URDF file.
 #[derive(Clone, Debug, PartialEq)]
@@ -112,8 +118,13 @@ pub struct UrdfRobot {
     pub tip: String,
     /// The robot's joints, base to tip.
     pub joints: Vec<UrdfJoint>,
-    /// Movable joints off the chain, held at zero.
+    /// Movable joints off the chain, held at zero; their links' mass is merged into the body
+    /// they hang from.
     pub locked: Vec<String>,
+    /// Floating and planar joints off the chain: what they join is a free body (an object, a
+    /// mobile base elsewhere in the file), not attached to the arm, so each is left out with
+    /// everything below it (no mass merged, nothing held).
+    pub left_out: Vec<String>,
     /// Links a joint moves that have no `<inertial>`, nor anything fixed to them, in a file
     /// where other links have one: read as massless, as Pinocchio and KDL read them (the
     /// virtual links between the axes of a spherical joint written as three revolute ones),
@@ -140,6 +151,7 @@ pub fn read(text: &str, origin: &str, options: &UrdfOptions) -> Result<UrdfRobot
         origin,
         options,
         doc: &doc,
+        lines: LineIndex::new(text),
         snaps: Vec::new(),
     }
     .robot()
@@ -233,7 +245,8 @@ struct Joint {
     limits: Option<([f64; 2], Position)>,
     velocity: Option<f64>,
     effort: Option<f64>,
-    dynamics: Option<([f64; 2], Position)>,
+    /// `<dynamics damping friction>`, each where it is written (absent: 0, at the element).
+    dynamics: Option<[(f64, Position); 2]>,
     mimic: bool,
 }
 
@@ -241,16 +254,15 @@ struct Reader<'a> {
     origin: &'a str,
     options: &'a UrdfOptions,
     doc: &'a roxmltree::Document<'a>,
+    /// Line starts of the text: roxmltree's own `text_pos_at` scans the text from its start
+    /// on every call, which made reading a file quadratic in its size.
+    lines: LineIndex<'a>,
     snaps: Vec<Snap>,
 }
 
 impl<'a> Reader<'a> {
     fn pos(&self, offset: usize) -> Position {
-        let p = self.doc.text_pos_at(offset);
-        Position {
-            line: p.row as usize,
-            column: p.col as usize,
-        }
+        self.lines.position(offset)
     }
 
     fn node_pos(&self, n: roxmltree::Node<'_, '_>) -> Position {
@@ -271,11 +283,14 @@ impl<'a> Reader<'a> {
         Some((a.value().to_string(), self.pos(a.range().start)))
     }
 
+    /// `N` numbers separated by spaces, finite and, with a `range`, within it (the ranges of
+    /// the description format, so that the file is held to the rules of a TOML one).
     fn numbers<const N: usize>(
         &self,
         what: &str,
         value: &str,
         loc: Position,
+        range: Option<Range>,
     ) -> Result<[f64; N], LoadError> {
         let parts: Vec<&str> = value.split_whitespace().collect();
         let bad = || {
@@ -296,21 +311,30 @@ impl<'a> Reader<'a> {
             if !x.is_finite() {
                 return Err(self.err(loc, format!("{what}: {part} is not a finite number")));
             }
+            if let Some(range) = range {
+                range
+                    .check_value(x)
+                    .map_err(|message| self.err(loc, format!("{what}: {message}")))?;
+            }
             *slot = x;
         }
         Ok(out)
     }
 
+    /// The number in attribute `name` of element `n` of `owner` (``joint `j1` ``), named in
+    /// messages as URDF writes it: ``joint `j1` <limit lower>``.
     fn number_attr(
         &self,
         n: roxmltree::Node<'_, '_>,
-        what: &str,
+        owner: &str,
         name: &str,
+        range: Option<Range>,
     ) -> Result<Option<(f64, Position)>, LoadError> {
         match self.attr(n, name) {
             None => Ok(None),
             Some((v, loc)) => {
-                let [x] = self.numbers::<1>(&format!("{what} attribute `{name}`"), &v, loc)?;
+                let what = format!("{owner} <{} {name}>", n.tag_name().name());
+                let [x] = self.numbers::<1>(&what, &v, loc, range)?;
                 Ok(Some((x, loc)))
             }
         }
@@ -343,12 +367,15 @@ impl<'a> Reader<'a> {
             return Ok(Frame::identity());
         };
         let xyz = match self.attr(o, "xyz") {
-            Some((v, loc)) => self.numbers::<3>(&format!("{what} <origin xyz>"), &v, loc)?,
+            Some((v, loc)) => {
+                self.numbers::<3>(&format!("{what} <origin xyz>"), &v, loc, Some(LENGTH))?
+            }
             None => [0.0; 3],
         };
         let rpy = match self.attr(o, "rpy") {
             Some((v, loc)) => {
-                let raw = self.numbers::<3>(&format!("{what} <origin rpy>"), &v, loc)?;
+                let raw =
+                    self.numbers::<3>(&format!("{what} <origin rpy>"), &v, loc, Some(ANGLE))?;
                 let names = ["roll", "pitch", "yaw"];
                 let mut out = [0.0; 3];
                 for i in 0..3 {
@@ -439,7 +466,7 @@ impl<'a> Reader<'a> {
             .find(|c| c.has_tag_name("mass"))
             .ok_or_else(|| self.err(here, format!("{at} has no <mass>")))?;
         let (mass, mass_loc) = self
-            .number_attr(mass_node, &format!("{at} <mass>"), "value")?
+            .number_attr(mass_node, &at, "value", Some(MASS))?
             .ok_or_else(|| {
                 self.err(
                     self.node_pos(mass_node),
@@ -453,11 +480,22 @@ impl<'a> Reader<'a> {
             .children()
             .find(|c| c.has_tag_name("inertia"))
             .ok_or_else(|| self.err(here, format!("{at} has no <inertia>")))?;
+        // URDF requires all six (ROS's urdfdom rejects an <inertia> that lacks one): a
+        // missing one is more likely an omission than a zero.
         let mut e = [0.0; 6];
         for (slot, key) in e.iter_mut().zip(["ixx", "iyy", "izz", "ixy", "iyz", "ixz"]) {
             *slot = self
-                .number_attr(inertia_node, &format!("{at} <inertia>"), key)?
-                .map_or(0.0, |(x, _)| x);
+                .number_attr(inertia_node, &at, key, Some(INERTIA))?
+                .ok_or_else(|| {
+                    self.err(
+                        self.node_pos(inertia_node),
+                        format!(
+                            "{at} <inertia> has no `{key}`; URDF requires all six of ixx, ixy, \
+                             ixz, iyy, iyz, izz (write 0 for a zero)"
+                        ),
+                    )
+                })?
+                .0;
         }
         let [xx, yy, zz, xy, yz, xz] = e;
         let tensor = [[xx, xy, xz], [xy, yy, yz], [xz, yz, zz]];
@@ -482,6 +520,7 @@ impl<'a> Reader<'a> {
         index: &HashMap<String, usize>,
     ) -> Result<Vec<Joint>, LoadError> {
         let mut joints: Vec<Joint> = Vec::new();
+        let mut names: HashSet<String> = HashSet::new();
         let mut parent_of: Vec<Option<usize>> = vec![None; links.len()];
         for n in root.children().filter(|c| c.has_tag_name("joint")) {
             let loc = self.node_pos(n);
@@ -489,7 +528,7 @@ impl<'a> Reader<'a> {
                 return Err(self.err(loc, "a <joint> without a `name` attribute"));
             };
             let what = format!("joint `{name}`");
-            if joints.iter().any(|j| j.name == name) {
+            if !names.insert(name.clone()) {
                 return Err(self.err(loc, format!("{what} is defined twice")));
             }
             let (kind_text, kind_loc) = self
@@ -551,6 +590,7 @@ impl<'a> Reader<'a> {
                         &format!("{what} <axis xyz>"),
                         &v,
                         aloc,
+                        None,
                     )?);
                     // The numbers are finite: a zero or tiny vector has no direction.
                     if kind.movable() && u.norm() <= 1e-9 {
@@ -566,14 +606,16 @@ impl<'a> Reader<'a> {
             let mut limits = None;
             let (mut velocity, mut effort) = (None, None);
             if let Some(l) = limit {
-                let lower = self.number_attr(l, &format!("{what} <limit>"), "lower")?;
-                let upper = self.number_attr(l, &format!("{what} <limit>"), "upper")?;
-                velocity = self
-                    .number_attr(l, &format!("{what} <limit>"), "velocity")?
-                    .map(|x| x.0);
-                effort = self
-                    .number_attr(l, &format!("{what} <limit>"), "effort")?
-                    .map(|x| x.0);
+                // Position limits in the range of the joint's kind of quantity.
+                let range = match kind {
+                    Kind::Revolute => Some(ANGLE),
+                    Kind::Prismatic => Some(LENGTH),
+                    _ => None,
+                };
+                let lower = self.number_attr(l, &what, "lower", range)?;
+                let upper = self.number_attr(l, &what, "upper", range)?;
+                velocity = self.number_attr(l, &what, "velocity", None)?.map(|x| x.0);
+                effort = self.number_attr(l, &what, "effort", None)?.map(|x| x.0);
                 let lo = lower.map_or(0.0, |x| x.0);
                 let hi = upper.map_or(0.0, |x| x.0);
                 // URDF's defaults are 0 and 0: a joint whose limits are both absent or equal
@@ -586,13 +628,12 @@ impl<'a> Reader<'a> {
             let dynamics = match n.children().find(|c| c.has_tag_name("dynamics")) {
                 None => None,
                 Some(d) => {
-                    let damping = self.number_attr(d, &format!("{what} <dynamics>"), "damping")?;
-                    let friction =
-                        self.number_attr(d, &format!("{what} <dynamics>"), "friction")?;
-                    Some((
-                        [damping.map_or(0.0, |x| x.0), friction.map_or(0.0, |x| x.0)],
-                        self.node_pos(d),
-                    ))
+                    let value = |name| -> Result<(f64, Position), LoadError> {
+                        Ok(self
+                            .number_attr(d, &what, name, Some(FRICTION))?
+                            .unwrap_or((0.0, self.node_pos(d))))
+                    };
+                    Some([value("damping")?, value("friction")?])
                 }
             };
             let mimic = n.children().any(|c| c.has_tag_name("mimic"));
@@ -656,9 +697,12 @@ impl<'a> Reader<'a> {
         };
         // Depth from the root; a link the root does not reach sits on a cycle.
         let mut reached = vec![false; links.len()];
+        // The links in depth-first order from the root: every link before its children.
+        let mut order = Vec::with_capacity(links.len());
         let mut stack = vec![root];
         while let Some(l) = stack.pop() {
             reached[l] = true;
+            order.push(l);
             stack.extend(children[l].iter().map(|&j| joints[j].child));
         }
         if let Some(l) = reached.iter().position(|r| !r) {
@@ -689,17 +733,14 @@ impl<'a> Reader<'a> {
             Some(b) => link_named(self, b, "the base")?,
             None => root,
         };
-        // A link's movable-joint ancestry decides the default tip.
-        let below_movable = |l: usize| -> bool {
-            let mut stack: Vec<usize> = children[l].clone();
-            while let Some(j) = stack.pop() {
-                if joints[j].kind.movable() {
-                    return true;
-                }
-                stack.extend(children[joints[j].child].iter().copied());
-            }
-            false
-        };
+        // Whether a movable joint is below each link decides the default tip; children first,
+        // so each link is looked at once.
+        let mut below_movable = vec![false; links.len()];
+        for &l in order.iter().rev() {
+            below_movable[l] = children[l]
+                .iter()
+                .any(|&j| joints[j].kind.movable() || below_movable[joints[j].child]);
+        }
         let tip = match &self.options.tip {
             Some(t) => link_named(self, t, "the tip")?,
             None => {
@@ -710,7 +751,7 @@ impl<'a> Reader<'a> {
                 while let Some(l) = stack.pop() {
                     for &j in &children[l] {
                         let c = joints[j].child;
-                        if joints[j].kind.movable() && !below_movable(c) {
+                        if joints[j].kind.movable() && !below_movable[c] {
                             ends.push(c);
                         }
                         stack.push(c);
@@ -776,7 +817,10 @@ impl<'a> Reader<'a> {
             l = joints[j].parent;
         }
         path.reverse();
-        let on_path: Vec<bool> = (0..joints.len()).map(|j| path.contains(&j)).collect();
+        let mut on_path = vec![false; joints.len()];
+        for &j in &path {
+            on_path[j] = true;
+        }
         for &j in &path {
             let joint = &joints[j];
             let why = match joint.kind {
@@ -814,9 +858,10 @@ impl<'a> Reader<'a> {
         // to it (fixed joints, movable joints off the chain at q = 0), in its frame.
         let has_dynamics = links.iter().any(|l| l.inertial.is_some());
         let mut locked = Vec::new();
+        let mut left_out = Vec::new();
         let mut massless = Vec::new();
         // Also the first link of the body whose `<inertial>` is unphysical, if any.
-        let body = |start: usize, locked: &mut Vec<String>| {
+        let body = |start: usize, locked: &mut Vec<String>, left_out: &mut Vec<String>| {
             let mut total = Inertial {
                 mass: 0.0,
                 com: [0.0; 3],
@@ -834,11 +879,18 @@ impl<'a> Reader<'a> {
                     unphysical = links[l].unphysical.clone();
                 }
                 for &j in &children[l] {
-                    if on_path[j] && joints[j].kind.movable() {
-                        continue;
-                    }
-                    if joints[j].kind.movable() || !matches!(joints[j].kind, Kind::Fixed) {
-                        locked.push(joints[j].name.clone());
+                    match joints[j].kind {
+                        _ if on_path[j] && joints[j].kind.movable() => continue,
+                        // A free body (a floating or planar joint: an object, a mobile base
+                        // elsewhere in the file) does not load the arm: it is not attached.
+                        Kind::Floating | Kind::Planar => {
+                            left_out.push(joints[j].name.clone());
+                            continue;
+                        }
+                        Kind::Fixed => {}
+                        Kind::Revolute | Kind::Continuous | Kind::Prismatic => {
+                            locked.push(joints[j].name.clone());
+                        }
                     }
                     stack.push((joints[j].child, tf.compose(&joints[j].origin)));
                 }
@@ -847,10 +899,10 @@ impl<'a> Reader<'a> {
         };
         // The links above the first moving joint are the fixed base; their off-chain
         // movable joints are locked too (listed), their mass is not the robot's.
-        let _ = body(base, &mut locked);
+        let _ = body(base, &mut locked, &mut left_out);
         let mut bodies = Vec::new();
         for &j in &moving {
-            let (m, any, unphysical) = body(joints[j].child, &mut locked);
+            let (m, any, unphysical) = body(joints[j].child, &mut locked, &mut left_out);
             if let Some((loc, message)) = unphysical {
                 return Err(self.err(loc, message));
             }
@@ -861,6 +913,7 @@ impl<'a> Reader<'a> {
         }
         locked.sort();
         locked.dedup();
+        left_out.sort();
         // The description tree: placements accumulate fixed joints up to each moving joint.
         let mut rows = Vec::new();
         let mut pending = Frame::identity();
@@ -908,16 +961,15 @@ impl<'a> Reader<'a> {
         }
         top.push(("links".to_string(), loc, Value::Array(rows, loc)));
         let table = Table { entries: top, loc };
+        // The reader has checked every number of the file; what the validator still rejects
+        // is a rule across values (limits in order, friction not negative) or a value the
+        // reader derived (origins composed through fixed joints, merged mass properties):
+        // named in URDF's terms.
         let model = validate::validate(&table, None).map_err(|e| {
-            let joint = e
-                .link
-                .and_then(|k| out_joints.get(k - 1))
-                .map_or_else(String::new, |j| format!("joint `{}`: ", j.name));
-            let field = e
-                .field
-                .as_ref()
-                .map_or_else(String::new, |f| format!("{f}: "));
-            self.err(e.loc, format!("{joint}{field}{}", e.message))
+            self.err(
+                e.loc,
+                format!("{}{}", urdf_terms(&e, &out_joints), e.message),
+            )
         })?;
         Ok(UrdfRobot {
             model,
@@ -925,6 +977,7 @@ impl<'a> Reader<'a> {
             tip: links[tip].name.clone(),
             joints: out_joints,
             locked,
+            left_out,
             massless,
             snaps: Vec::new(),
         })
@@ -992,7 +1045,7 @@ impl<'a> Reader<'a> {
                 }),
             ));
         }
-        if let Some(([damping, friction], dloc)) = joint.dynamics
+        if let Some([(damping, dloc), (friction, floc)]) = joint.dynamics
             && (damping != 0.0 || friction != 0.0)
         {
             e.push((
@@ -1001,13 +1054,52 @@ impl<'a> Reader<'a> {
                 Value::Table(Table {
                     entries: vec![
                         ("viscous".into(), dloc, num(damping, dloc)),
-                        ("coulomb".into(), dloc, num(friction, dloc)),
+                        ("coulomb".into(), floc, num(friction, floc)),
                     ],
                     loc: dloc,
                 }),
             ));
         }
         Value::Table(Table { entries: e, loc })
+    }
+}
+
+/// Where a validation error of the description built from a URDF file is, in the file's
+/// terms (``joint `j1` <dynamics damping>: ``) rather than the description's (`friction.viscous`).
+/// The reader has checked every number of the file; what the validator still rejects is a rule
+/// across values (limits in order, friction not negative) or a value the reader derived
+/// (origins composed through fixed joints, mass properties merged), which this says.
+fn urdf_terms(e: &validate::Error<Position>, joints: &[UrdfJoint]) -> String {
+    let field = e.field.as_deref().unwrap_or("");
+    let Some(joint) = e.link.and_then(|k| joints.get(k - 1)) else {
+        return match field.strip_prefix("tool.") {
+            Some(xyz) => format!(
+                "<origin {xyz}> of the fixed joints after the last joint, composed (the tool \
+                 frame): "
+            ),
+            None if field.is_empty() => String::new(),
+            None => format!("{field}: "),
+        };
+    };
+    let name = &joint.name;
+    match field {
+        "" => format!("joint `{name}`: "),
+        "origin.xyz" | "origin.rpy" => format!(
+            "joint `{name}` <origin {}> composed with the fixed joints before it: ",
+            &field[7..]
+        ),
+        "axis" => format!("joint `{name}` <axis xyz>: "),
+        "limits" => format!("joint `{name}` <limit lower upper>: "),
+        "friction.viscous" => format!("joint `{name}` <dynamics damping>: "),
+        "friction.coulomb" => format!("joint `{name}` <dynamics friction>: "),
+        // The body the joint moves, merged: `mass`, `com`, `inertia`, `inertia.xy`.
+        "mass" | "com" | "inertia" | "inertia.xx" | "inertia.yy" | "inertia.zz" | "inertia.xy"
+        | "inertia.yz" | "inertia.xz" => format!(
+            "joint `{name}`: link `{}` with the links fixed to it, {}: ",
+            joint.child,
+            field.replace("com", "centre of mass").replace('.', " ")
+        ),
+        other => format!("joint `{name}`: {other}: "),
     }
 }
 

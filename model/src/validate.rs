@@ -202,16 +202,23 @@ impl<'t, L: Clone> Fields<'t, L> {
     }
 }
 
-/// `x` to 6 significant digits, without trailing zeros: computed values such as
-/// eigenvalues carry rounding noise that would only distract in a message.
-/// Very large and very small magnitudes in scientific notation (`1e308`, not 309 digits).
-fn short(x: f64) -> String {
-    let rounded: f64 = format!("{x:.5e}").parse().unwrap_or(x);
-    if rounded != 0.0 && !(1e-4..1e6).contains(&rounded.abs()) {
-        format!("{rounded:e}")
+/// A value in a message: the shortest text that reads back as `x` (so that a value just past
+/// a limit never prints as the limit), in scientific notation below 1e-4 and from 1e6 on
+/// (`1e308`, not 309 digits). Every message that shows a number of the description, or one
+/// computed from it, shows it this way.
+pub(crate) fn short(x: f64) -> String {
+    if x != 0.0 && x.is_finite() && !(1e-4..1e6).contains(&x.abs()) {
+        format!("{x:e}")
     } else {
-        format!("{rounded}")
+        format!("{x}")
     }
+}
+
+/// An angle in degrees to 6 significant digits, shown beside the exact radians for
+/// orientation (`57.2958°`, not `57.29577951308232°`).
+fn degrees(rad: f64) -> f64 {
+    let deg = rad.to_degrees();
+    format!("{deg:.5e}").parse().unwrap_or(deg)
 }
 
 /// " (did you mean `x`?)" when an allowed name is one or two edits away from `key`.
@@ -254,9 +261,10 @@ fn number<L: Clone>(at: At<'_>, v: &Value<L>) -> Result<f64, Error<L>> {
         Value::Number(x, loc) if x.is_nan() => {
             Err(at.err(loc, "the value is NaN; give a finite number"))
         }
-        Value::Number(x, loc) if x.is_infinite() => {
-            Err(at.err(loc, format!("the value is {x}; give a finite number")))
-        }
+        Value::Number(x, loc) if x.is_infinite() => Err(at.err(
+            loc,
+            format!("the value is {}; give a finite number", short(*x)),
+        )),
         Value::Number(x, _) => Ok(*x),
         Value::Expr(text, loc) => Err(at.err(
             loc,
@@ -299,8 +307,14 @@ impl Range {
     }
 
     fn check<L: Clone>(self, at: At<'_>, loc: &L, x: f64) -> Result<f64, Error<L>> {
+        self.check_value(x).map_err(|message| at.err(loc, message))
+    }
+
+    /// The range rule on a value `x`, as a message: `x`, or why it is outside the range (NaN
+    /// is). Both front ends (the validator and the URDF reader) apply it through here.
+    pub(crate) fn check_value(self, x: f64) -> Result<f64, String> {
         let m = x.abs();
-        if m > self.max || (m < self.min && m != 0.0) {
+        if m.is_nan() || m > self.max || (m < self.min && m != 0.0) {
             let unit = if self.unit.is_empty() {
                 String::new()
             } else {
@@ -311,14 +325,11 @@ impl Range {
             } else {
                 format!("at most {:e}", self.max)
             };
-            return Err(at.err(
-                loc,
-                format!(
-                    "{} {}{unit} is outside the range of any robot (magnitude {bounds}{unit}; \
-                     see \"Ranges\" in docs/robot-description.md)",
-                    self.what,
-                    short(x),
-                ),
+            return Err(format!(
+                "{} {}{unit} is outside the range of any robot (magnitude {bounds}{unit}; \
+                 see \"Ranges\" in docs/robot-description.md)",
+                self.what,
+                short(x),
             ));
         }
         Ok(x)
@@ -609,9 +620,9 @@ fn link<L: Clone>(
                     JointKind::Revolute => format!(
                         "lower limit {} rad ({}°) is not below upper limit {} rad ({}°)",
                         short(lo),
-                        short(lo.to_degrees()),
+                        short(degrees(lo)),
                         short(hi),
-                        short(hi.to_degrees())
+                        short(degrees(hi))
                     ),
                     JointKind::Prismatic => format!(
                         "lower limit {} m is not below upper limit {} m",
@@ -629,7 +640,7 @@ fn link<L: Clone>(
         let inertia = m.with_required("inertia", |at, v| {
             let x = quantity(at, v, ROTOR_INERTIA)?;
             if x < 0.0 {
-                return Err(at.err(v.loc(), format!("rotor inertia {x} is negative")));
+                return Err(at.err(v.loc(), format!("rotor inertia {} is negative", short(x))));
             }
             Ok(x)
         })?;
@@ -647,7 +658,10 @@ fn link<L: Clone>(
         let coefficient = |at: At<'_>, v: &Value<L>| {
             let x = quantity(at, v, FRICTION)?;
             if x < 0.0 {
-                return Err(at.err(v.loc(), format!("friction coefficient {x} is negative")));
+                return Err(at.err(
+                    v.loc(),
+                    format!("friction coefficient {} is negative", short(x)),
+                ));
             }
             Ok(x)
         };
@@ -663,7 +677,10 @@ fn link<L: Clone>(
             if r <= 0.0 {
                 return Err(at.err(
                     v.loc(),
-                    format!("collision radius {r} is not positive; give a radius > 0 in m"),
+                    format!(
+                        "collision radius {} is not positive; give a radius > 0 in m",
+                        short(r)
+                    ),
                 ));
             }
             Ok(r)
@@ -791,16 +808,13 @@ pub(crate) fn obeys_triangle_inequality(tensor: &[[f64; 3]; 3], mass: f64) -> bo
 
 /// The rule for a mass: in [`MASS`]'s range and not negative (zero is a massless link).
 pub fn check_mass(m: f64) -> Result<(), String> {
+    if !m.is_finite() {
+        return Err(format!("mass {} is not a finite number", short(m)));
+    }
     if m < 0.0 {
-        return Err(format!("mass {m} is negative"));
+        return Err(format!("mass {} is negative", short(m)));
     }
-    if !(m.is_finite() && m <= MASS.max) {
-        return Err(format!(
-            "mass {m} is not a finite number up to {} kg",
-            MASS.max
-        ));
-    }
-    Ok(())
+    MASS.check_value(m).map(drop)
 }
 
 /// Principal moments must be non-negative (positive semi-definite) and obey the triangle
@@ -842,15 +856,18 @@ pub fn check_inertia_tensor(
     mass: f64,
     allow_nonphysical: bool,
 ) -> Result<(), String> {
-    if tensor
-        .iter()
-        .flatten()
-        .any(|x| !(x.is_finite() && x.abs() <= INERTIA.max))
-    {
-        return Err(format!(
-            "inertia entries must be finite numbers up to {} kg·m²",
-            INERTIA.max
-        ));
+    for (key, [a, b]) in Inertial::FIELDS {
+        for x in [tensor[a][b], tensor[b][a]] {
+            if !x.is_finite() {
+                return Err(format!(
+                    "inertia entry `{key}` is {}; give a finite number",
+                    short(x)
+                ));
+            }
+            INERTIA
+                .check_value(x)
+                .map_err(|message| format!("inertia entry `{key}`: {message}"))?;
+        }
     }
     let (e, tol) = principal_moments(tensor, mass);
     if e[0] < -tol {

@@ -48,9 +48,12 @@ pub const MASS_MATRIX_WORK: u64 = 30_000;
 /// arm's costs 38,000 and saves a fifth of g's operations).
 pub const GRAVITY_WORK: u64 = 100_000;
 
-/// Whether a chain can have a normal form at all: two variables per joint in a monomial.
+/// The most joints a normal form takes: two variables per joint in a monomial.
+pub const NORMAL_FORM_JOINTS: usize = crate::poly::MAX_VARS / 2;
+
+/// Whether a chain can have a normal form at all.
 fn fits_normal_form(chain: ChainRef<'_>) -> bool {
-    chain.dof() <= crate::poly::MAX_VARS / 2
+    chain.dof() <= NORMAL_FORM_JOINTS
 }
 
 /// Runs `build` on a fresh budget of `work`; `None` when the budget ran out (or the chain has

@@ -381,6 +381,17 @@ struct Items {
     joints: HashMap<&'static str, Vec<usize>>,
 }
 
+/// Whether `body` names `input` anywhere (in any group): an input a function does not read
+/// (q̇ in C(q, q̇) of a one-joint arm, which is zero) is bound to `_` instead, so that the
+/// emitted file stays free of unused-variable warnings.
+fn reads(body: &TokenStream, input: &Ident) -> bool {
+    body.clone().into_iter().any(|tree| match tree {
+        proc_macro2::TokenTree::Ident(i) => &i == input,
+        proc_macro2::TokenTree::Group(g) => reads(&g.stream(), input),
+        _ => false,
+    })
+}
+
 fn idents(inputs: &[Input]) -> Vec<Ident> {
     inputs
         .iter()
@@ -444,6 +455,11 @@ impl Items {
                 body
             }
         };
+        let unread: Vec<&Ident> = inputs.iter().filter(|i| !reads(&body, i)).collect();
+        let body = quote! {
+            #(let _ = #unread;)*
+            #body
+        };
         let array_tys: Vec<TokenStream> = q.inputs.iter().map(|i| array_ty(i.name())).collect();
         if !q.public {
             let params = quote!(#(#inputs: #array_tys,)*);
@@ -472,7 +488,7 @@ impl Items {
         let joint_inputs: Vec<&Ident> = inputs
             .iter()
             .zip(q.inputs)
-            .filter(|(_, i)| i.is_joint_vector())
+            .filter(|(n, i)| i.is_joint_vector() && !unread.contains(n))
             .map(|(n, _)| n)
             .collect();
         self.methods.push(quote! {
@@ -710,6 +726,11 @@ impl Items {
                 .collect();
             let early_tys: Vec<TokenStream> =
                 early.iter().map(|n| array_ty(&n.to_string())).collect();
+            let unread: Vec<&Ident> = early.iter().filter(|i| !reads(&computed, i)).collect();
+            let computed = quote! {
+                #(let _ = #unread;)*
+                #computed
+            };
             let init = q
                 .shape
                 .init()

@@ -1006,9 +1006,11 @@ pub const QUANTITIES: &[Quantity] = &[
             // The bias h from ∂τ/∂q̇ (`dqd`), which does not depend on q̈: the velocity terms
             // of τ are quadratic in q̇ (so Σ_j q̇_j ∂/∂q̇_j doubles them) and viscous friction
             // is linear, so h = g + ½ (∂τ/∂q̇ + diag(viscous)) q̇ + Coulomb; then q̈ = D⁻¹(τ − h).
+            // Friction, if any, is added to the bias in place.
+            let mutable = (!viscous.is_empty() || !coulomb.is_empty()).then(|| quote!(mut));
             let acceleration = quote! {
                 let half = ::dhgen::nalgebra::convert::<f64, T>(0.5);
-                let mut tau: [T; DOF] = ::core::array::from_fn(|k| {
+                let #mutable tau: [T; DOF] = ::core::array::from_fn(|k| {
                     let s = dqd
                         .row(k)
                         .iter()

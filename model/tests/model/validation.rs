@@ -479,7 +479,7 @@ fn limits_lower_not_below_upper() {
         ),
         (
             "[\"90deg\", \"pi/2\"]",
-            "lower limit 1.5708 rad (90°) is not below upper limit 1.5708 rad (90°)",
+            "lower limit 1.5707963267948966 rad (90°) is not below upper limit 1.5707963267948966 rad (90°)",
         ),
     ];
     for (limits, what) in cases {
@@ -684,6 +684,80 @@ fn magnitudes_outside_the_physical_ranges() {
     if let Err(e) = RobotModel::from_toml_named(&text, FILE) {
         panic!("rejected a description at the edges of the ranges: {e}\n{text}");
     }
+}
+
+/// A value just past its limit is shown as written (the shortest text that reads back as the
+/// value), not rounded onto the limit: the message must show why the value failed. Beyond 1e6
+/// and below 1e-4 in scientific notation.
+#[test]
+fn values_just_past_a_limit_show_why_they_fail() {
+    let cases = [
+        (
+            LINK.replace("a = 0.5", "a = 1000.0000001"),
+            "1000.0000001",
+            "a",
+            "length 1000.0000001 m is outside",
+        ),
+        (
+            LINK.replace("alpha = \"90deg\"", "alpha = -1000.0000001"),
+            "-1000.0000001",
+            "alpha",
+            "angle -1000.0000001 rad is outside",
+        ),
+        (
+            format!("{LINK}limits = [-1000.0000001, 0]\n"),
+            "-1000.0000001",
+            "limits",
+            "angle -1000.0000001 rad is outside",
+        ),
+        (
+            format!("{LINK}motor = {{ inertia = 1e-4, gear = 9.99999999e-7 }}\n"),
+            "9.99999999e-7",
+            "motor.gear",
+            "gear ratio 9.99999999e-7 is outside",
+        ),
+    ];
+    for (link, needle, field, what) in &cases {
+        let text = robot("", &[LINK, link]);
+        check(&text, needle, 1, Some(2), field, what);
+    }
+    let mass_cases = [
+        (
+            "mass = 2.0",
+            "mass = 1000000.0000000002",
+            "1000000.0000000002",
+            "mass",
+            "mass 1.0000000000000002e6 kg is outside",
+        ),
+        (
+            "xx = 0.001",
+            "xx = 1000000000.0000002",
+            "1000000000.0000002",
+            "inertia.xx",
+            "inertia 1.0000000000000002e9 kg·m² is outside",
+        ),
+        (
+            "inertia = { xx = 0.001, yy = 0.04, zz = 0.04 }",
+            "inertia = { xx = 0.5, yy = 0.5, zz = 1.0000001 }",
+            "{ xx = 0.5",
+            "inertia",
+            "principal moments 0.5, 0.5, 1.0000001 violate the triangle inequality \
+             (0.5 + 0.5 < 1.0000001)",
+        ),
+    ];
+    for (from, to, needle, field, what) in mass_cases {
+        let text = robot("", &[&massive("").replace(from, to)]);
+        check(&text, needle, 1, Some(1), field, what);
+    }
+    let text = robot("gravity = [0, 0, -1000.0000000001]\n", &[LINK]);
+    check(
+        &text,
+        "-1000.0000000001",
+        1,
+        None,
+        "gravity",
+        "gravity component -1000.0000000001 m/s² is outside",
+    );
 }
 
 #[test]
