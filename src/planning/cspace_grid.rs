@@ -26,8 +26,14 @@ pub struct CSpaceGrid {
 }
 
 impl CSpaceGrid {
+    /// The most cells a grid takes: 4096 × 4096, five bytes each while it is built (about
+    /// 80 MB) and one collision check each (tens of seconds). A larger request is an
+    /// [`InvalidParameter`](PlanError::InvalidParameter), not an allocation that fails
+    /// (which aborts the process).
+    pub const MAX_CELLS: usize = 1 << 24;
+
     /// Samples QO on `cells[0] × cells[1]` cells over the joint ranges (the limits, or
-    /// `[−π, π]` for a revolute joint without them).
+    /// `[−π, π]` for a revolute joint without them), at most [`MAX_CELLS`](Self::MAX_CELLS).
     pub fn compute<A: Arm>(
         checker: &mut CollisionChecker<'_, A>,
         cells: [usize; 2],
@@ -47,11 +53,17 @@ impl CSpaceGrid {
                 reason: format!("{cells:?}: need at least one cell per axis"),
             });
         }
-        let Some(count) = cells[0].checked_mul(cells[1]) else {
-            return Err(PlanError::InvalidParameter {
-                name: "cells",
-                reason: format!("{cells:?}: more cells than a usize can count"),
-            });
+        let count = match cells[0].checked_mul(cells[1]) {
+            Some(count) if count <= Self::MAX_CELLS => count,
+            _ => {
+                return Err(PlanError::InvalidParameter {
+                    name: "cells",
+                    reason: format!(
+                        "{cells:?}: more than CSpaceGrid::MAX_CELLS = {} cells",
+                        Self::MAX_CELLS
+                    ),
+                });
+            }
         };
         let arm = checker.arm();
         let bounds = [checker.joint_range(0), checker.joint_range(1)];

@@ -224,6 +224,8 @@ fn tree_add<const K: usize>(tree: &mut KdTree<f64, K>, q: &[f64], item: usize) {
 }
 
 fn tree_nearest<const K: usize>(tree: &KdTree<f64, K>, q: &[f64], n: usize) -> Vec<(f64, usize)> {
+    // No more than the tree holds (a `neighbours` of `usize::MAX` asks for everything).
+    let n = n.min(usize::try_from(tree.size()).unwrap_or(usize::MAX));
     let mut found: Vec<(f64, usize)> = tree
         .nearest_n::<SquaredEuclidean>(&point::<K>(q), n)
         .into_iter()
@@ -377,7 +379,18 @@ where
 
     fn add_node(&mut self, q: JointVector<A>) -> usize {
         let i = self.nodes.len();
-        self.tree.add(q.as_slice(), i);
+        // A node at exactly the configuration of one in the tree (samples clamped to a joint
+        // limit land on it again and again) is left out of the tree, which holds at most 32
+        // items at one point (kiddo panics beyond); it still joins the roadmap through its
+        // own neighbours, among them its twin.
+        let twin = self
+            .tree
+            .nearest(q.as_slice(), 1)
+            .first()
+            .is_some_and(|&(d, _)| d == 0.0);
+        if !twin {
+            self.tree.add(q.as_slice(), i);
+        }
         self.graph.add_node(());
         self.components.new_set();
         self.nodes.push(q);
@@ -403,9 +416,10 @@ where
 
     /// Connects node `i` to its `k` nearest nodes (6.4.2).
     fn connect(&mut self, i: usize) {
-        let near = self
-            .tree
-            .nearest(self.nodes[i].as_slice(), self.config.neighbours + 1);
+        let near = self.tree.nearest(
+            self.nodes[i].as_slice(),
+            self.config.neighbours.saturating_add(1),
+        );
         for (_, j) in near {
             self.try_edge(i, j);
         }
@@ -504,7 +518,7 @@ where
         else {
             return;
         };
-        let probe = 4 * self.config.neighbours;
+        let probe = self.config.neighbours.saturating_mul(4);
         for (&component, _) in sizes.iter().filter(|(l, _)| **l != largest) {
             // First towards the largest component; failing that, towards the nearest other
             // one, so that pieces of a narrow passage join up into a chain.

@@ -1351,6 +1351,9 @@ fn huge_parameters_are_rejected_or_handled() {
     // A grid too large to count.
     let err = CSpaceGrid::compute(&mut checker, [usize::MAX, 2]).unwrap_err();
     assert!(err.to_string().contains("cells"), "{err}");
+    // One a usize counts but memory does not hold (2⁴⁰ cells aborted the process).
+    let err = CSpaceGrid::compute(&mut checker, [1 << 20, 1 << 20]).unwrap_err();
+    assert!(err.to_string().contains("MAX_CELLS"), "{err}");
 }
 
 fn rejects_large(err: Option<PlanError>, name: &str) {

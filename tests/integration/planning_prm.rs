@@ -260,6 +260,47 @@ fn an_unreachable_goal_is_reported() {
 }
 
 #[test]
+fn samples_piling_up_at_a_joint_limit_are_planned_around() {
+    // One joint limited to ±0.5 rad, its link blocked at q = 0: the roadmap cannot join the
+    // two sides, and asking for many nodes near each sparse one clamps hundreds of samples
+    // to exactly ±0.5. The kd-tree holds at most 32 items at one point: the 33rd panicked.
+    let robot = Robot::from_toml_str(
+        "name = \"one\"\nconvention = \"standard\"\n[[links]]\njoint = \"revolute\"\n\
+         a = 1.0\nalpha = 0\nd = 0\ntheta = 0\nlimits = [-0.5, 0.5]\n\
+         collision = { radius = 0.05 }\n",
+    )
+    .unwrap();
+    let scene = Scene::new(vec![Obstacle::sphere([1.0, 0.0, 0.0], 0.02)]).unwrap();
+    let mut checker = CollisionChecker::new(&robot, scene).unwrap();
+    let config = PrmConfig {
+        few_neighbours: 1000,
+        ..PrmConfig::default()
+    };
+    let err = Prm::new(&mut checker, config, 3)
+        .unwrap()
+        .query(
+            &DVector::from_vec(vec![-0.45]),
+            &DVector::from_vec(vec![0.45]),
+        )
+        .unwrap_err();
+    assert!(matches!(err, PlanError::NoPath { .. }), "{err}");
+    // As many neighbours as a usize holds: all the nodes there are (`neighbours + 1`
+    // overflowed).
+    let config = PrmConfig {
+        neighbours: usize::MAX,
+        ..PrmConfig::default()
+    };
+    let path = Prm::new(&mut checker, config, 1)
+        .unwrap()
+        .query(
+            &DVector::from_vec(vec![0.1]),
+            &DVector::from_vec(vec![0.45]),
+        )
+        .unwrap();
+    assert!(path.waypoints.len() >= 2);
+}
+
+#[test]
 fn bad_queries_are_errors() {
     let mut checker = narrow_checker(&planar::Robot);
     let mut prm = Prm::new(&mut checker, narrow_config(), 0).unwrap();
