@@ -46,16 +46,28 @@ pub struct PayloadError(String);
 
 impl Payload {
     /// A payload of `mass` kg with centre of mass `com` (m, tool frame) and inertia tensor
-    /// `inertia` about the centre of mass (kg·m², tool-frame axes). Refused, with the reason:
-    /// a negative or non-finite mass, a non-finite centre of mass, an inertia tensor that is
-    /// not symmetric, not positive semi-definite or breaks the triangle inequality (the rules
-    /// of the description format).
+    /// `inertia` about the centre of mass (kg·m², tool-frame axes). Refused, with the reason,
+    /// by the rules and ranges of the description format
+    /// ([`dhgen_model::validate`]): a negative or non-finite mass or one above
+    /// [`MASS`](dhgen_model::validate::MASS) (10⁶ kg), a centre of mass that is not finite or
+    /// has a coordinate beyond [`LENGTH`](dhgen_model::validate::LENGTH) (10³ m, as a link's
+    /// `com`), an inertia tensor that is not symmetric, not positive semi-definite, breaks the
+    /// triangle inequality or has an entry beyond [`INERTIA`](dhgen_model::validate::INERTIA).
+    /// Within these ranges the ten [`parameters`](Payload::parameters) are finite (checked
+    /// too), so the payload's terms are finite wherever the arm's are.
     pub fn new(mass: f64, com: [f64; 3], inertia: [[f64; 3]; 3]) -> Result<Payload, PayloadError> {
-        dhgen_model::validate::check_mass(mass).map_err(PayloadError)?;
+        use dhgen_model::validate::{LENGTH, check_inertia_tensor, check_mass};
+        check_mass(mass).map_err(PayloadError)?;
         if com.iter().any(|c| !c.is_finite()) {
             return Err(PayloadError(format!(
                 "centre of mass {com:?} is not finite"
             )));
+        }
+        // The range of a link's `com` in a description, in its words.
+        for (axis, c) in ["x", "y", "z"].into_iter().zip(com) {
+            LENGTH
+                .check_value(c)
+                .map_err(|why| PayloadError(format!("centre of mass {com:?}, {axis}: {why}")))?;
         }
         for (a, b) in [(1, 0), (2, 0), (2, 1)] {
             if inertia[a][b] != inertia[b][a] {
@@ -65,8 +77,20 @@ impl Payload {
                 )));
             }
         }
-        dhgen_model::validate::check_inertia_tensor(&inertia, mass, false).map_err(PayloadError)?;
-        Ok(Payload { mass, com, inertia })
+        check_inertia_tensor(&inertia, mass, false).map_err(PayloadError)?;
+        let payload = Payload { mass, com, inertia };
+        // Within the ranges above (10⁶ kg at 10³ m, entries up to 10⁹ kg·m²) every parameter
+        // is below 10¹³; checked anyway, so that no range change can let a NaN through.
+        let parameters = payload.parameters();
+        if let Some(k) = parameters.iter().position(|p| !p.is_finite()) {
+            return Err(PayloadError(format!(
+                "parameter `{}` about the tool origin is {}, not finite: mass {mass:?} kg at \
+                 {com:?} m is too far out",
+                crate::parameters::BODY_PARAMETER_NAMES[k],
+                parameters[k]
+            )));
+        }
+        Ok(payload)
     }
 
     /// No payload.

@@ -539,6 +539,10 @@ where
 /// let omega = euler_rate_matrix(&a.euler) * a.jacobian.fixed_view::<3, 6>(3, 0);
 /// assert!((omega - j.fixed_view::<3, 6>(3, 0)).abs().max() < 1e-12);
 /// ```
+///
+/// # Panics
+/// If `q` does not have one entry per joint (only possible on the runtime path: `None` is
+/// kept for the singular orientation, not for a caller's bug).
 pub fn analytic_jacobian<A: Arm>(
     arm: &A,
     q: &OVector<f64, A::Dof>,
@@ -602,6 +606,10 @@ pub struct DecoupledDeterminants {
 /// let d = decoupled_determinants(&puma::Robot, &q, &centre).unwrap();
 /// assert!(d.wrist.abs() < 1e-15 && d.arm.abs() > 1e-3);
 /// ```
+///
+/// # Panics
+/// If the arm has six joints and `q` does not have six entries (only possible on the runtime
+/// path: `None` is kept for an arm without six joints, not for a caller's bug).
 pub fn decoupled_determinants<A: Arm>(
     arm: &A,
     q: &OVector<f64, A::Dof>,

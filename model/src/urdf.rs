@@ -61,7 +61,9 @@ pub struct UrdfOptions {
     /// The link where the chain ends; `None`: the one end of the file's movable joints.
     pub tip: Option<String>,
     /// Angles within this many radians of a multiple of π/2 (and axes within this angle of a
-    /// coordinate axis) are read as exact; default [`UrdfOptions::DEFAULT_SNAP`].
+    /// coordinate axis) are read as exact; default [`UrdfOptions::DEFAULT_SNAP`]. From 0 (no
+    /// snapping) to [`UrdfOptions::MAX_SNAP`]: [`read`] refuses anything else (NaN, a negative
+    /// or an infinite tolerance) with an error rather than reading a different robot.
     pub snap: f64,
 }
 
@@ -69,6 +71,31 @@ impl UrdfOptions {
     /// The default snapping tolerance, 1e-9 rad: decimals written to 10 or more significant
     /// digits snap, `1.5708` does not.
     pub const DEFAULT_SNAP: f64 = 1e-9;
+
+    /// The widest snapping tolerance [`read`] accepts, 0.1 rad (5.7°): wide enough for any
+    /// decimal a file writes for a quarter turn (`1.57` is 8e-4 rad off), narrow enough that
+    /// the snap stays a reading of the file. At π/4 every angle would snap to a quarter turn,
+    /// a different robot.
+    pub const MAX_SNAP: f64 = 0.1;
+}
+
+/// The rule for [`UrdfOptions::snap`]: a number from 0 to [`UrdfOptions::MAX_SNAP`] (this
+/// rejects NaN, which would silently disable snapping, and a negative tolerance, which would
+/// too). The error is placed at the start of the text: it is about the options, not the file.
+fn check_snap(snap: f64, origin: &str) -> Result<(), LoadError> {
+    if (0.0..=UrdfOptions::MAX_SNAP).contains(&snap) {
+        return Ok(());
+    }
+    Err(LoadError::Urdf {
+        origin: origin.to_string(),
+        loc: Position { line: 1, column: 1 },
+        message: format!(
+            "snap = {snap:?}: the tolerance for reading angles as exact quarter turns is in \
+             radians, from 0 to {} (default {:e})",
+            UrdfOptions::MAX_SNAP,
+            UrdfOptions::DEFAULT_SNAP
+        ),
+    })
 }
 
 impl Default for UrdfOptions {
@@ -135,7 +162,11 @@ pub struct UrdfRobot {
 }
 
 /// Reads URDF text; `origin` names the file in error messages.
+///
+/// Options are checked first: a [`UrdfOptions::snap`] outside 0 to
+/// [`UrdfOptions::MAX_SNAP`] is an error.
 pub fn read(text: &str, origin: &str, options: &UrdfOptions) -> Result<UrdfRobot, LoadError> {
+    check_snap(options.snap, origin)?;
     let doc = roxmltree::Document::parse(text).map_err(|e| {
         let p = e.pos();
         LoadError::Urdf {

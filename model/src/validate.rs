@@ -311,8 +311,9 @@ impl Range {
     }
 
     /// The range rule on a value `x`, as a message: `x`, or why it is outside the range (NaN
-    /// is). Both front ends (the validator and the URDF reader) apply it through here.
-    pub(crate) fn check_value(self, x: f64) -> Result<f64, String> {
+    /// is). The validator, the URDF reader and run-time values held to the description's
+    /// ranges (`dhgen::payload::Payload::new`) apply it through here.
+    pub fn check_value(self, x: f64) -> Result<f64, String> {
         let m = x.abs();
         if m.is_nan() || m > self.max || (m < self.min && m != 0.0) {
             let unit = if self.unit.is_empty() {

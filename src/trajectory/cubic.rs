@@ -1,6 +1,8 @@
 //! Cubic polynomial: position and velocity given at both ends (section 6.5.1.1, equation 15).
 
-use super::{Profile, Setpoint, TrajectoryError, displacement, finite, interval};
+use super::{
+    Profile, Setpoint, TrajectoryError, abs, displacement, finite, interval, polynomial_in_range,
+};
 
 /// The cubic `q(t)` with `q(t0) = q0`, `q̇(t0) = v0`, `q(tf) = qf`, `q̇(tf) = vf`.
 ///
@@ -25,6 +27,15 @@ pub struct Cubic {
 
 impl Cubic {
     /// The cubic through `(t0, q0, v0)` and `(tf, qf, vf)`; needs `tf > t0` and finite inputs.
+    ///
+    /// Finite inputs can still describe a cubic `f64` cannot hold (a move of 1e308 in 0.5 s, a
+    /// velocity of 1e300 for 1e10 s, a duration of 5e-324 s): with `T = tf - t0`, the position
+    /// scale `|q0| + |qf| + T (|v0| + |vf|)`, the velocity scale `|qf - q0|/T + |v0| + |vf|` and
+    /// the acceleration scale (the velocity scale over `T`) bound `|q|`, `|q̇|` and `|q̈|` over
+    /// `[t0, tf]` up to a factor 6; where one of them comes within a factor 64 of `f64::MAX`,
+    /// or a coefficient of [`coefficients`](Self::coefficients) overflows, the constructor
+    /// returns [`TrajectoryError::OutOfFloatRange`] naming it. A cubic it returns evaluates to
+    /// finite values at every finite time.
     pub fn new(
         t0: f64,
         tf: f64,
@@ -37,7 +48,7 @@ impl Cubic {
         let dq = displacement(q0, qf)?;
         finite("v0", v0)?;
         finite("vf", vf)?;
-        Ok(Self {
+        let cubic = Self {
             t0,
             tf,
             duration,
@@ -46,7 +57,23 @@ impl Cubic {
             v0,
             vf,
             slope: dq / duration,
-        })
+        };
+        let rates = abs(cubic.slope) + abs(v0) + abs(vf);
+        polynomial_in_range(
+            [
+                (
+                    "cubic position scale |q0| + |qf| + T (|v0| + |vf|)",
+                    abs(q0) + abs(qf) + duration * (abs(v0) + abs(vf)),
+                ),
+                ("cubic velocity scale |qf - q0|/T + |v0| + |vf|", rates),
+                (
+                    "cubic acceleration scale (|qf - q0|/T + |v0| + |vf|)/T",
+                    rates / duration,
+                ),
+            ],
+            &cubic.coefficients(),
+        )?;
+        Ok(cubic)
     }
 
     /// The cubic from rest at `q0` to rest at `qf` (Figure 4 of the text).
@@ -56,13 +83,17 @@ impl Cubic {
 
     /// The monomial coefficients `[a0, a1, a2, a3]` of `q = a0 + a1 τ + a2 τ² + a3 τ³` in the local
     /// time `τ = t - t0` (equation 15 with `t0 = 0`).
+    ///
+    /// Formed from the average velocity `(qf - q0)/T` and divided by `T` one power at a time,
+    /// so that no power of `T` overflows or underflows on the way: `a2 = (3 (qf - q0)/T -
+    /// 2 v0 - vf)/T`, `a3 = (v0 + vf - 2 (qf - q0)/T)/T²`.
     pub fn coefficients(&self) -> [f64; 4] {
-        let (t, dq) = (self.duration, self.qf - self.q0);
+        let (t, slope, v0, vf) = (self.duration, self.slope, self.v0, self.vf);
         [
             self.q0,
-            self.v0,
-            (3.0 * dq - (2.0 * self.v0 + self.vf) * t) / (t * t),
-            (-2.0 * dq + (self.v0 + self.vf) * t) / (t * t * t),
+            v0,
+            (3.0 * slope - (2.0 * v0 + vf)) / t,
+            (v0 + vf - 2.0 * slope) / t / t,
         ]
     }
 }

@@ -227,7 +227,10 @@ pub enum TrajectoryError {
         at: Location,
     },
     /// Valid inputs so extreme that a derived quantity cannot be represented in `f64`, e.g. an
-    /// LSPB cruise velocity within rounding of `(qf - q0)/T`, whose blend time rounds to zero.
+    /// LSPB cruise velocity within rounding of `(qf - q0)/T`, whose blend time rounds to zero,
+    /// or a cubic or quintic whose position, velocity or acceleration scale (which bounds the
+    /// profile's values over `[t0, tf]`) comes within a factor 64 of `f64::MAX`, or whose
+    /// monomial coefficients overflow (see [`Cubic::new`]).
     #[error(
         "{name} = {value} cannot be represented in f64: the inputs are too extreme \
          relative to each other{at}"
@@ -290,6 +293,23 @@ pub enum TrajectoryError {
     TooFewSamples {
         /// How many were requested.
         found: usize,
+    },
+    /// Uniform sampling into vectors ([`sample`], [`sample_multi`]) was asked for more than
+    /// [`MAX_SAMPLES`] setpoints (`samples · dof`, also when that product overflows `usize`),
+    /// or for fewer that the allocator could not provide.
+    #[error(
+        "{samples} samples of {dof} joint(s) cannot be allocated: sampling into vectors \
+         allocates at most {max} setpoints (samples times joints), memory permitting; \
+         sample a longer trajectory in pieces into buffers of your own (sample_into, \
+         sample_multi_into)"
+    )]
+    TooManySamples {
+        /// How many samples were requested.
+        samples: usize,
+        /// The number of joints each sample holds.
+        dof: usize,
+        /// [`MAX_SAMPLES`].
+        max: usize,
     },
     /// Parabolic blends of the given duration do not fit into a segment between via points.
     #[error(
@@ -461,6 +481,69 @@ pub(crate) fn displacement(q0: f64, qf: f64) -> Result<f64, TrajectoryError> {
     finite("qf - q0", qf - q0)
 }
 
+/// How far below `f64::MAX` the scales of a polynomial profile must stay. [`Cubic`] and
+/// [`Quintic`] evaluate their Hermite form in `s = (t - t0)/T ∈ [0, 1]`: q, q̇ and q̈, and every
+/// partial sum and product on the way, are sums of the terms of the matching scale (see
+/// [`polynomial_in_range`]) times basis polynomials of magnitude at most 6 on `[0, 1]`, and
+/// the monomial coefficients are formed from them with factors up to 33 before they are
+/// divided by powers of `T` (which overflows only where the coefficient itself does). Within
+/// this factor of `f64::MAX`, nothing overflows on the way.
+const POLYNOMIAL_HEADROOM: f64 = 64.0;
+
+/// The names of the monomial coefficients, for [`TrajectoryError::OutOfFloatRange`].
+const COEFFICIENT_NAMES: [&str; 6] = [
+    "polynomial coefficient a0",
+    "polynomial coefficient a1",
+    "polynomial coefficient a2",
+    "polynomial coefficient a3",
+    "polynomial coefficient a4",
+    "polynomial coefficient a5",
+];
+
+/// The range check shared by [`Cubic`] and [`Quintic`], whose constructors take finite input
+/// that can still describe a profile `f64` cannot hold (a velocity of 1e300 for 1e10 s).
+///
+/// `scales` are the position, velocity and acceleration scales: with `T = tf - t0`, the sums
+/// of the magnitudes of the Hermite data each derivative is formed from (position: `|q0|`,
+/// `|qf|`, `T |v0|`, `T |vf|`, `T² |a0|`, `T² |af|`; velocity: `|qf - q0|/T`, `|v0|`, `|vf|`,
+/// `T |a0|`, `T |af|`; acceleration: the velocity scale over `T`). Each bounds the peak of its
+/// derivative over `[t0, tf]` up to a factor 6, so within [`POLYNOMIAL_HEADROOM`] of
+/// `f64::MAX` every evaluation on `[t0, tf]` stays finite. The scales are a few operations:
+/// the exact peaks would need the roots of the derivative. `coefficients` are the monomial
+/// coefficients `a_k` of `q = Σ a_k (t - t0)^k` (what `coefficients()` returns), which must be
+/// finite too: `a_k` is the k-th scaled coefficient over `T^k`, and a short enough move
+/// (`T` = 1e-150 s) has a finite acceleration but a jerk beyond `f64`.
+pub(crate) fn polynomial_in_range(
+    scales: [(&'static str, f64); 3],
+    coefficients: &[f64],
+) -> Result<(), TrajectoryError> {
+    // A scale that overflowed names the cause better than one within the headroom, so those
+    // come first (a move of 1e308 in 0.5 s: the velocity, not the position of 1e308).
+    let overflowed = scales.iter().find(|(_, value)| !value.is_finite());
+    let near_max = || {
+        scales
+            .iter()
+            .find(|(_, value)| !(value * POLYNOMIAL_HEADROOM).is_finite())
+    };
+    if let Some(&(name, value)) = overflowed.or_else(near_max) {
+        return Err(TrajectoryError::OutOfFloatRange {
+            name,
+            value,
+            at: Location::NONE,
+        });
+    }
+    for (&name, &value) in COEFFICIENT_NAMES.iter().zip(coefficients) {
+        if !value.is_finite() {
+            return Err(TrajectoryError::OutOfFloatRange {
+                name,
+                value,
+                at: Location::NONE,
+            });
+        }
+    }
+    Ok(())
+}
+
 /// Square root without `std` (nalgebra routes it to `libm` in `no_std` builds).
 pub(crate) fn sqrt(x: f64) -> f64 {
     nalgebra::ComplexField::sqrt(x)
@@ -555,15 +638,51 @@ pub struct Samples {
     pub setpoints: Vec<Setpoint>,
 }
 
+/// The most setpoints [`sample`] and [`sample_multi`] allocate: 2²⁴ (16,777,216), counting
+/// `n · dof` for `n` samples of `dof` joints.
+///
+/// With their times that is at most 512 MiB (one joint: 24 bytes per setpoint and 8 per time),
+/// enough for 4.6 hours of one joint at 1 kHz or 40 minutes of a seven-joint arm, and an
+/// allocation a desktop or a CI runner can make. A larger request, including one whose
+/// `n · dof` overflows `usize`, is [`TrajectoryError::TooManySamples`] rather than an
+/// allocation that fails (which would abort the process) or takes the machine's memory; so is
+/// an allocation below the limit that fails. Sampling into buffers of your own
+/// ([`sample_into`], [`sample_multi_into`]) has no limit: sample a longer trajectory in pieces.
+pub const MAX_SAMPLES: usize = 1 << 24;
+
+/// Empty vectors with room for `n` times and `n · dof` setpoints, or
+/// [`TrajectoryError::TooManySamples`] if that is more than [`MAX_SAMPLES`] setpoints or the
+/// allocator cannot provide it (reported, not aborted: `try_reserve_exact`).
+#[cfg(feature = "std")]
+fn sample_buffers(n: usize, dof: usize) -> Result<(Vec<f64>, Vec<Setpoint>), TrajectoryError> {
+    let too_many = TrajectoryError::TooManySamples {
+        samples: n,
+        dof,
+        max: MAX_SAMPLES,
+    };
+    let total = n
+        .checked_mul(dof)
+        .filter(|&total| total <= MAX_SAMPLES)
+        .ok_or(too_many)?;
+    let mut times = Vec::new();
+    times.try_reserve_exact(n).map_err(|_| too_many)?;
+    let mut setpoints = Vec::new();
+    setpoints.try_reserve_exact(total).map_err(|_| too_many)?;
+    Ok((times, setpoints))
+}
+
 /// Samples `profile` at `n >= 2` equally spaced times from its start to its end time.
+///
+/// At most [`MAX_SAMPLES`] samples: more is [`TrajectoryError::TooManySamples`].
 #[cfg(feature = "std")]
 pub fn sample<P: Profile + ?Sized>(profile: &P, n: usize) -> Result<Samples, TrajectoryError> {
     if n < 2 {
         return Err(TrajectoryError::TooFewSamples { found: n });
     }
+    let (mut times, mut setpoints) = sample_buffers(n, 1)?;
     let (t0, tf) = (profile.start_time(), profile.end_time());
-    let times: Vec<f64> = (0..n).map(|i| uniform_time(t0, tf, n, i)).collect();
-    let setpoints = times.iter().map(|&t| profile.eval(t)).collect();
+    times.extend((0..n).map(|i| uniform_time(t0, tf, n, i)));
+    setpoints.extend(times.iter().map(|&t| profile.eval(t)));
     Ok(Samples { times, setpoints })
 }
 
@@ -586,7 +705,9 @@ impl MultiSamples {
         if joint >= self.dof {
             return None;
         }
-        self.setpoints.get(i * self.dof + joint).copied()
+        // Checked: a huge `i` must not wrap around to a sample that exists.
+        let k = i.checked_mul(self.dof)?.checked_add(joint)?;
+        self.setpoints.get(k).copied()
     }
 
     /// The `(time, state)` series of one joint (empty if `joint >= dof`).
@@ -605,6 +726,8 @@ impl MultiSamples {
 }
 
 /// Samples every joint of `profile` at `n >= 2` equally spaced times.
+///
+/// At most [`MAX_SAMPLES`] setpoints (`n · dof`): more is [`TrajectoryError::TooManySamples`].
 #[cfg(feature = "std")]
 pub fn sample_multi<M: MultiProfile + ?Sized>(
     profile: &M,
@@ -617,10 +740,12 @@ pub fn sample_multi<M: MultiProfile + ?Sized>(
     if n < 2 {
         return Err(TrajectoryError::TooFewSamples { found: n });
     }
-    let mut setpoints = vec![Setpoint::default(); n * dof];
+    let (mut times, mut setpoints) = sample_buffers(n, dof)?;
+    // sample_buffers reserved n · dof setpoints, so this does not reallocate.
+    setpoints.resize(n * dof, Setpoint::default());
     sample_multi_into(profile, &mut setpoints)?;
     let (t0, tf) = (profile.start_time(), profile.end_time());
-    let times = (0..n).map(|i| uniform_time(t0, tf, n, i)).collect();
+    times.extend((0..n).map(|i| uniform_time(t0, tf, n, i)));
     Ok(MultiSamples {
         times,
         dof,

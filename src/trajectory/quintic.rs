@@ -1,6 +1,8 @@
 //! Quintic polynomial: position, velocity and acceleration given at both ends (section 6.5.1.1).
 
-use super::{Profile, Setpoint, TrajectoryError, displacement, finite, interval};
+use super::{
+    Profile, Setpoint, TrajectoryError, abs, displacement, finite, interval, polynomial_in_range,
+};
 
 /// The quintic `q(t)` matching position, velocity and acceleration at `t0` and `tf`.
 ///
@@ -22,6 +24,16 @@ pub struct Quintic {
 
 impl Quintic {
     /// The quintic from `start` at `t0` to `end` at `tf`; needs `tf > t0` and finite inputs.
+    ///
+    /// As for [`Cubic::new`](super::Cubic::new), finite inputs can still describe a quintic
+    /// `f64` cannot hold (an acceleration of 1e300 for 1e200 s): with `T = tf - t0`, the
+    /// position scale `|q0| + |qf| + T (|v0| + |vf| + T (|a0| + |af|))`, the velocity scale
+    /// `|qf - q0|/T + |v0| + |vf| + T (|a0| + |af|)` and the acceleration scale (the velocity
+    /// scale over `T`) bound `|q|`, `|q̇|` and `|q̈|` over `[t0, tf]` up to a factor 6; where one
+    /// of them comes within a factor 64 of `f64::MAX`, or a coefficient of
+    /// [`coefficients`](Self::coefficients) overflows, the constructor returns
+    /// [`TrajectoryError::OutOfFloatRange`] naming it. A quintic it returns evaluates to finite
+    /// values at every finite time.
     pub fn new(t0: f64, tf: f64, start: Setpoint, end: Setpoint) -> Result<Self, TrajectoryError> {
         let duration = interval(t0, tf)?;
         let dq = displacement(start.q, end.q)?;
@@ -29,14 +41,35 @@ impl Quintic {
         finite("a0", start.qdd)?;
         finite("vf", end.qd)?;
         finite("af", end.qdd)?;
-        Ok(Self {
+        let quintic = Self {
             t0,
             tf,
             duration,
             start,
             end,
             slope: dq / duration,
-        })
+        };
+        let speeds = abs(start.qd) + abs(end.qd);
+        let accelerations = abs(start.qdd) + abs(end.qdd);
+        let rates = abs(quintic.slope) + speeds;
+        polynomial_in_range(
+            [
+                (
+                    "quintic position scale |q0| + |qf| + T (|v0| + |vf| + T (|a0| + |af|))",
+                    abs(start.q) + abs(end.q) + duration * (speeds + duration * accelerations),
+                ),
+                (
+                    "quintic velocity scale |qf - q0|/T + |v0| + |vf| + T (|a0| + |af|)",
+                    rates + duration * accelerations,
+                ),
+                (
+                    "quintic acceleration scale (|qf - q0|/T + |v0| + |vf|)/T + |a0| + |af|",
+                    rates / duration + accelerations,
+                ),
+            ],
+            &quintic.coefficients(),
+        )?;
+        Ok(quintic)
     }
 
     /// The quintic from rest at `q0` to rest at `qf` (what Robotics Toolbox's `jtraj` does by default).
@@ -45,20 +78,24 @@ impl Quintic {
     }
 
     /// The monomial coefficients `[a0, ..., a5]` of `q = Σ a_k τ^k` in the local time `τ = t - t0`.
+    ///
+    /// Formed from the average velocity `Δ/T = (qf - q0)/T` and divided by `T` one power at a
+    /// time, so that no power of `T` overflows or underflows on the way:
+    /// `a3 = ((20 Δ/T - 12 v0 - 8 vf)/T - 3 a0 + af)/(2T)`,
+    /// `a4 = ((16 v0 + 14 vf - 30 Δ/T)/T + 3 a0 - 2 af)/(2T²)`,
+    /// `a5 = ((12 Δ/T - 6 (v0 + vf))/T - a0 + af)/(2T³)`.
     pub fn coefficients(&self) -> [f64; 6] {
-        let t = self.duration;
+        let (t, slope) = (self.duration, self.slope);
         let (q0, v0, a0) = (self.start.q, self.start.qd, self.start.qdd);
         let (v1, a1) = (self.end.qd, self.end.qdd);
-        let dq = self.end.q - q0;
-        let (t2, t3) = (t * t, t * t * t);
+        let two_t = 2.0 * t;
         [
             q0,
             v0,
             a0 / 2.0,
-            (20.0 * dq - (12.0 * v0 + 8.0 * v1) * t - (3.0 * a0 - a1) * t2) / (2.0 * t3),
-            (-30.0 * dq + (16.0 * v0 + 14.0 * v1) * t + (3.0 * a0 - 2.0 * a1) * t2)
-                / (2.0 * t3 * t),
-            (12.0 * dq - 6.0 * (v0 + v1) * t - (a0 - a1) * t2) / (2.0 * t3 * t2),
+            ((20.0 * slope - (12.0 * v0 + 8.0 * v1)) / t - (3.0 * a0 - a1)) / two_t,
+            ((16.0 * v0 + 14.0 * v1 - 30.0 * slope) / t + (3.0 * a0 - 2.0 * a1)) / two_t / t,
+            ((12.0 * slope - 6.0 * (v0 + v1)) / t - (a0 - a1)) / two_t / t / t,
         ]
     }
 }
@@ -106,10 +143,11 @@ impl Profile for Quintic {
         let dd4 = -12.0 * s * r * (2.0 - 5.0 * s);
         let dd2 = r * (1.0 - 8.0 * s + 10.0 * s2);
         let dd3 = s * (3.0 - 12.0 * s + 10.0 * s2);
+        // T (v h + T (a h)), not T² (a h): T² alone overflows from T = 1.4e154 s on, and
+        // would turn a rest-to-rest profile's zero accelerations into inf · 0 = NaN.
         let q = self.start.q * h0
             + self.end.q * h5
-            + big_t * (v0 * h1 + v1 * h4)
-            + big_t * big_t * (a0 * h2 + a1 * h3);
+            + big_t * (v0 * h1 + v1 * h4 + big_t * (a0 * h2 + a1 * h3));
         let qd = self.slope * d5 + v0 * d1 + v1 * d4 + big_t * (a0 * d2 + a1 * d3);
         let qdd = (self.slope * dd5 + v0 * dd1 + v1 * dd4) / big_t + a0 * dd2 + a1 * dd3;
         Setpoint { q, qd, qdd }

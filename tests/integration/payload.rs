@@ -201,6 +201,34 @@ fn bad_payloads_are_refused_at_construction() {
     assert!(e.contains("symmetric"), "{e}");
 }
 
+/// A centre of mass beyond the description format's length range (10³ m, a link's `com`) is
+/// refused: 1e300 m made the parameters m·c·c infinite and NaN. At the edge of every range
+/// (10⁶ kg at 10³ m, inertia entries of 10⁹ kg·m²) the parameters are finite.
+#[test]
+fn payload_centre_of_mass_is_held_to_the_length_range() {
+    let i = [[0.01, 0.0, 0.0], [0.0, 0.01, 0.0], [0.0, 0.0, 0.01]];
+    for com in [[1e300, 0.0, 0.0], [0.0, -1e200, 0.0], [0.0, 0.0, 1000.5]] {
+        let e = Payload::new(1.0, com, i).unwrap_err().to_string();
+        assert!(
+            e.contains("outside the range of any robot") && e.contains("at most 1e3 m"),
+            "{e}"
+        );
+    }
+    let e = Payload::new(1e6, [0.0, 1e303, 0.0], i)
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("y: length 1e303 m"), "{e}");
+    let big = [[1e9, 0.0, 0.0], [0.0, 1e9, 0.0], [0.0, 0.0, 1e9]];
+    let p = Payload::new(1e6, [1e3, -1e3, 1e3], big).unwrap();
+    assert!(
+        p.parameters().iter().all(|x| x.is_finite()),
+        "{:?}",
+        p.parameters()
+    );
+    let p = Payload::new(1.0, [-1e3, 0.0, 0.0], i).unwrap();
+    assert_eq!(p.parameters()[1], -1e3);
+}
+
 /// The generated D, C, g, bias and q̈ with the payload's parameters as inputs equal the same
 /// body written into the description.
 macro_rules! generated_terms {

@@ -3,7 +3,7 @@
 
 use crate::trajectory_support::*;
 use dhgen::nalgebra::{SMatrix, SVector};
-use dhgen::trajectory::{Cubic, Profile, Quintic, Setpoint, TrajectoryError};
+use dhgen::trajectory::{Cubic, Profile, Quintic, Setpoint, Synchronized, TrajectoryError};
 use proptest::prelude::*;
 
 /// Coefficients `c` of `q = Σ c_k s^k` in the normalized time `s = (t - t0)/T`, solved by LU from
@@ -346,4 +346,189 @@ fn non_finite_inputs_are_named() {
         ),
         "{e:?}"
     );
+}
+
+/// Every value a profile returns on `[t0, tf]` (and its coefficients) is finite.
+fn assert_finite_everywhere<P: Profile>(what: &str, p: &P, coefficients: &[f64]) {
+    assert!(
+        coefficients.iter().all(|c| c.is_finite()),
+        "{what}: coefficients {coefficients:?}"
+    );
+    let (t0, tf) = (p.start_time(), p.end_time());
+    for i in 0..=64 {
+        let t = dhgen::trajectory::uniform_time(t0, tf, 65, i);
+        let s = p.eval(t);
+        assert!(
+            s.q.is_finite() && s.qd.is_finite() && s.qdd.is_finite(),
+            "{what}: at t = {t:e} (t0 = {t0:e}, tf = {tf:e}) {s:?}"
+        );
+    }
+}
+
+fn out_of_float_range<P: core::fmt::Debug>(
+    what: &str,
+    r: Result<P, TrajectoryError>,
+) -> &'static str {
+    match r {
+        Err(TrajectoryError::OutOfFloatRange { name, .. }) => name,
+        other => panic!("{what}: expected OutOfFloatRange, got {other:?}"),
+    }
+}
+
+/// Finite input whose profile `f64` cannot hold (derived velocities, accelerations or
+/// coefficients beyond it) is `OutOfFloatRange` naming the quantity, never a profile whose
+/// samples are NaN or infinite.
+#[test]
+fn finite_input_beyond_f64_is_out_of_float_range() {
+    let cases = [
+        // A move of 1e308 in 0.5 s: the average velocity 2e308 overflows.
+        (
+            "cubic dq 1e308 in 0.5 s",
+            Cubic::rest_to_rest(0.0, 0.5, 0.0, 1e308),
+            "velocity",
+        ),
+        // A duration of one subnormal.
+        (
+            "cubic T = 5e-324",
+            Cubic::rest_to_rest(0.0, 5e-324, 0.0, 1.0),
+            "velocity",
+        ),
+        (
+            "cubic dq 1e10 in 1e-300 s",
+            Cubic::rest_to_rest(0.0, 1e-300, 0.0, 1e10),
+            "velocity",
+        ),
+        // v0 = 1e300 for 1e10 s: q reaches infinity at late t.
+        (
+            "cubic v0 T = 1e310",
+            Cubic::new(0.0, 1e10, 0.0, 1e300, 0.0, 0.0),
+            "position",
+        ),
+        (
+            "cubic q 1.5e308, v0 1e308",
+            Cubic::new(0.0, 1.0, 1.5e308, 1e308, 1.5e308, 0.0),
+            "position",
+        ),
+        // A move of 1e-10 in 1e-160 s: velocity 1e150, acceleration 6e310.
+        (
+            "cubic dq 1e-10 in 1e-160 s",
+            Cubic::rest_to_rest(0.0, 1e-160, 0.0, 1e-10),
+            "acceleration",
+        ),
+        // Finite peak acceleration 6e300, but the jerk -1.2e451 is not.
+        (
+            "cubic T = 1e-150",
+            Cubic::rest_to_rest(0.0, 1e-150, 0.0, 1.0),
+            "coefficient a3",
+        ),
+    ];
+    for (what, r, quantity) in cases {
+        let name = out_of_float_range(what, r);
+        assert!(name.contains(quantity), "{what}: {name}");
+    }
+    let rest = Setpoint::rest;
+    let cases = [
+        (
+            "quintic dq 1e308 in 0.5 s",
+            Quintic::rest_to_rest(0.0, 0.5, 0.0, 1e308),
+            "velocity",
+        ),
+        (
+            "quintic dq 1e10 in 1e-300 s",
+            Quintic::rest_to_rest(0.0, 1e-300, 0.0, 1e10),
+            "velocity",
+        ),
+        // a0 = 1e300 for 1e200 s.
+        (
+            "quintic a0 T² = 1e700",
+            Quintic::new(0.0, 1e200, Setpoint::new(0.0, 0.0, 1e300), rest(1.0)),
+            "position",
+        ),
+        (
+            "quintic a0 1e308",
+            Quintic::new(0.0, 1.0, Setpoint::new(0.0, 0.0, 1e308), rest(1.0)),
+            "position",
+        ),
+        (
+            "quintic dq 1e-10 in 1e-160 s",
+            Quintic::rest_to_rest(0.0, 1e-160, 0.0, 1e-10),
+            "acceleration",
+        ),
+        // Peak acceleration 5.8e200 and a3 = 1e301, but a4 = -1.5e401.
+        (
+            "quintic T = 1e-100",
+            Quintic::rest_to_rest(0.0, 1e-100, 0.0, 1.0),
+            "coefficient a4",
+        ),
+    ];
+    for (what, r, quantity) in cases {
+        let name = out_of_float_range(what, r);
+        assert!(name.contains(quantity), "{what}: {name}");
+    }
+    let e = Cubic::rest_to_rest(0.0, 0.5, 0.0, 1e308).unwrap_err();
+    assert_eq!(
+        e.to_string(),
+        "cubic velocity scale |qf - q0|/T + |v0| + |vf| = inf cannot be represented in f64: \
+         the inputs are too extreme relative to each other"
+    );
+    // Synchronized profiles name the joint.
+    let e = Synchronized::quintic_rest_to_rest(0.0, 0.5, &[0.0, 0.0], &[1.0, 1e308]).unwrap_err();
+    assert!(
+        matches!(e, TrajectoryError::OutOfFloatRange { at, .. } if at.joint == Some(1)),
+        "{e:?}"
+    );
+
+    // Extreme but representable profiles are accepted and finite everywhere: a move of 1 rad
+    // over 1e200 s (T² overflows, which the quintic's evaluation must not form), a move of
+    // 1e290 over 1 ms, a huge start time.
+    for (t0, big_t, q0, qf) in [
+        (0.0, 1e200, 0.0, 1.0),
+        (0.0, 1e300, -1.0, 1.0),
+        (0.0, 1e-3, 0.0, 1e290),
+        (1e300, 1e290, 1.0, 2.0),
+        (0.0, 1e-100, 0.0, 1e-300),
+    ] {
+        let what = format!("rest to rest over {big_t:e} s from {q0} to {qf}");
+        let c = Cubic::rest_to_rest(t0, t0 + big_t, q0, qf).unwrap();
+        assert_finite_everywhere(&format!("cubic {what}"), &c, &c.coefficients());
+        let p = Quintic::rest_to_rest(t0, t0 + big_t, q0, qf).unwrap();
+        assert_finite_everywhere(&format!("quintic {what}"), &p, &p.coefficients());
+    }
+}
+
+/// Extreme magnitudes: exponents of T, positions, velocities and accelerations anywhere in
+/// f64's range.
+fn magnitude() -> impl Strategy<Value = f64> {
+    (-320.0..308.0f64, any::<bool>()).prop_map(|(e, negative)| {
+        let x = 10f64.powf(e);
+        if negative { -x } else { x }
+    })
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(20_000))]
+
+    /// Whatever finite input a constructor accepts evaluates to finite values on [t0, tf],
+    /// with finite coefficients; what it refuses is OutOfFloatRange.
+    #[test]
+    fn accepted_polynomials_are_finite_everywhere(t0 in prop_oneof![Just(0.0), magnitude()],
+                                                  big_t in magnitude(), q0 in magnitude(), qf in magnitude(),
+                                                  v0 in magnitude(), vf in magnitude(),
+                                                  a0 in magnitude(), af in magnitude()) {
+        let tf = t0 + big_t.abs();
+        if tf.is_finite() && tf > t0 && (qf - q0).is_finite() {
+            match Cubic::new(t0, tf, q0, v0, qf, vf) {
+                Ok(c) => assert_finite_everywhere("cubic", &c, &c.coefficients()),
+                Err(e) => prop_assert!(matches!(e, TrajectoryError::OutOfFloatRange { .. }), "{e:?}"),
+            }
+            match Quintic::new(t0, tf, Setpoint::new(q0, v0, a0), Setpoint::new(qf, vf, af)) {
+                Ok(p) => assert_finite_everywhere("quintic", &p, &p.coefficients()),
+                Err(e) => prop_assert!(matches!(e, TrajectoryError::OutOfFloatRange { .. }), "{e:?}"),
+            }
+            match Quintic::rest_to_rest(t0, tf, q0, qf) {
+                Ok(p) => assert_finite_everywhere("quintic rest to rest", &p, &p.coefficients()),
+                Err(e) => prop_assert!(matches!(e, TrajectoryError::OutOfFloatRange { .. }), "{e:?}"),
+            }
+        }
+    }
 }

@@ -2,9 +2,9 @@
 
 use crate::support::allocations_during;
 use dhgen::trajectory::{
-    BlendedSegments, CubicSpline, Location, Lspb, Profile, Quintic, Setpoint, SplineEnds,
-    Synchronized, TrajectoryError, sample, sample_into, sample_multi, sample_multi_into,
-    sample_times_into, uniform_time,
+    BlendedSegments, CubicSpline, Location, Lspb, MAX_SAMPLES, Profile, Quintic, Setpoint,
+    SplineEnds, Synchronized, TrajectoryError, sample, sample_into, sample_multi,
+    sample_multi_into, sample_times_into, uniform_time,
 };
 
 #[test]
@@ -147,4 +147,38 @@ fn zero_duration_profiles_sample_their_only_state() {
     let s = sample(&p, 3).unwrap();
     assert_eq!(s.times, vec![2.0; 3]);
     assert_eq!(s.setpoints, vec![Setpoint::rest(1.5); 3]);
+}
+
+/// Requests too large to allocate are errors, not a wrapped `n · dof`, a capacity-overflow
+/// panic or an aborted allocation.
+#[test]
+fn huge_sample_counts_are_errors() {
+    let p = Quintic::rest_to_rest(0.0, 1.0, 0.0, 1.0).unwrap();
+    let sync = Synchronized::quintic_rest_to_rest(0.0, 1.0, &[0.0; 2], &[1.0; 2]).unwrap();
+    let too_many = |samples, dof| TrajectoryError::TooManySamples {
+        samples,
+        dof,
+        max: MAX_SAMPLES,
+    };
+    assert_eq!(sample(&p, usize::MAX).unwrap_err(), too_many(usize::MAX, 1));
+    assert_eq!(
+        sample(&p, MAX_SAMPLES + 1).unwrap_err(),
+        too_many(MAX_SAMPLES + 1, 1)
+    );
+    // n · dof wraps to 0 in usize.
+    let n = usize::MAX / 2 + 1;
+    assert_eq!(sample_multi(&sync, n).unwrap_err(), too_many(n, 2));
+    // n within the limit, n · dof not.
+    let n = MAX_SAMPLES / 2 + 1;
+    assert_eq!(sample_multi(&sync, n).unwrap_err(), too_many(n, 2));
+    let e = sample(&p, usize::MAX).unwrap_err().to_string();
+    assert!(
+        e.contains("at most 16777216 setpoints") && e.contains("sample_into"),
+        "{e}"
+    );
+    // A huge row index does not wrap around to a row that exists.
+    let s = sample_multi(&sync, 3).unwrap();
+    assert_eq!(s.get(usize::MAX / 2 + 1, 0), None);
+    assert_eq!(s.get(usize::MAX, 1), None);
+    assert_eq!(s.get(2, 1), Some(Setpoint::rest(1.0)));
 }

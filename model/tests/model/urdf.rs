@@ -233,6 +233,47 @@ fn urdf_quarter_turns_snap_within_tolerance_only() {
     assert_eq!(r.model, robot.model);
 }
 
+/// The snapping tolerance is an option of the reader, checked by it: 10 rad or ∞ would snap
+/// every angle to a quarter turn (a different robot), NaN or a negative one would silently
+/// snap nothing.
+#[test]
+// `1.5708` is the decimal a URDF file writes for π/2.
+#[allow(clippy::approx_constant)]
+fn urdf_snap_outside_its_range_is_an_error() {
+    let with = |snap| UrdfOptions {
+        snap,
+        ..Default::default()
+    };
+    for snap in [
+        10.0,
+        f64::INFINITY,
+        f64::NAN,
+        -1.0,
+        -1e-12,
+        0.1000001,
+        f64::NEG_INFINITY,
+    ] {
+        let e = error(ARM, &with(snap));
+        assert!(
+            e.starts_with("bad.urdf:1:1: snap = ") && e.contains("from 0 to 0.1"),
+            "{snap}: {e}"
+        );
+    }
+    // Even on text that is not URDF: the options are checked first.
+    let e = error("not xml", &with(f64::NAN));
+    assert!(e.contains("snap = NaN"), "{e}");
+    // The ends of the range are accepted: 0 snaps nothing.
+    let exact = read(ARM, "arm.urdf", &with(0.0)).unwrap();
+    assert!(exact.snaps.is_empty());
+    let short = ARM.replace("1.5707963267948966", "1.5708");
+    let wide = read(&short, "arm.urdf", &with(UrdfOptions::MAX_SNAP)).unwrap();
+    assert!(
+        wide.snaps.iter().filter(|s| s.from.abs() == 1.5708).count() == 2,
+        "{:?}",
+        wide.snaps
+    );
+}
+
 fn error(text: &str, options: &UrdfOptions) -> String {
     match read(text, "bad.urdf", options) {
         Ok(r) => panic!("accepted: {:?}", r.model),
