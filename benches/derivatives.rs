@@ -7,23 +7,22 @@
 //!
 //! Pinocchio 4.1.0 on the same models and machine, each side built for the same target
 //! (`scripts/pinocchio_bench.sh --time ""` for baseline x86-64, `--time -march=x86-64-v3`;
-//! two rounds alternating with this benchmark, 2026-12-01, a busy hour of the host; ratios
-//! within a round). Default x86-64: PUMA 560 `computeRNEADerivatives` 2.14–2.19 µs against
-//! generated ∂τ 193–196 ns (11×), `computeABADerivatives` 2.58–2.71 µs against ∂q̈ 412–421 ns
-//! (6.3–6.4×); Panda 2.55–2.66 µs against 622–661 ns (4.0–4.1×), 3.23–3.35 µs against 934–958
-//! ns (3.5×). x86-64-v3 (`RUSTFLAGS="-C target-cpu=x86-64-v3"` here): PUMA 560 2.20–2.29 µs
-//! against 173–176 ns (13×), 2.58–2.84 µs against 295–302 ns (8.7–9.4×); Panda 2.63–2.66 µs
-//! against 449–459 ns (5.8×), 3.17–3.41 µs against 713–765 ns (4.1–4.8×). Pinocchio built
-//! `-march=native` (AVX-512 on this host) was no faster: Panda 2.52–2.58 and 3.32–3.70 µs in
-//! the same rounds; in a quieter earlier session 2.41–2.43 and 3.13–3.21 µs against generated
-//! (x86-64-v3) 416–417 and 649–652 ns. (These large functions move with code layout: the same
-//! code took 598 and 877 ns for the Panda on the default target in another build; the PUMA
-//! 560's ∂q̈ 411 to 567 ns in three builds of a session with the same instructions.)
+//! two rounds alternating with this benchmark, 2026-12-01, the day's last session; ratios
+//! within a round). Default x86-64: PUMA 560 `computeRNEADerivatives` 2.13–2.26 µs against
+//! generated ∂τ 189–191 ns (11–12×), `computeABADerivatives` 2.54–2.57 µs against ∂q̈ 344–353
+//! ns (7.2–7.5×); Panda 2.48–2.49 µs against 592–615 ns (4.0–4.2×), 3.10–3.11 µs against
+//! 848–878 ns (3.5–3.7×). x86-64-v3 (`RUSTFLAGS="-C target-cpu=x86-64-v3"` here): PUMA 560
+//! 2.15–2.18 µs against 160–163 ns (13×), 2.43–2.48 µs against 260–265 ns (9.2–9.5×); Panda
+//! 2.49–2.54 µs against 430–431 ns (5.8–5.9×), 2.94 µs against 648–652 ns (4.5×). Pinocchio
+//! built `-march=native` (AVX-512 on this host) was no faster in an earlier session (Panda
+//! 2.52–2.58 and 3.32–3.70 µs). (These large functions move with code layout: the same code
+//! took 598 and 877 ns for the Panda on the default target in another build; the PUMA 560's
+//! ∂q̈ 411 to 567 ns in three builds of a session with the same instructions.)
 //! Instructions per call (`scripts/pinocchio_bench.sh --callgrind`,
 //! `examples/instructions.rs`): Pinocchio 24,364 and 33,754 (PUMA 560), 29,094 and 40,623
-//! (Panda); generated 3,783 and 6,021, 7,459 and 10,656. Both for x86-64-v3 (`--callgrind
+//! (Panda); generated 3,783 and 5,747, 7,459 and 10,328. Both for x86-64-v3 (`--callgrind
 //! -march=x86-64-v3`): Pinocchio 20,431 and 29,907, 24,394 and 35,002; generated 2,692 and
-//! 4,012, 5,353 and 7,197. Ḋ and Cᵀq̇ (default target, an earlier session): PUMA 560 77 and
+//! 3,806, 5,353 and 6,979. Ḋ and Cᵀq̇ (default target, an earlier session): PUMA 560 77 and
 //! 52 ns (runtime 575 and 615), Panda 163 and 142 ns (705 and 696).
 
 use criterion::{Criterion, criterion_group, criterion_main};
