@@ -133,17 +133,11 @@ pub fn evaluate(
             JointKind::Revolute => validate::ANGLE,
             JointKind::Prismatic => validate::LENGTH,
         };
+        // The description format's rule for angles and lengths, in its words.
+        range
+            .check_value(x)
+            .map_err(|why| format!("--q, joint {}: {why}", i + 1))?;
         let unit = range.unit;
-        if x.abs() > range.max {
-            return Err(format!(
-                "--q, joint {}: {} {unit} is outside the range of any joint (magnitude at most {:e} {unit}, \
-                 the range of {}s in a description)",
-                i + 1,
-                trimmed(x, 6),
-                range.max,
-                range.what
-            ));
-        }
         if let Some([lo, hi]) = l.limits
             && !(lo..=hi).contains(&x)
         {

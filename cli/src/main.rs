@@ -220,12 +220,8 @@ fn read(source: &Source) -> Result<(Robot, Option<dhgen_model::urdf::UrdfRobot>)
             ..Default::default()
         };
         if let Some(snap) = source.snap {
-            if !(0.0..=0.1).contains(&snap) {
-                return Err(format!(
-                    "--snap {snap}: the tolerance is in radians, from 0 to 0.1"
-                ));
-            }
-            options.snap = snap;
+            options.snap = dhgen_model::urdf::UrdfOptions::check_snap(snap)
+                .map_err(|why| format!("--snap {snap}: {why}"))?;
         }
         let urdf = dhgen_model::urdf::read_file(path, &options).map_err(|e| e.to_string())?;
         Ok((Robot::from_model(urdf.model.clone()), Some(urdf)))

@@ -1040,13 +1040,13 @@ fn eval_refuses_out_of_range_input_and_warns_outside_limits() {
     // Once printed as NaN (and `null` in JSON) with status 0.
     let err = failure(&["eval", file, "--q", "0.3,1e308"]);
     assert!(
-        err.contains("--q, joint 2: 1e308 m is outside the range of any joint")
+        err.contains("--q, joint 2: length 1e308 m is outside the range of any robot")
             && err.contains("at most 1e3 m"),
         "{err}"
     );
     let err = failure(&["eval", file, "--q", "1001,0", "--json"]);
     assert!(
-        err.contains("--q, joint 1: 1001 rad is outside the range of any joint"),
+        err.contains("--q, joint 1: angle 1001 rad is outside the range of any robot"),
         "{err}"
     );
     for args in [
@@ -1119,7 +1119,8 @@ fn negative_numbers_are_checked_not_taken_for_flags() {
         ),
         (
             &["info", "tests/data/urdf/ur5.urdf", "--snap", "-1"][..],
-            "--snap -1: the tolerance is in radians, from 0 to 0.1",
+            "--snap -1: the tolerance for reading angles as exact quarter turns is in radians, \
+             from 0 to 0.1",
         ),
     ] {
         let err = failure(args);

@@ -229,19 +229,17 @@ pub fn dynamics_equations(model: &RobotModel, style: &Style) -> Result<String, U
         return Err(Unavailable::TooManyJoints { joints: n, most });
     }
     let dv = Derivation::new(chain);
-    let too_large = |quantity, budget| Unavailable::TooLarge { quantity, budget };
-    let d = dv.mass_matrix_polys().ok_or(too_large(
-        "D(q) (from which c_ijk is derived)",
-        crate::derive::MASS_MATRIX_WORK,
-    ))?;
-    // c_ijk are D's derivatives: built whenever D is.
-    let c = dv.christoffel_polys().ok_or(too_large(
-        "D(q) (from which c_ijk is derived)",
-        crate::derive::MASS_MATRIX_WORK,
-    ))?;
-    let g = dv
-        .gravity_polys()
-        .ok_or(too_large("g(q)", crate::derive::GRAVITY_WORK))?;
+    // c_ijk are D's derivatives: built whenever D is, so D's budget is theirs.
+    let no_d = || Unavailable::TooLarge {
+        quantity: "D(q) (from which c_ijk is derived)",
+        budget: crate::derive::MASS_MATRIX_WORK,
+    };
+    let d = dv.mass_matrix_polys().ok_or_else(no_d)?;
+    let c = dv.christoffel_polys().ok_or_else(no_d)?;
+    let g = dv.gravity_polys().ok_or(Unavailable::TooLarge {
+        quantity: "g(q)",
+        budget: crate::derive::GRAVITY_WORK,
+    })?;
 
     let idx = |ids: &[usize]| {
         let parts: Vec<String> = ids.iter().map(|i| (i + 1).to_string()).collect();

@@ -117,16 +117,10 @@ impl Parse for RobotInput {
                     "snap" => {
                         let lit: syn::LitFloat = input.parse()?;
                         let x: f64 = lit.base10_parse()?;
-                        if !(0.0..=0.1).contains(&x) {
-                            return Err(syn::Error::new(
-                                lit.span(),
-                                format!(
-                                    "snap = {x}: the tolerance for reading angles as exact \
-                                     quarter turns is in radians, from 0 to 0.1"
-                                ),
-                            ));
-                        }
-                        urdf.0.snap = x;
+                        urdf.0.snap =
+                            dhgen_model::urdf::UrdfOptions::check_snap(x).map_err(|why| {
+                                syn::Error::new(lit.span(), format!("snap = {x}: {why}"))
+                            })?;
                     }
                     other => {
                         return Err(syn::Error::new(

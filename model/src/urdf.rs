@@ -77,25 +77,23 @@ impl UrdfOptions {
     /// the snap stays a reading of the file. At π/4 every angle would snap to a quarter turn,
     /// a different robot.
     pub const MAX_SNAP: f64 = 0.1;
-}
 
-/// The rule for [`UrdfOptions::snap`]: a number from 0 to [`UrdfOptions::MAX_SNAP`] (this
-/// rejects NaN, which would silently disable snapping, and a negative tolerance, which would
-/// too). The error is placed at the start of the text: it is about the options, not the file.
-fn check_snap(snap: f64, origin: &str) -> Result<(), LoadError> {
-    if (0.0..=UrdfOptions::MAX_SNAP).contains(&snap) {
-        return Ok(());
-    }
-    Err(LoadError::Urdf {
-        origin: origin.to_string(),
-        loc: Position { line: 1, column: 1 },
-        message: format!(
-            "snap = {snap:?}: the tolerance for reading angles as exact quarter turns is in \
-             radians, from 0 to {} (default {:e})",
+    /// The rule for [`snap`](UrdfOptions::snap), the one every front end applies (this
+    /// reader, `robot!`'s `snap = …`, `dhgen --snap`): a number from 0 to
+    /// [`MAX_SNAP`](UrdfOptions::MAX_SNAP). This rejects NaN, which would silently disable
+    /// snapping, and a negative tolerance, which would too. The error says the rule; the caller
+    /// names the value where it was written.
+    pub fn check_snap(snap: f64) -> Result<f64, String> {
+        if (0.0..=UrdfOptions::MAX_SNAP).contains(&snap) {
+            return Ok(snap);
+        }
+        Err(format!(
+            "the tolerance for reading angles as exact quarter turns is in radians, from 0 to \
+             {} (default {:e})",
             UrdfOptions::MAX_SNAP,
             UrdfOptions::DEFAULT_SNAP
-        ),
-    })
+        ))
+    }
 }
 
 impl Default for UrdfOptions {
@@ -166,7 +164,12 @@ pub struct UrdfRobot {
 /// Options are checked first: a [`UrdfOptions::snap`] outside 0 to
 /// [`UrdfOptions::MAX_SNAP`] is an error.
 pub fn read(text: &str, origin: &str, options: &UrdfOptions) -> Result<UrdfRobot, LoadError> {
-    check_snap(options.snap, origin)?;
+    // Placed at the start of the text: it is about the options, not the file.
+    UrdfOptions::check_snap(options.snap).map_err(|why| LoadError::Urdf {
+        origin: origin.to_string(),
+        loc: Position { line: 1, column: 1 },
+        message: format!("snap = {:?}: {why}", options.snap),
+    })?;
     let doc = roxmltree::Document::parse(text).map_err(|e| {
         let p = e.pos();
         LoadError::Urdf {
