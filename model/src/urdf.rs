@@ -27,10 +27,15 @@
 //!   collision capsules of dhgen are segments between link frames, which a URDF's boxes and
 //!   cylinders at their own origins do not describe.
 //!
-//! Errors (floating, planar and mimic joints on the chain, closed chains, unknown links, a
-//! negative mass or an inertia tensor that is not
+//! Gravity is URDF's usual `[0, 0, −9.81]` in the root link's frame. The model's world frame
+//! is the base link's (every joint above it at 0), so with a `base` turned against the root
+//! the model's `gravity` is that vector seen from the base link.
+//!
+//! Errors (floating, planar and movable mimic joints on the chain, closed chains, unknown
+//! links, a negative mass or an inertia tensor that is not
 //! positive semi-definite on a link a moving body carries, a zero axis, a number outside the
-//! description format's [ranges](crate::validate::Range), wherever it is in the file) name the
+//! description format's [ranges](crate::validate::Range), wherever it is in the file, but for
+//! the position limits of joints off the chain, which play no part) name the
 //! file, line and column, the link or joint and the attribute as URDF writes it
 //! (``joint `j1` <limit lower>``). The links the fixed base carries (with every branch that
 //! leaves the chain before its first moving joint) may hold mass properties no body can have
@@ -276,7 +281,9 @@ struct Joint {
     child: usize,
     origin: Frame<f64>,
     axis: (Vector3<f64>, Position),
-    limits: Option<([f64; 2], Position)>,
+    /// `<limit lower upper>`, each where it is written; held to the range of the joint's kind
+    /// of quantity only on the chain (a joint off it is held at 0, its limits play no part).
+    limits: Option<([(f64, Position); 2], Position)>,
     velocity: Option<f64>,
     effort: Option<f64>,
     /// `<dynamics damping friction>`, each where it is written (absent: 0, at the element).
@@ -640,14 +647,10 @@ impl<'a> Reader<'a> {
             let mut limits = None;
             let (mut velocity, mut effort) = (None, None);
             if let Some(l) = limit {
-                // Position limits in the range of the joint's kind of quantity.
-                let range = match kind {
-                    Kind::Revolute => Some(ANGLE),
-                    Kind::Prismatic => Some(LENGTH),
-                    _ => None,
-                };
-                let lower = self.number_attr(l, &what, "lower", range)?;
-                let upper = self.number_attr(l, &what, "upper", range)?;
+                // Finite here; in the range of the joint's kind of quantity where the joint is
+                // on the chain (`Reader::chain`).
+                let lower = self.number_attr(l, &what, "lower", None)?;
+                let upper = self.number_attr(l, &what, "upper", None)?;
                 velocity = self.number_attr(l, &what, "velocity", None)?.map(|x| x.0);
                 effort = self.number_attr(l, &what, "effort", None)?.map(|x| x.0);
                 let lo = lower.map_or(0.0, |x| x.0);
@@ -656,7 +659,8 @@ impl<'a> Reader<'a> {
                 // has no position limits worth the name; a continuous joint has none at all.
                 if kind != Kind::Continuous && (lower.is_some() || upper.is_some()) && lo != hi {
                     let lloc = lower.or(upper).map_or(loc, |x| x.1);
-                    limits = Some(([lo, hi], lloc));
+                    let at = |x: Option<(f64, Position)>| x.map_or(lloc, |x| x.1);
+                    limits = Some(([(lo, at(lower)), (hi, at(upper))], lloc));
                 }
             }
             let dynamics = match n.children().find(|c| c.has_tag_name("dynamics")) {
@@ -860,7 +864,10 @@ impl<'a> Reader<'a> {
             let why = match joint.kind {
                 Kind::Floating => Some("a floating joint (a free body)"),
                 Kind::Planar => Some("a planar joint (three degrees of freedom)"),
-                _ if joint.mimic => Some("a mimic joint (its value follows another joint's)"),
+                // A fixed joint has no value to follow: its `<mimic>` means nothing.
+                _ if joint.mimic && joint.kind.movable() => {
+                    Some("a mimic joint (its value follows another joint's)")
+                }
                 _ => None,
             };
             if let Some(why) = why {
@@ -879,6 +886,36 @@ impl<'a> Reader<'a> {
             .copied()
             .filter(|&j| joints[j].kind.movable())
             .collect();
+        // Position limits in the range of the joint's kind of quantity, on the chain only.
+        for &j in &moving {
+            let joint = &joints[j];
+            let range = if joint.kind == Kind::Prismatic {
+                LENGTH
+            } else {
+                ANGLE
+            };
+            for ((x, at), side) in joint
+                .limits
+                .iter()
+                .flat_map(|l| l.0)
+                .zip(["lower", "upper"])
+            {
+                range.check_value(x).map_err(|message| {
+                    self.err(
+                        at,
+                        format!(
+                            "joint `{}` <limit {side}>: {message}{}",
+                            joint.name,
+                            if joint.kind == Kind::Prismatic {
+                                ""
+                            } else {
+                                " (a joint that turns without limits is `continuous`)"
+                            }
+                        ),
+                    )
+                })?;
+            }
+        }
         if moving.is_empty() {
             return Err(self.err(
                 links[tip].loc,
@@ -993,6 +1030,21 @@ impl<'a> Reader<'a> {
         if !(pending.rotation_is_identity() && pending.p == [0.0; 3]) {
             top.push(("tool".to_string(), loc, pose_value(&pending, loc)));
         }
+        // Gravity is URDF's usual [0, 0, −9.81] in the root link's frame; the description's
+        // world is the base link's frame (the links above it are fixed in the world, with
+        // every joint among them at 0), so a base turned against the root sees it turned.
+        let mut placed = Frame::identity();
+        let mut l = base;
+        while let Some(j) = parent_joint[l] {
+            placed = joints[j].origin.compose(&placed);
+            l = joints[j].parent;
+        }
+        // g_base = Rᵀ g_root: the root's z row of R, times −9.81 (+ 0.0 makes −0 zero).
+        let gravity = placed.r[2].map(|x| x * -9.81 + 0.0);
+        if gravity != [0.0, 0.0, -9.81] {
+            let v = gravity.iter().map(|x| Value::Number(*x, loc)).collect();
+            top.push(("gravity".to_string(), loc, Value::Array(v, loc)));
+        }
         top.push(("links".to_string(), loc, Value::Array(rows, loc)));
         let table = Table { entries: top, loc };
         // The reader has checked every number of the file; what the validator still rejects
@@ -1057,8 +1109,8 @@ impl<'a> Reader<'a> {
             ("origin".to_string(), loc, pose_value(origin, loc)),
             ("axis".to_string(), joint.axis.1, vec(&axis, joint.axis.1)),
         ];
-        if let Some((l, lloc)) = joint.limits {
-            e.push(("limits".to_string(), lloc, vec(&l, lloc)));
+        if let Some(([(lo, _), (hi, _)], lloc)) = joint.limits {
+            e.push(("limits".to_string(), lloc, vec(&[lo, hi], lloc)));
         }
         if let Some(m) = mass {
             let mloc = links[joint.child]

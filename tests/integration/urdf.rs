@@ -230,6 +230,54 @@ fn robots_from_the_wild_runtime_match_pinocchio() {
     }
 }
 
+/// A chain that starts below the root (`base`) is the same robot as the whole chain with the
+/// joints above it held at 0 and at rest: the same τ, g, D and C for its joints, gravity staying
+/// URDF's [0, 0, −9.81] in the root link's frame although the base link is turned against it
+/// (the Panda's third link: a quarter turn about x).
+#[test]
+fn a_chain_from_a_base_below_the_root_is_the_whole_chain_held_above_it() {
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/urdf/panda.urdf");
+    let options = |base: Option<&str>| UrdfOptions {
+        tip: Some("panda_hand".into()),
+        base: base.map(str::to_string),
+        ..Default::default()
+    };
+    let whole = Robot::from_model(read_file(path, &options(None)).unwrap().model);
+    let sub = read_file(path, &options(Some("panda_link2"))).unwrap();
+    assert_ne!(
+        sub.model.gravity,
+        [0.0, 0.0, -9.81],
+        "the base link is turned"
+    );
+    let sub = Robot::from_model(sub.model);
+    let (n, m) = (7, 5);
+    let mut worst: f64 = 0.0;
+    for k in 0..10 {
+        let x = |i: usize, s: f64| ((i * 7 + k * 13) as f64 * s).sin();
+        let q: Vec<f64> = (0..m).map(|i| x(i, 0.37)).collect();
+        let qd: Vec<f64> = (0..m).map(|i| x(i, 0.91)).collect();
+        let qdd: Vec<f64> = (0..m).map(|i| x(i, 1.73)).collect();
+        let held = |v: &[f64]| [vec![0.0; n - m], v.to_vec()].concat();
+        let (wq, wqd, wqdd) = (held(&q), held(&qd), held(&qdd));
+        let rows = |v: nalgebra::DVector<f64>| v.rows(n - m, m).into_owned();
+        let block = |a: DMatrix<f64>| a.view((n - m, n - m), (m, m)).into_owned();
+        let pairs = [
+            (
+                sub.inverse_dynamics(&q[..], &qd[..], &qdd[..]),
+                rows(whole.inverse_dynamics(&wq[..], &wqd[..], &wqdd[..])),
+            ),
+            (sub.gravity(&q[..]), rows(whole.gravity(&wq[..]))),
+        ];
+        for (a, b) in pairs {
+            worst = worst.max((a - b).amax());
+        }
+        worst = worst.max((sub.mass_matrix(&q[..]) - block(whole.mass_matrix(&wq[..]))).amax());
+        worst = worst
+            .max((sub.coriolis(&q[..], &qd[..]) - block(whole.coriolis(&wq[..], &wqd[..]))).amax());
+    }
+    assert!(worst < 1e-12, "{worst:e}");
+}
+
 /// A human model's arm from the root to the left hand: 13 joints, its spherical joints
 /// written as three revolute ones through virtual links with no `<inertial>`, read as massless
 /// (as Pinocchio reads them) and listed.

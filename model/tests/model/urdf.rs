@@ -374,6 +374,56 @@ fn urdf_mimic_joint_on_the_chain() {
     assert!(e.contains("joint `j2`") && e.contains("mimic"), "{e}");
 }
 
+/// A fixed joint has no value to follow: a `<mimic>` on it (some published files carry one)
+/// changes nothing.
+#[test]
+fn urdf_mimic_on_a_fixed_joint_is_read_as_fixed() {
+    let text = edit(
+        ARM,
+        "<origin xyz=\"0 0.05 0.3\"",
+        "<mimic joint=\"j1\"/><origin xyz=\"0 0.05 0.3\"",
+    );
+    let with = read(&text, "arm.urdf", &UrdfOptions::default()).unwrap();
+    let without = read(ARM, "arm.urdf", &UrdfOptions::default()).unwrap();
+    assert_eq!(with.model, without.model);
+}
+
+/// Limits hold a joint of the chain to the description format's ranges; a joint off the chain
+/// is held at 0, so its limits play no part (±1e16, as some files write "unlimited", is read).
+#[test]
+fn urdf_limits_are_checked_on_the_chain_only() {
+    let rotor = "  <link name=\"tool\"/>\n  <joint name=\"rotor\" type=\"revolute\"><parent link=\"l1\"/><child link=\"r\"/><limit lower=\"-1e16\" upper=\"1e16\" effort=\"1\" velocity=\"1\"/></joint>\n  <link name=\"r\"/>";
+    let text = edit(ARM, "  <link name=\"tool\"/>", rotor);
+    let options = UrdfOptions {
+        tip: Some("tool".into()),
+        ..Default::default()
+    };
+    let off = read(&text, "arm.urdf", &options).unwrap();
+    assert_eq!(off.locked, ["rotor"]);
+    assert_eq!(
+        off.model,
+        read(ARM, "arm.urdf", &UrdfOptions::default())
+            .unwrap()
+            .model
+    );
+    let on = UrdfOptions {
+        tip: Some("r".into()),
+        ..Default::default()
+    };
+    let e = error(&text, &on);
+    assert!(
+        e.starts_with(&format!(
+            "{}joint `rotor` <limit lower>: angle -1e16 rad is outside the range of any robot",
+            at(&text, "lower=\"-1e16\"")
+        )),
+        "{e}"
+    );
+    assert!(
+        e.ends_with("(a joint that turns without limits is `continuous`)"),
+        "{e}"
+    );
+}
+
 #[test]
 fn urdf_floating_joint_on_the_chain() {
     let text = ARM.replace(
@@ -553,6 +603,19 @@ fn urdf_base_starts_the_chain_below_the_root() {
         }
     }
     assert!((r.model.links[0].inertial.unwrap().mass - 1.5).abs() < 1e-15);
+    // Gravity stays URDF's [0, 0, −9.81] in the root link's frame: seen from l1b (rolled a
+    // quarter turn and yawed 0.3 rad against the root), it is turned; from the root, not.
+    let g = l1b.rotation.inverse() * Vector3::new(0.0, 0.0, -9.81);
+    for i in 0..3 {
+        // (The reference turns through quaternions: a few ulps of 9.81.)
+        assert!(
+            (r.model.gravity[i] - g[i]).abs() < 1e-13,
+            "{:?} {g}",
+            r.model.gravity
+        );
+    }
+    assert!(g.z.abs() < 1e-12, "the test turns gravity: {g}");
+    assert_eq!(full.model.gravity, [0.0, 0.0, -9.81]);
     // A tip that is not below the base.
     let e = error(
         ARM,
