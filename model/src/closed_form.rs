@@ -684,6 +684,13 @@ impl DecoupledIk {
         if self.prismatic[0] {
             return Err(self.unsupported("joint 1 must be revolute"));
         }
+        if !self.places_the_wrist_centre(&w) {
+            return Err(self.unsupported(
+                "they cannot move the wrist centre in three independent directions (two of \
+                 their axes coincide, all three are parallel, or the centre lies on their axes): \
+                 the arm is redundant or degenerate, with a continuum of solutions or none",
+            ));
+        }
         let (p1, p2) = (c[1], c[2]);
         let (shoulder, kind) = if !self.prismatic[1] {
             // Axis 2 in the frame joint 1 turns: through p1.p along n2. Slide the origin to
@@ -754,6 +761,54 @@ impl DecoupledIk {
             shoulder,
         };
         Ok(self)
+    }
+
+    /// Whether joints 1–3 move the wrist centre (`w` in the frame joint 3 moves) in three
+    /// independent directions: the determinant of their 3×3 Jacobian of its position, each
+    /// column made a unit vector (a column shorter than a billionth of the arm's length scale
+    /// counts as none), is not zero at every one of a few fixed configurations. A structure that fails (axes 2 and 3 coaxial, axes 1–3
+    /// parallel, the centre on every axis) loses a direction everywhere, and its pose has a
+    /// continuum of solutions or none: no closed form here.
+    fn places_the_wrist_centre(&self, w: &Vector3<f64>) -> bool {
+        const SAMPLES: [[f64; 3]; 4] = [
+            [0.7, -1.1, 0.4],
+            [-2.3, 0.5, 1.9],
+            [1.3, 2.1, -0.8],
+            [-0.4, -2.7, 2.6],
+        ];
+        SAMPLES.iter().any(|q| {
+            let mut f = self.chain[0];
+            let mut axes = [(Vector3::zeros(), Vector3::zeros()); 3];
+            for i in 0..3 {
+                if i > 0 {
+                    f = f.compose(&self.chain[i]);
+                }
+                axes[i] = (f.r.column(2).into_owned(), f.p);
+                let joint = if self.prismatic[i] {
+                    JointKind::Prismatic
+                } else {
+                    JointKind::Revolute
+                };
+                f.apply_joint(joint, q[i]);
+            }
+            // `f` is the frame joint 3 moves, where `w` is.
+            let centre = f.point(w);
+            let columns: [Vector3<f64>; 3] = core::array::from_fn(|i| {
+                let (z, o) = axes[i];
+                let c = if self.prismatic[i] {
+                    z
+                } else {
+                    z.cross(&(centre - o))
+                };
+                let norm = c.norm();
+                if norm > 1e-9 * self.scale {
+                    c / norm
+                } else {
+                    Vector3::zeros()
+                }
+            });
+            Matrix3::from_columns(&columns).determinant().abs() > 1e-9
+        })
     }
 
     /// The solver of an arm with axes 2, 3, 4 parallel and axes 5, 6 meeting, if it is one.

@@ -634,10 +634,15 @@ impl<'a> Reader<'a> {
                         None,
                     )?);
                     // The numbers are finite: a zero or tiny vector has no direction.
-                    if kind.movable() && u.norm() <= 1e-9 {
+                    if kind.movable() && u.norm() <= validate::MIN_AXIS_LENGTH {
                         return Err(self.err(
                             aloc,
-                            format!("{what} <axis xyz>: the axis {v:?} has no direction; give a non-zero vector"),
+                            format!(
+                                "{what} <axis xyz>: the axis {v:?} has no direction (its length \
+                                 {} is at most {:e}); give a direction such as \"0 0 1\"",
+                                validate::short(u.norm()),
+                                validate::MIN_AXIS_LENGTH
+                            ),
                         ));
                     }
                     (u, aloc)

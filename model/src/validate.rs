@@ -703,20 +703,27 @@ fn link<L: Clone>(
     })
 }
 
-/// A joint axis: three numbers, not all zero, scaled to unit length (a signed coordinate
-/// axis stays exact).
+/// The shortest joint axis read as a direction: a shorter one is taken for a zero written
+/// with round-off (the description's `axis`, URDF's `<axis xyz>`).
+pub const MIN_AXIS_LENGTH: f64 = 1e-9;
+
+/// A joint axis: three numbers longer than [`MIN_AXIS_LENGTH`], scaled to unit length (a
+/// signed coordinate axis stays exact).
 fn unit_axis<L: Clone>(at: At<'_>, v: &Value<L>) -> Result<[f64; 3], Error<L>> {
     let u = vec3(at, v, LENGTH)?;
     let norm = (u[0] * u[0] + u[1] * u[1] + u[2] * u[2]).sqrt();
     // The components are finite (checked by `vec3`).
-    if norm <= 1e-9 {
+    if norm <= MIN_AXIS_LENGTH {
         return Err(at.err(
             v.loc(),
             format!(
-                "the axis [{}, {}, {}] has no direction; give a non-zero vector such as [0, 0, 1]",
+                "the axis [{}, {}, {}] has no direction (its length {} is at most {:e}); give \
+                 a direction such as [0, 0, 1]",
                 short(u[0]),
                 short(u[1]),
-                short(u[2])
+                short(u[2]),
+                short(norm),
+                MIN_AXIS_LENGTH
             ),
         ));
     }

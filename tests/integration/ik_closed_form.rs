@@ -371,6 +371,43 @@ fn structures_without_a_closed_form_are_rejected_with_the_reason() {
     );
 }
 
+/// Spherical-wrist arms whose joints 1–3 cannot place the wrist centre (it loses a direction
+/// at every configuration: a pose has a continuum of solutions or none) are refused, not
+/// solved into an empty list for reachable poses.
+#[test]
+fn degenerate_position_structures_are_rejected() {
+    // Six revolute joints (a, alpha in degrees, d), the last three a spherical wrist.
+    let arm = |first: [(f64, f64, f64); 3]| {
+        let rows: String = first
+            .iter()
+            .chain(&[(0.0, 90.0, 0.3), (0.0, -90.0, 0.0), (0.0, 0.0, 0.1)])
+            .map(|(a, alpha, d)| {
+                format!(
+                    "[[links]]\njoint = \"revolute\"\na = {a}\nalpha = \"{alpha}deg\"\n\
+                     d = {d}\ntheta = 0\n"
+                )
+            })
+            .collect();
+        RobotModel::from_toml_str(&format!("name = \"x\"\nconvention = \"standard\"\n{rows}"))
+            .unwrap()
+    };
+    // The control: an elbow arm (a2 = 0.4) is solved.
+    let elbow = arm([(0.0, -90.0, 0.3), (0.4, 0.0, 0.0), (0.0, -90.0, 0.0)]);
+    assert!(DecoupledIk::from_model(&elbow).is_ok());
+    // Joints 2 and 3 coaxial (a2 = 0, alpha2 = 0): only q2 + q3 moves the wrist centre.
+    let coaxial = arm([(0.0, -90.0, 0.3), (0.0, 0.0, 0.2), (0.4, -90.0, 0.0)]);
+    // Axes 1, 2, 3 parallel: the wrist centre stays in a plane.
+    let planar = arm([(0.4, 0.0, 0.0), (0.3, 0.0, 0.0), (0.0, -90.0, 0.0)]);
+    for (what, model) in [("coaxial 2, 3", coaxial), ("parallel 1, 2, 3", planar)] {
+        let err = DecoupledIk::from_model(&model).unwrap_err();
+        assert!(
+            matches!(err, StructureError::UnsupportedArm { .. })
+                && err.to_string().contains("three independent directions"),
+            "{what}: {err}"
+        );
+    }
+}
+
 #[test]
 fn the_solution_list_is_fixed_capacity() {
     assert_eq!(Solutions::CAPACITY, 8);
