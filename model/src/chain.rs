@@ -371,7 +371,8 @@ impl<'a> ChainRef<'a> {
     }
 
     /// Whether the last three joints are revolute and their axes meet in one point (a
-    /// spherical wrist), with that point. The three axes are tested at `q = 0`, which decides
+    /// spherical wrist), with that point; consecutive axes may not be parallel (the wrist would
+    /// turn about two directions only). The three axes are tested at `q = 0`, which decides
     /// every configuration: each wrist joint turns the axes after it about a line through the
     /// point. Tolerance: 1e-9 of [`length_scale`](Self::length_scale).
     pub fn spherical_wrist(&self) -> Result<SphericalWrist, NotSpherical> {
@@ -406,6 +407,11 @@ impl<'a> ChainRef<'a> {
                 axis: first + 1,
                 distance: gap,
             });
+        }
+        // The last two parallel meet the first in a line of points, not one: a wrist of two
+        // degrees of freedom (the angle between them is the same at every configuration).
+        if norm(&cross(&b.direction, &c.direction)) < 1e-6 {
+            return Err(NotSpherical::ParallelAxes { axis: first + 1 });
         }
         let off_c = norm(&cross(&c.direction, &sub(&pa, &c.point)));
         if off_c > tol {

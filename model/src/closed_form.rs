@@ -45,6 +45,14 @@
 //! and `q2 + q3 + q4`; and the position of X, a planar two-link problem, q3 (two) and q2.
 //! At most 8.
 //!
+//! # Degenerate structures: refused
+//! A structure that loses a direction at every configuration has, for a reachable pose, a
+//! continuum of solutions (or none), which no finite list holds: [`DecoupledIk::from_chain`]
+//! refuses it, saying why. Joints 1–3 that cannot move the wrist centre in three independent
+//! directions (axes 2 and 3 coaxial, axes 1–3 parallel, the centre on their axes: checked by
+//! the rank of their Jacobian of the centre at a few configurations); wrist axes 5 and 6
+//! parallel (as 4 and 5 are); two of the UR type's parallel axes 2–4 coinciding.
+//!
 //! # Singular poses: the documented choices
 //! - Wrist singularity (axes 4 and 6 aligned): only `q4 ± q6` is determined; the solver sets
 //!   **q4 = 0** and gives q6 the whole rotation. For the UR type, when axis 6 is parallel to
@@ -660,9 +668,22 @@ impl DecoupledIk {
         };
         match chain.spherical_wrist() {
             Ok(wrist) => base.spherical(Vector3::from(wrist.centre)),
-            Err(why) => base
-                .three_parallel()
-                .ok_or(StructureError::NoDecoupling(why)),
+            Err(why) => match base.three_parallel() {
+                // Joints 2–4 are a planar arm of two links, the distances between axes 2 and
+                // 3 and between axes 3 and 4 (in the frames joints 2 and 3 move): a link of
+                // length zero (two coaxial joints) leaves a continuum of solutions or none.
+                Some(ik)
+                    if ik.chain[2].p.xy().norm().min(ik.chain[3].p.xy().norm())
+                        <= 1e-9 * ik.scale =>
+                {
+                    Err(ik.unsupported(
+                        "axes 2, 3, 4 are parallel but two of them coincide: the planar arm \
+                         they make has a link of length zero (a continuum of solutions or none)",
+                    ))
+                }
+                Some(ik) => Ok(ik),
+                None => Err(StructureError::NoDecoupling(why)),
+            },
         }
     }
 

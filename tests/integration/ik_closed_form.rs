@@ -371,11 +371,12 @@ fn structures_without_a_closed_form_are_rejected_with_the_reason() {
     );
 }
 
-/// Spherical-wrist arms whose joints 1–3 cannot place the wrist centre (it loses a direction
-/// at every configuration: a pose has a continuum of solutions or none) are refused, not
-/// solved into an empty list for reachable poses.
+/// Arms that lose a direction at every configuration (a pose has a continuum of solutions or
+/// none) are refused, not solved into an empty list for reachable poses: joints 1–3 that
+/// cannot place a spherical wrist's centre, wrist axes 5 and 6 parallel, coincident axes among
+/// the parallel axes 2–4 of a UR-type arm.
 #[test]
-fn degenerate_position_structures_are_rejected() {
+fn degenerate_structures_are_rejected() {
     // Six revolute joints (a, alpha in degrees, d), the last three a spherical wrist.
     let arm = |first: [(f64, f64, f64); 3]| {
         let rows: String = first
@@ -404,6 +405,35 @@ fn degenerate_position_structures_are_rejected() {
             matches!(err, StructureError::UnsupportedArm { .. })
                 && err.to_string().contains("three independent directions"),
             "{what}: {err}"
+        );
+    }
+    let edited = |robot: &str, from: &str, to: &str| {
+        let text = std::fs::read_to_string(format!(
+            "{}/robots/{robot}.toml",
+            env!("CARGO_MANIFEST_DIR")
+        ))
+        .unwrap();
+        assert!(text.contains(from), "{from}");
+        RobotModel::from_toml_str(&text.replacen(from, to, 1)).unwrap()
+    };
+    // The PUMA 560 with alpha5 = 0: axes 5 and 6 coincide.
+    let err = DecoupledIk::from_model(&edited(
+        "puma560",
+        "alpha = \"-90deg\"\nd = 0.0",
+        "alpha = 0.0\nd = 0.0",
+    ))
+    .unwrap_err();
+    assert_eq!(
+        err,
+        StructureError::NoDecoupling(NotSpherical::ParallelAxes { axis: 4 })
+    );
+    // The UR5 with a2 = 0 or a3 = 0: axes 2 and 3, or 3 and 4, coincide.
+    for from in ["a = -0.425", "a = -0.39225"] {
+        let err = DecoupledIk::from_model(&edited("ur5", from, "a = 0.0")).unwrap_err();
+        assert!(
+            matches!(err, StructureError::UnsupportedArm { .. })
+                && err.to_string().contains("two of them coincide"),
+            "{from}: {err}"
         );
     }
 }
