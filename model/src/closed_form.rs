@@ -51,7 +51,14 @@
 //! refuses it, saying why. Joints 1–3 that cannot move the wrist centre in three independent
 //! directions (axes 2 and 3 coaxial, axes 1–3 parallel, the centre on their axes: checked by
 //! the rank of their Jacobian of the centre at a few configurations); wrist axes 5 and 6
-//! parallel (as 4 and 5 are); two of the UR type's parallel axes 2–4 coinciding.
+//! parallel (as 4 and 5 are); two of the UR type's parallel axes 2–4 coinciding, or axis 5
+//! parallel to them.
+//!
+//! Known limitation: a skew shoulder that nearly intersects (axes 1 and 2 tens of micrometres
+//! apart against an arm of a metre) makes the quartic's roots nearly double, and their
+//! polishing can miss the pose's tolerance, so that a reachable pose finds no solution (seen
+//! on a random arm with a1 = 3.3e-5 m). Such an arm is better described with the offset made
+//! exact (zero) where it is a rounding of zero.
 //!
 //! # Singular poses: the documented choices
 //! - Wrist singularity (axes 4 and 6 aligned): only `q4 ± q6` is determined; the solver sets
@@ -669,19 +676,10 @@ impl DecoupledIk {
         match chain.spherical_wrist() {
             Ok(wrist) => base.spherical(Vector3::from(wrist.centre)),
             Err(why) => match base.three_parallel() {
-                // Joints 2–4 are a planar arm of two links, the distances between axes 2 and
-                // 3 and between axes 3 and 4 (in the frames joints 2 and 3 move): a link of
-                // length zero (two coaxial joints) leaves a continuum of solutions or none.
-                Some(ik)
-                    if ik.chain[2].p.xy().norm().min(ik.chain[3].p.xy().norm())
-                        <= 1e-9 * ik.scale =>
-                {
-                    Err(ik.unsupported(
-                        "axes 2, 3, 4 are parallel but two of them coincide: the planar arm \
-                         they make has a link of length zero (a continuum of solutions or none)",
-                    ))
-                }
-                Some(ik) => Ok(ik),
+                Some(ik) => match ik.three_parallel_degenerate() {
+                    Some(reason) => Err(ik.unsupported(reason)),
+                    None => Ok(ik),
+                },
                 None => Err(StructureError::NoDecoupling(why)),
             },
         }
@@ -830,6 +828,28 @@ impl DecoupledIk {
             });
             Matrix3::from_columns(&columns).determinant().abs() > 1e-9
         })
+    }
+
+    /// Why an arm with axes 2, 3, 4 parallel loses a direction at every configuration, if it
+    /// does: joints 2–4 are a planar arm of two links, the distances between axes 2 and 3 and
+    /// between axes 3 and 4 (in the frames joints 2 and 3 move), and a link of length zero
+    /// (two coaxial joints) leaves a continuum of solutions or none; so does axis 5 parallel
+    /// to them (four parallel axes: the tool turns about two directions only).
+    fn three_parallel_degenerate(&self) -> Option<&'static str> {
+        let c = &self.chain;
+        if c[2].p.xy().norm().min(c[3].p.xy().norm()) <= 1e-9 * self.scale {
+            Some(
+                "axes 2, 3, 4 are parallel but two of them coincide: the planar arm they make \
+                 has a link of length zero (a continuum of solutions or none)",
+            )
+        } else if (c[4].r * Vector3::z()).z.abs() >= 1.0 - 1e-12 {
+            Some(
+                "axes 2, 3, 4 and 5 are parallel: the tool turns about two directions only (a \
+                 continuum of solutions or none)",
+            )
+        } else {
+            None
+        }
     }
 
     /// The solver of an arm with axes 2, 3, 4 parallel and axes 5, 6 meeting, if it is one.

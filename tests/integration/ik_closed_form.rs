@@ -427,6 +427,17 @@ fn degenerate_structures_are_rejected() {
         err,
         StructureError::NoDecoupling(NotSpherical::ParallelAxes { axis: 4 })
     );
+    // The UR5 with alpha4 = 0: axes 2, 3, 4 and 5 parallel.
+    let err = DecoupledIk::from_model(&edited(
+        "ur5",
+        "alpha = \"90deg\"\nd = 0.10915",
+        "alpha = 0.0\nd = 0.10915",
+    ))
+    .unwrap_err();
+    assert!(
+        err.to_string().contains("2, 3, 4 and 5 are parallel"),
+        "{err}"
+    );
     // The UR5 with a2 = 0 or a3 = 0: axes 2 and 3, or 3 and 4, coincide.
     for from in ["a = -0.425", "a = -0.39225"] {
         let err = DecoupledIk::from_model(&edited("ur5", from, "a = 0.0")).unwrap_err();
