@@ -30,7 +30,10 @@
 //!
 //! q1 is the azimuth that turns `g` onto `p`. Revolute–prismatic–prismatic arms (the
 //! cylindrical arm of section 4.2) are solved from the height and the radius. Up to 4 arm
-//! solutions.
+//! solutions, each refined by a few steps of Newton's method on the wrist centre's position:
+//! a skew shoulder that nearly intersects (axes 1 and 2 tens of micrometres apart, as CAD
+//! rounds a zero) divides by its offset squared, which the closed form's rounding does not
+//! survive (a reachable pose had found no solution within the tolerance below).
 //!
 //! **Inverse orientation.** With `M = R_3ᵀ R P6ᵀ = Rz(q4) A4 Rz(q5) A5 Rz(q6)`, the direction
 //! of axis 6 gives `e_z · M e_z = (A4ᵀ e_z) · Rz(q5) (A5 e_z)`: two q5 (Paden–Kahan's second
@@ -53,12 +56,7 @@
 //! the rank of their Jacobian of the centre at a few configurations); wrist axes 5 and 6
 //! parallel (as 4 and 5 are); two of the UR type's parallel axes 2–4 coinciding, or axis 5
 //! parallel to them.
-//!
-//! Known limitation: a skew shoulder that nearly intersects (axes 1 and 2 tens of micrometres
-//! apart against an arm of a metre) makes the quartic's roots nearly double, and their
-//! polishing can miss the pose's tolerance, so that a reachable pose finds no solution (seen
-//! on a random arm with a1 = 3.3e-5 m). Such an arm is better described with the offset made
-//! exact (zero) where it is a rounding of zero.
+
 //!
 //! # Singular poses: the documented choices
 //! - Wrist singularity (axes 4 and 6 aligned): only `q4 ± q6` is determined; the solver sets
@@ -796,29 +794,9 @@ impl DecoupledIk {
             [-0.4, -2.7, 2.6],
         ];
         SAMPLES.iter().any(|q| {
-            let mut f = self.chain[0];
-            let mut axes = [(Vector3::zeros(), Vector3::zeros()); 3];
-            for i in 0..3 {
-                if i > 0 {
-                    f = f.compose(&self.chain[i]);
-                }
-                axes[i] = (f.r.column(2).into_owned(), f.p);
-                let joint = if self.prismatic[i] {
-                    JointKind::Prismatic
-                } else {
-                    JointKind::Revolute
-                };
-                f.apply_joint(joint, q[i]);
-            }
-            // `f` is the frame joint 3 moves, where `w` is.
-            let centre = f.point(w);
+            let (_, jacobian) = self.wrist_centre(w, q);
             let columns: [Vector3<f64>; 3] = core::array::from_fn(|i| {
-                let (z, o) = axes[i];
-                let c = if self.prismatic[i] {
-                    z
-                } else {
-                    z.cross(&(centre - o))
-                };
+                let c = jacobian.column(i).into_owned();
                 let norm = c.norm();
                 if norm > 1e-9 * self.scale {
                     c / norm
@@ -828,6 +806,56 @@ impl DecoupledIk {
             });
             Matrix3::from_columns(&columns).determinant().abs() > 1e-9
         })
+    }
+
+    /// The wrist centre (`w` in the frame joint 3 moves) at `(q1, q2, q3)`, in the frame joint
+    /// 1 turns, and its Jacobian over the three joints.
+    fn wrist_centre(&self, w: &Vector3<f64>, q: &[f64; 3]) -> (Vector3<f64>, Matrix3<f64>) {
+        let mut f = Rigid::IDENTITY;
+        let mut axes = [(Vector3::zeros(), Vector3::zeros()); 3];
+        for i in 0..3 {
+            if i > 0 {
+                f = f.compose(&self.chain[i]);
+            }
+            axes[i] = (f.r.column(2).into_owned(), f.p);
+            f.apply_joint(self.joint(i), q[i]);
+        }
+        let centre = f.point(w);
+        let columns: [Vector3<f64>; 3] = core::array::from_fn(|i| {
+            let (z, o) = axes[i];
+            if self.prismatic[i] {
+                z
+            } else {
+                z.cross(&(centre - o))
+            }
+        });
+        (centre, Matrix3::from_columns(&columns))
+    }
+
+    /// `q` refined by Newton's method on the wrist centre's position `p` (in the frame joint 1
+    /// turns), while each step lessens the error: the closed forms divide by quantities that
+    /// can be small (a skew shoulder's offset, squared), which the rounding of their inputs
+    /// does not survive; two or three steps restore full precision.
+    fn polished(&self, w: &Vector3<f64>, p: &Vector3<f64>, mut q: [f64; 3]) -> [f64; 3] {
+        let (centre, mut jacobian) = self.wrist_centre(w, &q);
+        let mut error = centre - p;
+        for _ in 0..4 {
+            if error.norm() <= 1e-14 * self.scale {
+                break;
+            }
+            let Some(step) = jacobian.lu().solve(&error) else {
+                break;
+            };
+            let next: [f64; 3] = core::array::from_fn(|i| q[i] - step[i]);
+            let (centre, next_jacobian) = self.wrist_centre(w, &next);
+            let next_error = centre - p;
+            // (A NaN error is no improvement either.)
+            if next_error.norm().partial_cmp(&error.norm()) != Some(core::cmp::Ordering::Less) {
+                break;
+            }
+            (q, jacobian, error) = (next, next_jacobian, next_error);
+        }
+        q
     }
 
     /// Why an arm with axes 2, 3, 4 parallel loses a direction at every configuration, if it
@@ -1006,7 +1034,7 @@ impl DecoupledIk {
             q: [[0.0; 3]; 4],
             len: 0,
         };
-        let mut push = |q: [f64; 3]| out.push(q);
+        let mut push = |q: [f64; 3]| out.push(self.polished(w, p, q));
         let tiny = 1e-12 * self.scale;
         match *shoulder {
             Shoulder::Revolute { shift, t1, u, n } => {

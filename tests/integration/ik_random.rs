@@ -222,8 +222,9 @@ fn ur5_gets_eight_solutions() {
 }
 
 /// Whatever structure the solver accepts, it solves: arms drawn from the special values
-/// catalogues are made of (twists in {0, ±90°} or oblique, lengths and offsets zero or not,
-/// some prismatic joints, wrists with parallel axes among them), so that many are degenerate.
+/// catalogues are made of (twists in {0, ±90°} or oblique, lengths and offsets zero, tens of
+/// micrometres (CAD's roundings of zero) or not, some prismatic joints, wrists with parallel
+/// axes among them), so that many are degenerate or nearly so.
 /// Every arm `DecoupledIk` accepts gives, for poses made from random joint vectors, solutions
 /// that reproduce the pose, never an empty list; the rest are refused with a reason.
 #[test]
@@ -238,12 +239,12 @@ fn accepted_structures_solve_every_reachable_pose() {
             _ => oblique(rng),
         };
         let length = |rng: &mut StdRng| {
-            if rng.random_bool(0.5) {
-                0.0
-            } else {
-                // Away from 0: an offset of micrometres between skew axes 1 and 2 is the
-                // known limitation in `dhgen::model::closed_form`'s documentation.
-                rng.random_range(0.05..0.5) * if rng.random_bool(0.5) { 1.0 } else { -1.0 }
+            let sign = if rng.random_bool(0.5) { 1.0 } else { -1.0 };
+            match rng.random_range(0..8) {
+                0..4 => 0.0,
+                // A rounding of zero from CAD: tens of micrometres.
+                4 => sign * rng.random_range(1e-6..1e-4),
+                _ => sign * rng.random_range(0.0..0.5),
             }
         };
         let ur_type = rng.random_bool(0.3);
