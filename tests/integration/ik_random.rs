@@ -111,6 +111,17 @@ fn three_parallel(rng: &mut StdRng) -> Robot {
     ])
 }
 
+/// A random joint vector: angles in (−π, π), displacements in (0.1, 0.5) m.
+fn random_joints(prismatic: &[bool; 6], rng: &mut StdRng) -> SVector<f64, 6> {
+    SVector::from_fn(|j, _| {
+        if prismatic[j] {
+            rng.random_range(0.1..0.5)
+        } else {
+            rng.random_range(-PI..PI)
+        }
+    })
+}
+
 /// Solves `poses` poses of `robot` from random joint vectors; returns how many solutions
 /// there were in all.
 fn check(robot: &Robot, kind: ArmKind, poses: usize, rng: &mut StdRng) -> usize {
@@ -119,13 +130,7 @@ fn check(robot: &Robot, kind: ArmKind, poses: usize, rng: &mut StdRng) -> usize 
     let prismatic = ik.prismatic();
     let mut total = 0;
     for _ in 0..poses {
-        let q = SVector::<f64, 6>::from_fn(|j, _| {
-            if prismatic[j] {
-                rng.random_range(0.1..0.5)
-            } else {
-                rng.random_range(-PI..PI)
-            }
-        });
+        let q = random_joints(&prismatic, rng);
         let pose = robot.fk(&q);
         let solutions = ik.solve(&pose);
         total += solutions.len();
@@ -271,13 +276,7 @@ fn accepted_structures_solve_every_reachable_pose() {
         accepted += 1;
         let prismatic = ik.prismatic();
         for _ in 0..5 {
-            let q = SVector::<f64, 6>::from_fn(|j, _| {
-                if prismatic[j] {
-                    rng.random_range(0.1..0.5)
-                } else {
-                    rng.random_range(-PI..PI)
-                }
-            });
+            let q = random_joints(&prismatic, &mut rng);
             let pose = robot.fk(&q);
             let solutions = ik.solve(&pose);
             assert!(
