@@ -330,12 +330,24 @@ fn run(command: Command) -> Result<String, String> {
             // 1000 m plus rounding). Said so, with the field of the converted description.
             let converted = |convention, name| {
                 to_dh(model, convention).map_err(|e| {
+                    let mut hint = String::new();
                     let (what, message) = match e {
                         ConvertError::Invalid {
                             joint,
                             field,
                             message,
                         } => {
+                            // Where frames are placed: DH's own ill-conditioning.
+                            if matches!(field.as_deref(), Some("a" | "d" | "base.xyz" | "tool.xyz"))
+                            {
+                                hint = "; DH puts the common normal of nearly parallel axes \
+                                        far away"
+                                    .to_string();
+                                if dhgen_model::urdf::is_urdf_path(&robot.robot) {
+                                    hint += " (if the file's angles are rounded quarter turns, \
+                                             such as 1.5708, --snap 1e-4 reads them as exact)";
+                                }
+                            }
                             let what = match (joint, field) {
                                 (Some(j), Some(f)) => format!("the converted `{f}` of link {j}"),
                                 (Some(j), None) => format!("link {j} of the converted description"),
@@ -348,7 +360,7 @@ fn run(command: Command) -> Result<String, String> {
                     };
                     format!(
                         "{}: converting to {name}: {what} is not valid (a value the conversion \
-                         computed; the input's are valid): {message}",
+                         computed; the input's are valid): {message}{hint}",
                         robot.display()
                     )
                 })

@@ -1162,6 +1162,31 @@ fn empty_list_entries_are_errors() {
 
 /// A conversion that fails on a valid description blames the converted description, not
 /// the input: a com 995 m beyond a 10 m link is 1005 m from the modified DH frame.
+/// A URDF whose quarter turn is written 1.5708 (3.7e-6 rad short) puts modified DH's frame 0
+/// kilometres away, out of range: the error says why and what to do, and the advice works.
+#[test]
+fn convert_explains_far_common_normals() {
+    let path = Path::new(env!("CARGO_TARGET_TMPDIR")).join("nearly_parallel.urdf");
+    std::fs::write(
+        &path,
+        "<robot name=\"np\"><link name=\"base\"/><link name=\"l1\"/>\
+         <joint name=\"j1\" type=\"revolute\"><parent link=\"base\"/><child link=\"l1\"/>\
+         <origin xyz=\"0 -0.045 0.0165\" rpy=\"1.5708 0 0\"/><axis xyz=\"0 1 0\"/></joint>\
+         </robot>",
+    )
+    .unwrap();
+    let file = path.to_str().unwrap();
+    let err = failure(&["convert", file, "--to", "mdh"]);
+    assert!(
+        err.contains("the converted `base.xyz` is not valid")
+            && err.contains("DH puts the common normal of nearly parallel axes far away")
+            && err.contains("--snap 1e-4"),
+        "{err}"
+    );
+    let table = stdout(&["convert", file, "--to", "mdh", "--snap", "1e-4"]);
+    assert!(table.contains("convention = \"modified\""), "{table}");
+}
+
 #[test]
 fn convert_blames_the_converted_description() {
     let path = Path::new(env!("CARGO_TARGET_TMPDIR")).join("far_com.toml");
