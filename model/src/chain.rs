@@ -386,6 +386,12 @@ impl<'a> ChainRef<'a> {
         let first = n - 3;
         let [a, b, c] = [self.axis(first), self.axis(first + 1), self.axis(first + 2)];
         let tol = GEOMETRY_TOLERANCE * self.length_scale();
+        // Consecutive axes parallel (the sine of their angle below 1e-6) meet in a line of
+        // points, or none: the wrist would turn about two directions only.
+        let parallel = |u: &[f64; 3], v: &[f64; 3]| 1.0 - dot(u, v).powi(2) < 1e-12;
+        if parallel(&a.direction, &b.direction) {
+            return Err(NotSpherical::ParallelAxes { axis: first });
+        }
         // Closest points of the first two axes: a.point + s a.dir and b.point + t b.dir.
         let w = sub(&a.point, &b.point);
         let (k, d, e) = (
@@ -394,9 +400,6 @@ impl<'a> ChainRef<'a> {
             dot(&b.direction, &w),
         );
         let denom = 1.0 - k * k;
-        if denom < 1e-12 {
-            return Err(NotSpherical::ParallelAxes { axis: first });
-        }
         let s = (k * e - d) / denom;
         let t = (e - k * d) / denom;
         let pa: [f64; 3] = core::array::from_fn(|i| a.point[i] + s * a.direction[i]);
@@ -408,9 +411,7 @@ impl<'a> ChainRef<'a> {
                 distance: gap,
             });
         }
-        // The last two parallel meet the first in a line of points, not one: a wrist of two
-        // degrees of freedom (the angle between them is the same at every configuration).
-        if norm(&cross(&b.direction, &c.direction)) < 1e-6 {
+        if parallel(&b.direction, &c.direction) {
             return Err(NotSpherical::ParallelAxes { axis: first + 1 });
         }
         let off_c = norm(&cross(&c.direction, &sub(&pa, &c.point)));

@@ -30,10 +30,11 @@
 //!
 //! q1 is the azimuth that turns `g` onto `p`. Revolute–prismatic–prismatic arms (the
 //! cylindrical arm of section 4.2) are solved from the height and the radius. Up to 4 arm
-//! solutions, each refined by a few steps of Newton's method on the wrist centre's position:
-//! a skew shoulder that nearly intersects (axes 1 and 2 tens of micrometres apart, as CAD
-//! rounds a zero) divides by its offset squared, which the closed form's rounding does not
-//! survive (a reachable pose had found no solution within the tolerance below).
+//! solutions. Those of a skew shoulder are refined by a few steps of Newton's method on the
+//! wrist centre's position: one that nearly intersects (axes 1 and 2 tens of micrometres
+//! apart, as CAD rounds a zero) divides by its offset squared, which the closed form's
+//! rounding does not survive (a reachable pose had found no solution within the tolerance
+//! below).
 //!
 //! **Inverse orientation.** With `M = R_3ᵀ R P6ᵀ = Rz(q4) A4 Rz(q5) A5 Rz(q6)`, the direction
 //! of axis 6 gives `e_z · M e_z = (A4ᵀ e_z) · Rz(q5) (A5 e_z)`: two q5 (Paden–Kahan's second
@@ -56,7 +57,6 @@
 //! the rank of their Jacobian of the centre at a few configurations); wrist axes 5 and 6
 //! parallel (as 4 and 5 are); two of the UR type's parallel axes 2–4 coinciding, or axis 5
 //! parallel to them.
-
 //!
 //! # Singular poses: the documented choices
 //! - Wrist singularity (axes 4 and 6 aligned): only `q4 ± q6` is determined; the solver sets
@@ -783,9 +783,10 @@ impl DecoupledIk {
     /// Whether joints 1–3 move the wrist centre (`w` in the frame joint 3 moves) in three
     /// independent directions: the determinant of their 3×3 Jacobian of its position, each
     /// column made a unit vector (a column shorter than a billionth of the arm's length scale
-    /// counts as none), is not zero at every one of a few fixed configurations. A structure that fails (axes 2 and 3 coaxial, axes 1–3
-    /// parallel, the centre on every axis) loses a direction everywhere, and its pose has a
-    /// continuum of solutions or none: no closed form here.
+    /// counts as none), is not zero at every one of a few fixed configurations. A structure
+    /// that fails (axes 2 and 3 coaxial, axes 1–3 parallel, the centre on every axis) loses a
+    /// direction everywhere, and its pose has a continuum of solutions or none: no closed form
+    /// here.
     fn places_the_wrist_centre(&self, w: &Vector3<f64>) -> bool {
         const SAMPLES: [[f64; 3]; 4] = [
             [0.7, -1.1, 0.4],
@@ -1034,7 +1035,7 @@ impl DecoupledIk {
             q: [[0.0; 3]; 4],
             len: 0,
         };
-        let mut push = |q: [f64; 3]| out.push(self.polished(w, p, q));
+        let mut push = |q: [f64; 3]| out.push(q);
         let tiny = 1e-12 * self.scale;
         match *shoulder {
             Shoulder::Revolute { shift, t1, u, n } => {
@@ -1101,7 +1102,12 @@ impl DecoupledIk {
                     for &q2 in q2s.as_slice() {
                         let g = self.chain[1].moved(JointKind::Revolute, q2).point(&hv);
                         if let Some(q1) = azimuth(p, &g, tiny) {
-                            push([q1, q2, q3]);
+                            push(match self.kind {
+                                // q2 and q3 went through X/a and Y/b: refined where a or b
+                                // (the shoulder's offset, the sine of its angle) is small.
+                                ArmKind::OffsetShoulder => self.polished(w, p, [q1, q2, q3]),
+                                _ => [q1, q2, q3],
+                            });
                         }
                     }
                 }

@@ -185,7 +185,7 @@ pub fn random_arm(dof: usize, style: ArmStyle, seed: u64) -> RobotModel {
             "Random {style_name} arm, {dof} joints, seed {seed} (dhgen_model::random)"
         )),
         convention: Convention::Standard,
-        gravity: [0.0, 0.0, -9.81],
+        gravity: crate::validate::DEFAULT_GRAVITY,
         base: None,
         tool: None,
         links,

@@ -1044,9 +1044,12 @@ impl<'a> Reader<'a> {
             placed = joints[j].origin.compose(&placed);
             l = joints[j].parent;
         }
-        // g_base = Rᵀ g_root: the root's z row of R, times −9.81 (+ 0.0 makes −0 zero).
-        let gravity = placed.r[2].map(|x| x * -9.81 + 0.0);
-        if gravity != [0.0, 0.0, -9.81] {
+        // g_base = Rᵀ g_root (+ 0.0 makes −0 zero).
+        let g = validate::DEFAULT_GRAVITY;
+        let gravity: [f64; 3] = core::array::from_fn(|c| {
+            placed.r[0][c] * g[0] + placed.r[1][c] * g[1] + placed.r[2][c] * g[2] + 0.0
+        });
+        if gravity != g {
             let v = gravity.iter().map(|x| Value::Number(*x, loc)).collect();
             top.push(("gravity".to_string(), loc, Value::Array(v, loc)));
         }

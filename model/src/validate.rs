@@ -345,6 +345,10 @@ pub const ANGLE: Range = Range::up_to("angle", "rad", 1e3);
 pub const MASS: Range = Range::up_to("mass", "kg", 1e6);
 /// Entries of an inertia tensor.
 pub const INERTIA: Range = Range::up_to("inertia", "kg·m²", 1e9);
+/// `gravity` where a description gives none: 9.81 m/s² down the world frame's z axis (also
+/// URDF's, which has no gravity of its own, in the root link's frame).
+pub const DEFAULT_GRAVITY: [f64; 3] = [0.0, 0.0, -9.81];
+
 /// Components of `gravity`.
 pub const GRAVITY: Range = Range::up_to("gravity component", "m/s²", 1e3);
 /// Rotor inertias of motors.
@@ -513,7 +517,7 @@ pub fn validate<L: Clone>(
     })?;
     let gravity = f
         .with("gravity", |at, v| vec3(at, v, GRAVITY))?
-        .unwrap_or([0.0, 0.0, -9.81]);
+        .unwrap_or(DEFAULT_GRAVITY);
     let base = f.with("base", pose)?;
     let tool = f.with("tool", pose)?;
     let allow_nonphysical = f
