@@ -388,7 +388,10 @@ impl<'a> ChainRef<'a> {
         let tol = GEOMETRY_TOLERANCE * self.length_scale();
         // Consecutive axes parallel (the sine of their angle below 1e-6) meet in a line of
         // points, or none: the wrist would turn about two directions only.
-        let parallel = |u: &[f64; 3], v: &[f64; 3]| 1.0 - dot(u, v).powi(2) < 1e-12;
+        let parallel = |u: &[f64; 3], v: &[f64; 3]| {
+            let k = dot(u, v);
+            1.0 - k * k < 1e-12
+        };
         if parallel(&a.direction, &b.direction) {
             return Err(NotSpherical::ParallelAxes { axis: first });
         }
