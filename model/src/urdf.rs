@@ -1060,9 +1060,16 @@ impl<'a> Reader<'a> {
         // reader derived (origins composed through fixed joints, merged mass properties):
         // named in URDF's terms.
         let model = validate::validate(&table, None).map_err(|e| {
+            // Bullet reads `lower > upper` as a joint without limits, and its files use it.
+            let hint = if e.field.as_deref() == Some("limits") && e.message.contains("not below") {
+                ": write them in order, or leave out lower and upper for a joint without \
+                 position limits (Bullet reads lower > upper as no limits; dhgen does not guess)"
+            } else {
+                ""
+            };
             self.err(
                 e.loc,
-                format!("{}{}", urdf_terms(&e, &out_joints), e.message),
+                format!("{}{}{hint}", urdf_terms(&e, &out_joints), e.message),
             )
         })?;
         Ok(UrdfRobot {

@@ -857,7 +857,9 @@ fn urdf_errors_name_the_attribute_where_it_is() {
         bad(&text),
         format!(
             "{}joint `j1` <limit lower upper>: lower limit 1 rad (57.2958°) is not below upper \
-             limit -1 rad (-57.2958°)",
+             limit -1 rad (-57.2958°): write them in order, or leave out lower and upper for a \
+             joint without position limits (Bullet reads lower > upper as no limits; dhgen does \
+             not guess)",
             at(&text, "lower=")
         )
     );
