@@ -3,8 +3,9 @@
 //! 1. Sampling (6.4.1): configurations drawn uniformly within the joint ranges (limits, or
 //!    `[−π, π]` for a revolute joint without limits); those that are not free are
 //!    discarded.
-//! 2. Connection (6.4.2): every node is joined to each of its `k` nearest nodes (a kd-tree,
-//!    `kiddo`, Euclidean joint-space distance) by the straight-line local planner
+//! 2. Connection (6.4.2): every node is joined to each of its `k` nearest nodes (Euclidean
+//!    joint-space distance: a kd-tree, `kiddo`, for up to [`KD_TREE_DOF`] joints, an exact
+//!    scan of every node beyond, where a kd-tree prunes little) by the straight-line local planner
 //!    [`CollisionChecker::motion_is_free`] at the stated `resolution`.
 //! 3. Enhancement (6.4.3), while start and goal lie in different connected components and
 //!    the budget allows: each smaller component tries to connect to the largest one through
@@ -48,8 +49,10 @@ use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use std::time::{Duration, Instant};
 
-/// The most joints a roadmap supports (its kd-tree is built for a fixed dimension).
-pub const MAX_DOF: usize = 8;
+/// The most joints for which a roadmap finds nearest nodes with a kd-tree (built for a fixed
+/// dimension); with more, it scans every node. Both find the same neighbours: the nearest,
+/// equal distances in node order.
+pub const KD_TREE_DOF: usize = 8;
 
 /// Budgets and settings of a roadmap.
 #[derive(Clone, Debug, PartialEq)]
@@ -188,8 +191,20 @@ pub struct PrmPath<V> {
     pub stats: PrmStats,
 }
 
-/// A kd-tree over node configurations, for the arm's number of joints.
+/// The node configurations, searched for nearest neighbours: a kd-tree for the arm's number
+/// of joints up to [`KD_TREE_DOF`], a scan of all of them beyond.
 enum NodeTree {
+    Kd(Kd),
+    /// Every configuration, `dim` coordinates each, and its node.
+    Scan {
+        dim: usize,
+        points: Vec<f64>,
+        items: Vec<usize>,
+    },
+}
+
+/// A kd-tree for the arm's number of joints.
+enum Kd {
     D1(KdTree<f64, 1>),
     D2(KdTree<f64, 2>),
     D3(KdTree<f64, 3>),
@@ -203,14 +218,14 @@ enum NodeTree {
 macro_rules! each_tree {
     ($tree:expr, $t:ident => $body:expr) => {
         match $tree {
-            NodeTree::D1($t) => $body,
-            NodeTree::D2($t) => $body,
-            NodeTree::D3($t) => $body,
-            NodeTree::D4($t) => $body,
-            NodeTree::D5($t) => $body,
-            NodeTree::D6($t) => $body,
-            NodeTree::D7($t) => $body,
-            NodeTree::D8($t) => $body,
+            Kd::D1($t) => $body,
+            Kd::D2($t) => $body,
+            Kd::D3($t) => $body,
+            Kd::D4($t) => $body,
+            Kd::D5($t) => $body,
+            Kd::D6($t) => $body,
+            Kd::D7($t) => $body,
+            Kd::D8($t) => $body,
         }
     };
 }
@@ -226,38 +241,86 @@ fn tree_add<const K: usize>(tree: &mut KdTree<f64, K>, q: &[f64], item: usize) {
 fn tree_nearest<const K: usize>(tree: &KdTree<f64, K>, q: &[f64], n: usize) -> Vec<(f64, usize)> {
     // No more than the tree holds (a `neighbours` of `usize::MAX` asks for everything).
     let n = n.min(usize::try_from(tree.size()).unwrap_or(usize::MAX));
-    let mut found: Vec<(f64, usize)> = tree
-        .nearest_n::<SquaredEuclidean>(&point::<K>(q), n)
-        .into_iter()
-        .map(|nn| (nn.distance, nn.item as usize))
-        .collect();
-    // Equal distances in node order, so that the result never depends on the tree's layout.
-    found.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+    if n == 0 {
+        // kiddo asks for at least one (an empty tree has none to give).
+        return Vec::new();
+    }
+    let query = point::<K>(q);
+    let pairs = |found: Vec<kiddo::NearestNeighbour<f64, u64>>| -> Vec<(f64, usize)> {
+        let mut found: Vec<(f64, usize)> = found
+            .into_iter()
+            .map(|nn| (nn.distance, nn.item as usize))
+            .collect();
+        found.sort_by(nearer);
+        found
+    };
+    // One more than asked, to see whether nodes tie at the last distance taken: the tree
+    // picks among those by its layout, so then all of them are fetched and the first in
+    // node order kept. Equal distances in node order: the scan's answer, whatever the layout.
+    let more = n.saturating_add(1);
+    let mut found = pairs(tree.nearest_n::<SquaredEuclidean>(&query, more));
+    if found.len() > n && found[n].0 == found[n - 1].0 {
+        found = pairs(tree.within_unsorted::<SquaredEuclidean>(&query, found[n - 1].0));
+    }
+    found.truncate(n);
     found
 }
 
+/// Nearer first, equal distances in node order: `(squared distance, node)`.
+fn nearer(a: &(f64, usize), b: &(f64, usize)) -> core::cmp::Ordering {
+    a.0.total_cmp(&b.0).then(a.1.cmp(&b.1))
+}
+
 impl NodeTree {
-    fn new(dim: usize) -> Option<NodeTree> {
-        Some(match dim {
-            1 => NodeTree::D1(KdTree::new()),
-            2 => NodeTree::D2(KdTree::new()),
-            3 => NodeTree::D3(KdTree::new()),
-            4 => NodeTree::D4(KdTree::new()),
-            5 => NodeTree::D5(KdTree::new()),
-            6 => NodeTree::D6(KdTree::new()),
-            7 => NodeTree::D7(KdTree::new()),
-            8 => NodeTree::D8(KdTree::new()),
-            _ => return None,
-        })
+    fn new(dim: usize) -> NodeTree {
+        match dim {
+            1 => NodeTree::Kd(Kd::D1(KdTree::new())),
+            2 => NodeTree::Kd(Kd::D2(KdTree::new())),
+            3 => NodeTree::Kd(Kd::D3(KdTree::new())),
+            4 => NodeTree::Kd(Kd::D4(KdTree::new())),
+            5 => NodeTree::Kd(Kd::D5(KdTree::new())),
+            6 => NodeTree::Kd(Kd::D6(KdTree::new())),
+            7 => NodeTree::Kd(Kd::D7(KdTree::new())),
+            8 => NodeTree::Kd(Kd::D8(KdTree::new())),
+            dim => NodeTree::Scan {
+                dim,
+                points: Vec::new(),
+                items: Vec::new(),
+            },
+        }
     }
 
     fn add(&mut self, q: &[f64], item: usize) {
-        each_tree!(self, t => tree_add(t, q, item))
+        match self {
+            NodeTree::Kd(kd) => each_tree!(kd, t => tree_add(t, q, item)),
+            NodeTree::Scan { points, items, .. } => {
+                points.extend_from_slice(q);
+                items.push(item);
+            }
+        }
     }
 
     /// The `n` nearest nodes to `q`, nearest first: `(squared distance, node)`.
     fn nearest(&self, q: &[f64], n: usize) -> Vec<(f64, usize)> {
-        each_tree!(self, t => tree_nearest(t, q, n))
+        match self {
+            NodeTree::Kd(kd) => each_tree!(kd, t => tree_nearest(t, q, n)),
+            NodeTree::Scan { dim, points, items } => {
+                let mut found: Vec<(f64, usize)> = points
+                    .chunks_exact(*dim)
+                    .zip(items)
+                    .map(|(p, &item)| (p.iter().zip(q).map(|(a, b)| (a - b) * (a - b)).sum(), item))
+                    .collect();
+                if n == 0 {
+                    return Vec::new();
+                }
+                if n < found.len() {
+                    found.select_nth_unstable_by(n - 1, nearer);
+                    found.truncate(n);
+                }
+                found.sort_by(nearer);
+                found
+            }
+        }
     }
 }
 
@@ -292,10 +355,7 @@ where
     ) -> Result<Self, PlanError> {
         config.check()?;
         let dof = checker.dof();
-        let tree = NodeTree::new(dof).ok_or_else(|| PlanError::InvalidParameter {
-            name: "dof",
-            reason: format!("the roadmap supports 1 to {MAX_DOF} joints; the arm has {dof}"),
-        })?;
+        let tree = NodeTree::new(dof);
         Ok(Prm {
             margin: checker.model().margin(config.resolution),
             ranges: (0..dof).map(|j| checker.joint_range(j)).collect(),
@@ -726,4 +786,57 @@ where
     DefaultAllocator: nalgebra::allocator::Allocator<D>,
 {
     path.windows(2).map(|w| (&w[1] - &w[0]).norm()).sum()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::NodeTree;
+    use rand::{Rng, SeedableRng};
+    use rand_chacha::ChaCha8Rng;
+
+    /// The scan (more joints than the kd-trees have) finds what a kd-tree finds: the same
+    /// nodes in the same order, equal distances in node order, for every dimension a kd-tree
+    /// has, with points repeated and on a coarse grid (many equal distances).
+    #[test]
+    fn the_scan_finds_the_kd_trees_neighbours() {
+        let mut rng = ChaCha8Rng::seed_from_u64(11);
+        for dim in 1..=8 {
+            let mut tree = NodeTree::new(dim);
+            assert!(matches!(tree, NodeTree::Kd(_)));
+            let mut scan = NodeTree::Scan {
+                dim,
+                points: Vec::new(),
+                items: Vec::new(),
+            };
+            let mut points: Vec<Vec<f64>> = Vec::new();
+            for i in 0..400 {
+                let q: Vec<f64> = if i % 7 == 3 {
+                    points[rng.random_range(0..points.len())].clone()
+                } else {
+                    (0..dim)
+                        .map(|_| f64::from(rng.random_range(-4..=4)) * 0.5)
+                        .collect()
+                };
+                // The roadmap keeps twins out of the kd-tree (it holds 32 items at one point).
+                if tree.nearest(&q, 1).first().is_none_or(|&(d, _)| d > 0.0) {
+                    tree.add(&q, i);
+                    scan.add(&q, i);
+                }
+                points.push(q);
+            }
+            for k in 0..100 {
+                // Half the queries on the grid: many nodes at equal distances.
+                let q: Vec<f64> = (0..dim)
+                    .map(|_| match k % 2 {
+                        0 => rng.random_range(-2.5..2.5),
+                        _ => f64::from(rng.random_range(-5..=5)) * 0.5,
+                    })
+                    .collect();
+                for n in [0, 1, 2, 10, 1000] {
+                    assert_eq!(tree.nearest(&q, n), scan.nearest(&q, n), "dim {dim}, n {n}");
+                }
+            }
+        }
+        assert!(matches!(NodeTree::new(9), NodeTree::Scan { dim: 9, .. }));
+    }
 }

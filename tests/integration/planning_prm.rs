@@ -15,7 +15,9 @@ use crate::planning_support::{
 };
 use dhgen::nalgebra::DefaultAllocator;
 use dhgen::nalgebra::{DVector, SVector};
-use dhgen::planning::{CollisionChecker, Obstacle, PlanError, Prm, PrmConfig, PrmPath, Scene};
+use dhgen::planning::{
+    CollisionChecker, Obstacle, PlanError, Prm, PrmConfig, PrmPath, Scene, prm::KD_TREE_DOF,
+};
 use dhgen::{Arm, ArmAllocator, JointVector, Robot};
 
 const SEEDS: u64 = 100;
@@ -336,19 +338,37 @@ fn bad_queries_are_errors() {
         ),
         "{err}"
     );
+}
 
-    // More joints than the roadmap's kd-tree supports.
+/// More joints than the roadmap's kd-trees have (`KD_TREE_DOF`): the roadmap scans its
+/// nodes instead, and plans as well. A planar snake of 12 links, 1.2 m long, swings from
+/// lying along x to pointing up (q1 = 1.3) past a sphere its straight-line motion would
+/// sweep through; every seed finds a path, re-checked ten times finer.
+#[test]
+fn a_twelve_joint_snake_is_planned_around_an_obstacle() {
+    assert_eq!(KD_TREE_DOF, 8);
     let link = "[[links]]\njoint = \"revolute\"\na = 0.1\nalpha = 0\nd = 0\ntheta = 0\n\
-                collision = { radius = 0.01 }\n";
+                limits = [-2.5, 2.5]\ncollision = { radius = 0.01 }\n";
     let text = format!(
         "name = \"snake\"\nconvention = \"standard\"\n{}",
-        link.repeat(9)
+        link.repeat(12)
     );
     let snake = Robot::from_toml_str(&text).unwrap();
-    let mut checker = CollisionChecker::new(&snake, Scene::default()).unwrap();
-    let err = Prm::new(&mut checker, narrow_config(), 0).err().unwrap();
-    assert!(
-        err.to_string().contains("1 to 8 joints; the arm has 9"),
-        "{err}"
-    );
+    let start = DVector::zeros(12);
+    let mut goal = DVector::zeros(12);
+    goal[0] = 1.3;
+    let config = PrmConfig {
+        time_budget: Some(TIME_BUDGET),
+        ..PrmConfig::default()
+    };
+    for seed in 0..4 {
+        let scene = Scene::new(vec![Obstacle::sphere([0.6, 0.35, 0.0], 0.12)]).unwrap();
+        let mut checker = CollisionChecker::new(&snake, scene).unwrap();
+        assert!(!checker.motion_is_free(&start, &goal, config.resolution));
+        let path = Prm::new(&mut checker, config.clone(), seed)
+            .unwrap()
+            .query(&start, &goal)
+            .unwrap_or_else(|e| panic!("seed {seed}: {e}"));
+        check_path(&mut checker, &path, &start, &goal, config.resolution);
+    }
 }
