@@ -364,12 +364,14 @@ pub fn reduce(stacked: &DMatrix<f64>) -> BaseParameters {
             let (i, d) = (independent[k], dependent[m]);
             // Column d = Σ_k β_s[k][m] column i (scaled): in units, β = β_s · |Y_i| / |Y_d|
             // for the parameters (π_i absorbs β π_d).
-            let b = if norms[d] > 1e-12 * largest {
+            // Zero where column i's share of column d is rounding (both unit-norm, so the
+            // test is the same in any units).
+            let b = if norms[d] > 1e-12 * largest && beta_scaled[(k, m)].abs() >= 1e-10 {
                 beta_scaled[(k, m)] * norms[d] / norms[i]
             } else {
                 0.0
             };
-            beta[(k, m)] = if b.abs() < 1e-10 { 0.0 } else { b };
+            beta[(k, m)] = b;
         }
     }
     BaseParameters {

@@ -325,3 +325,54 @@ generated_regressor!(
     planar_elbow,
     runtime("planar_elbow")
 );
+
+/// The regrouping does not depend on units. Seeded general arms in metres and kilograms, in
+/// millimetres and tenths of grams (lengths ×1e-3, masses ×1e-4), and thirty times larger and
+/// a thousand times heavier, have the same number of base parameters, and `Y_b π_b = τ` to
+/// rounding relative to τ itself. (A threshold on the coefficients β in the parameters' units,
+/// 1e-10, had dropped the small arms' real ones: τ off by 3e-8 of its size.)
+#[test]
+fn base_parameters_hold_in_any_units() {
+    use dhgen::JointKind;
+    use dhgen::model::random::{ArmStyle, random_arm};
+    for (dof, seed) in [(4, 2), (9, 3), (7, 5)] {
+        let mut counts = Vec::new();
+        for (length, mass) in [(1.0, 1.0), (1e-3, 1e-4), (30.0, 1e3)] {
+            let mut model = random_arm(dof, ArmStyle::General, seed);
+            for l in &mut model.links {
+                l.a *= length;
+                if l.joint == JointKind::Revolute {
+                    l.d *= length;
+                } else if let Some(limits) = &mut l.limits {
+                    limits.iter_mut().for_each(|x| *x *= length);
+                }
+                let i = l.inertial.as_mut().unwrap();
+                i.mass *= mass;
+                i.com.iter_mut().for_each(|x| *x *= length);
+                i.inertia
+                    .iter_mut()
+                    .flatten()
+                    .for_each(|x| *x *= mass * length * length);
+            }
+            let pi = DVector::from_vec(dhgen::model::parameters::values(&model).unwrap());
+            let robot = Robot::from_model(model);
+            let base = robot.base_parameters();
+            let pi_b = base.reduce(&pi);
+            let mut worst: f64 = 0.0;
+            for s in 0..20 {
+                let (q, qd, qdd) = state(&robot, 500 + s);
+                let y = robot.regressor(&q[..], &qd[..], &qdd[..]);
+                let tau = robot.inverse_dynamics(&q[..], &qd[..], &qdd[..]);
+                let err = (base.base_regressor(&y) * &pi_b - &tau).amax() / tau.amax();
+                worst = worst.max(err);
+            }
+            println!(
+                "general {dof} (seed {seed}) ×{length:e} m ×{mass:e} kg: {} base parameters, Y_b π_b − τ {worst:.1e} of |τ|",
+                base.count()
+            );
+            assert!(worst <= 1e-12, "{dof} joints ×{length:e} m: {worst:e}");
+            counts.push(base.count());
+        }
+        assert!(counts.iter().all(|&c| c == counts[0]), "{counts:?}");
+    }
+}
