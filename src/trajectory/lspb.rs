@@ -35,12 +35,22 @@ pub struct Lspb {
     blend_time: f64,
 }
 
+/// How far, relative to it, a bound computed from the duration `T = tf − t0` here may lie
+/// from the same bound a caller computed with its own duration `T'` (with `tf = t0 + T'`
+/// rounded): `T` and `T'` differ by the rounding of `tf`, up to half an ulp of `|tf|`, which
+/// is large against `T` when the move starts late (`t0 = 1e4` s, `T = 0.5` s: 4e-12), plus a
+/// few roundings of the bound's own arithmetic.
+fn duration_rounding(t0: f64, tf: f64, duration: f64) -> f64 {
+    8.0 * f64::EPSILON * (1.0 + (abs(t0) + abs(tf)) / duration)
+}
+
 impl Lspb {
     /// The LSPB from rest at `q0` (time `t0`) to rest at `qf` (time `tf`) with cruise velocity `v`.
     ///
     /// `v` must lie in `((qf - q0)/T, 2 (qf - q0)/T]` for a positive move and in
     /// `[2 (qf - q0)/T, (qf - q0)/T)` for a negative one (`T = tf - t0`), else the blends cannot fit;
-    /// for a zero move only `v = 0` is accepted. The blend time is
+    /// for a zero move only `v = 0` is accepted (a `v` within the rounding of `tf - t0` of the
+    /// bang-bang end `2 (qf - q0)/T` is taken as it). The blend time is
     /// `tb = (q0 - qf + V T)/V` and the acceleration `α = V/tb`.
     pub fn with_velocity(
         t0: f64,
@@ -54,6 +64,10 @@ impl Lspb {
         finite("V", v)?;
         let average = dq / duration;
         let max = 2.0 * average;
+        // The bang-bang end 2Δ/T as the caller computes it, with its own duration, lies
+        // within `rounding` of the one here, and is taken as that.
+        let near_max = abs(v - max) <= duration_rounding(t0, tf, duration) * abs(max);
+        let v = if near_max { max } else { v };
         // Written so that it is the same test for either sign of the move.
         let inside = if dq > 0.0 {
             v > average && v <= max
@@ -95,8 +109,9 @@ impl Lspb {
     /// The LSPB from rest at `q0` (time `t0`) to rest at `qf` (time `tf`) whose blends use the
     /// acceleration magnitude `alpha`.
     ///
-    /// `alpha` must be at least `4 |qf - q0| / T²` (the bang-bang acceleration for this duration);
-    /// the blend time is then `tb = T/2 - sqrt(α² T² - 4 α |qf - q0|) / (2 α)`.
+    /// `alpha` must be at least `4 |qf - q0| / T²` (the bang-bang acceleration for this duration;
+    /// computed by the caller from its own duration, within the rounding of `tf - t0`, it is
+    /// taken as that bound); the blend time is then `tb = T/2 - sqrt(α² T² - 4 α |qf - q0|) / (2 α)`.
     pub fn with_acceleration(
         t0: f64,
         tf: f64,
@@ -112,14 +127,16 @@ impl Lspb {
         }
         let distance = abs(dq);
         let min = 4.0 * distance / (duration * duration);
-        // Accept the bang-bang acceleration computed by the caller with its own rounding.
-        if alpha < min * (1.0 - 8.0 * f64::EPSILON) {
+        // Accept the bang-bang acceleration computed by the caller with its own rounding (of
+        // the move and of the duration), and take it as the one here.
+        if alpha < min * (1.0 - duration_rounding(t0, tf, duration)) {
             return Err(TrajectoryError::LspbAccelerationTooSmall {
                 alpha,
                 min,
                 at: Location::NONE,
             });
         }
+        let alpha = alpha.max(min);
         let slack = (alpha * duration * duration - 4.0 * distance).max(0.0);
         // tb = T/2 - sqrt(α(αT² - 4|Δ|))/(2α), rationalized so that a large α (short blends) does
         // not lose tb to cancellation; sqrt(α) sqrt(slack) cannot overflow where α · slack could.

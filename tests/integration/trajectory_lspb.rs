@@ -349,3 +349,54 @@ fn blends_below_float_resolution_are_rejected() {
     assert!(p.blend_time() > 0.0 && p.acceleration().is_finite());
     assert_eq!(p.eval(2.0), Setpoint::new(1.0, 0.0, -1e300));
 }
+
+/// The bang-bang ends, V = 2Δ/T and α = 4|Δ|/T², computed by the caller from its own duration
+/// T, are accepted at any start time, and give a valid LSPB between the same points. With `tf = t0 + T` the
+/// duration here, `tf − t0`, differs from T by the rounding of `tf` (4e-12 of T for
+/// `t0 = 1e4` s, `T = 0.5` s): α had been refused as too small for 16 % of such calls.
+#[test]
+fn bang_bang_ends_computed_by_the_caller_are_accepted_at_any_start() {
+    let mut refused_before = 0;
+    for t0 in [
+        0.0,
+        -3.7,
+        1e3,
+        12_345.678,
+        19_216.294_467_242_7,
+        82_597.583_854_816_72,
+        1e6,
+    ] {
+        for big_t in [1e-3, 0.562_533_940_163_127_9, 20.513_546_583_031_03, 39.4] {
+            for (q0, qf) in [
+                (-1_574.039_643_061_203_8, -1_921.171_826_866_983),
+                (9.284_153_992_952_483e-7, 1.007_399_156_133_687_4e-6),
+                (0.0, 1.0),
+                (3.294_885_825_966_184_3e-3, 1.991_026_852_178_582e-3),
+            ] {
+                let tf = t0 + big_t;
+                let dq: f64 = qf - q0;
+                let alpha = 4.0 * dq.abs() / (big_t * big_t);
+                let here = tf - t0;
+                if alpha < 4.0 * dq.abs() / (here * here) * (1.0 - 8.0 * f64::EPSILON) {
+                    refused_before += 1;
+                }
+                let from_alpha = Lspb::with_acceleration(t0, tf, q0, qf, alpha)
+                    .unwrap_or_else(|e| panic!("t0 {t0}, T {big_t}, {q0} -> {qf}: {e}"));
+                let from_v = Lspb::with_velocity(t0, tf, q0, qf, 2.0 * dq / big_t)
+                    .unwrap_or_else(|e| panic!("t0 {t0}, T {big_t}, {q0} -> {qf}: {e}"));
+                for p in [from_alpha, from_v] {
+                    // A valid LSPB: its blends cover the move, from q0 to qf.
+                    let tb = p.blend_time();
+                    let a = p.acceleration().abs();
+                    assert_close("α tb (T - tb)", a * tb * (here - tb), dq.abs(), dq.abs());
+                    assert_close("q(tf)", p.eval(tf).q, qf, dq.abs());
+                    assert_close("q(t0)", p.eval(t0).q, q0, dq.abs());
+                }
+            }
+        }
+    }
+    assert!(
+        refused_before > 0,
+        "the cases include ones the old rule refused"
+    );
+}
