@@ -5,8 +5,8 @@
 //!    discarded.
 //! 2. Connection (6.4.2): every node is joined to each of its `k` nearest nodes (Euclidean
 //!    joint-space distance: a kd-tree, `kiddo`, for up to [`KD_TREE_DOF`] joints, an exact
-//!    scan of every node beyond, where a kd-tree prunes little) by the straight-line local planner
-//!    [`CollisionChecker::motion_is_free`] at the stated `resolution`.
+//!    scan of every node beyond, where a kd-tree prunes little) by the straight-line local
+//!    planner [`CollisionChecker::motion_is_free`] at the stated `resolution`.
 //! 3. Enhancement (6.4.3), while start and goal lie in different connected components and
 //!    the budget allows: each smaller component tries to connect to the largest one through
 //!    its node closest to it (the closest pairs first), then new nodes are sampled, mostly
@@ -304,15 +304,13 @@ impl NodeTree {
     fn nearest(&self, q: &[f64], n: usize) -> Vec<(f64, usize)> {
         match self {
             NodeTree::Kd(kd) => each_tree!(kd, t => tree_nearest(t, q, n)),
+            NodeTree::Scan { .. } if n == 0 => Vec::new(),
             NodeTree::Scan { dim, points, items } => {
                 let mut found: Vec<(f64, usize)> = points
                     .chunks_exact(*dim)
                     .zip(items)
                     .map(|(p, &item)| (p.iter().zip(q).map(|(a, b)| (a - b) * (a - b)).sum(), item))
                     .collect();
-                if n == 0 {
-                    return Vec::new();
-                }
                 if n < found.len() {
                     found.select_nth_unstable_by(n - 1, nearer);
                     found.truncate(n);

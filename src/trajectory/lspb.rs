@@ -65,7 +65,7 @@ impl Lspb {
         let average = dq / duration;
         let max = 2.0 * average;
         // The bang-bang end 2Δ/T as the caller computes it, with its own duration, lies
-        // within `rounding` of the one here, and is taken as that.
+        // within `duration_rounding` of the one here, and is taken as that.
         let near_max = abs(v - max) <= duration_rounding(t0, tf, duration) * abs(max);
         let v = if near_max { max } else { v };
         // Written so that it is the same test for either sign of the move.
@@ -109,9 +109,10 @@ impl Lspb {
     /// The LSPB from rest at `q0` (time `t0`) to rest at `qf` (time `tf`) whose blends use the
     /// acceleration magnitude `alpha`.
     ///
-    /// `alpha` must be at least `4 |qf - q0| / T²` (the bang-bang acceleration for this duration;
-    /// computed by the caller from its own duration, within the rounding of `tf - t0`, it is
-    /// taken as that bound); the blend time is then `tb = T/2 - sqrt(α² T² - 4 α |qf - q0|) / (2 α)`.
+    /// `alpha` must be at least `4 |qf - q0| / T²` (the bang-bang acceleration for this
+    /// duration; computed by the caller from its own duration, within the rounding of
+    /// `tf - t0`, it is taken as that bound); the blend time is then
+    /// `tb = T/2 - sqrt(α² T² - 4 α |qf - q0|) / (2 α)`.
     pub fn with_acceleration(
         t0: f64,
         tf: f64,
@@ -120,6 +121,20 @@ impl Lspb {
         alpha: f64,
     ) -> Result<Self, TrajectoryError> {
         let duration = interval(t0, tf)?;
+        Self::with_acceleration_over(t0, tf, duration, q0, qf, alpha)
+    }
+
+    /// [`with_acceleration`](Self::with_acceleration) over `duration` exactly, ending at `tf`
+    /// (`t0 + duration` rounded): for a joint synchronized to another's duration, which
+    /// `tf - t0` gives only to the rounding of `tf`.
+    pub(crate) fn with_acceleration_over(
+        t0: f64,
+        tf: f64,
+        duration: f64,
+        q0: f64,
+        qf: f64,
+        alpha: f64,
+    ) -> Result<Self, TrajectoryError> {
         let dq = displacement(q0, qf)?;
         positive("alpha", alpha)?;
         if dq == 0.0 {

@@ -217,7 +217,10 @@ impl<const N: usize> Synchronized<Lspb, N> {
     ///
     /// The slowest joint runs its own minimum-time profile; every other joint runs the LSPB of
     /// duration `T` whose blends use its full `amax[j]` (`Lspb::with_acceleration`), which lowers its
-    /// cruise velocity below its own minimum-time peak, so both of its limits hold.
+    /// cruise velocity below its own minimum-time peak, so both of its limits hold: to
+    /// rounding, which the blend time's square root can raise to a few 1e-9 of `vmax[j]` where
+    /// a joint's move lies at the boundary of the two regimes (`amax·|Δ| ≈ vmax²`) and its own
+    /// minimum duration within rounding of `T` (4 of 400,000 profiles built to hit that case).
     pub fn velocity_limited(
         t0: f64,
         q0: &[f64; N],
@@ -239,8 +242,11 @@ impl<const N: usize> Synchronized<Lspb, N> {
             } else if q0[j] == qf[j] {
                 Ok(Lspb::stationary(t0, end, duration, q0[j]))
             } else {
-                // Ends at exactly the slowest joint's end time t0 + T.
-                Lspb::with_acceleration(t0, end, q0[j], qf[j], amax[j])
+                // Over the slowest joint's duration T itself, ending at its end time t0 + T
+                // (end − t0 is T only to the rounding of the end, which the square root of
+                // the blend time can amplify past a limit where a joint's move is nearly the
+                // slowest one's).
+                Lspb::with_acceleration_over(t0, end, duration, q0[j], qf[j], amax[j])
             }
         })?;
         Self::new(joints)

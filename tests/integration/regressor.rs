@@ -367,7 +367,8 @@ fn base_parameters_hold_in_any_units() {
                 worst = worst.max(err);
             }
             println!(
-                "general {dof} (seed {seed}) ×{length:e} m ×{mass:e} kg: {} base parameters, Y_b π_b − τ {worst:.1e} of |τ|",
+                "general {dof} (seed {seed}) ×{length:e} m ×{mass:e} kg: {} base parameters, \
+                 Y_b π_b − τ {worst:.1e} of |τ|",
                 base.count()
             );
             assert!(worst <= 1e-12, "{dof} joints ×{length:e} m: {worst:e}");

@@ -305,3 +305,46 @@ fn eval_into_checks_the_buffer_length() {
     );
     assert_eq!(e.to_string(), "out has length 3, expected 2");
 }
+
+/// A joint whose move is nearly the slowest joint's, at the boundary of the two regimes
+/// (amax·|Δ| ≈ vmax², where the blend time has an infinite derivative), starting late: it
+/// follows the slowest joint's duration itself, not `end − t0` (which is that duration only to
+/// the rounding of the end time). Built from `end − t0` it had exceeded vmax by 1.9e-7 of it
+/// (and, before the bang-bang bound allowed for that rounding, had been refused).
+#[test]
+fn a_joint_nearly_the_slowest_keeps_its_limits_when_starting_late() {
+    let q0 = [
+        0.835_073_358_107_350_1,
+        0.903_782_761_416_425_7,
+        0.156_428_751_233_391_5,
+    ];
+    let qf = [
+        0.521_761_883_075_312_3,
+        0.590_471_286_384_388_1,
+        -6.349_236_870_898_389e-4,
+    ];
+    let (vmax, amax) = (1.199_027_104_930_081_6, 4.588_617_565_256_723);
+    for t0 in [0.0, 1e3, 1e5, 3e6] {
+        let p = Synchronized::velocity_limited(t0, &q0, &qf, &[vmax; 3], &[amax; 3])
+            .unwrap_or_else(|e| panic!("t0 {t0}: {e}"));
+        let (a, b) = (p.start_time(), p.end_time());
+        for i in 0..=2000 {
+            let t = a + (b - a) * f64::from(i) / 2000.0;
+            for (j, s) in p.eval(t).iter().enumerate() {
+                assert!(
+                    s.qd.abs() <= vmax * (1.0 + 1e-12),
+                    "t0 {t0}, joint {j}: q̇ {} at {t}",
+                    s.qd
+                );
+                assert!(
+                    s.qdd.abs() <= amax * (1.0 + 1e-12),
+                    "t0 {t0}, joint {j}: q̈ {}",
+                    s.qdd
+                );
+            }
+        }
+        for (j, s) in p.eval(b).iter().enumerate() {
+            assert_close("q(tf)", s.q, qf[j], 1.0);
+        }
+    }
+}
