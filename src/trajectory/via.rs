@@ -455,7 +455,8 @@ impl BlendedSegments {
         let mut corners = times.to_vec();
         corners[0] += half;
         corners[m] -= half;
-        Self::build(dof, times.to_vec(), corners, blend_time, points)
+        let spans = corners.windows(2).map(|c| c[1] - c[0]).collect();
+        Self::build(dof, times.to_vec(), corners, spans, blend_time, points)
     }
 
     /// Linear segments through `points` starting at `t0`, timed by per-joint velocity limits
@@ -498,25 +499,31 @@ impl BlendedSegments {
             .unwrap_or_else(|| (0..dof).map(|j| vmax[j] / amax[j]).fold(0.0, f64::max));
         finite("tacc", tacc)?;
         let half = 0.5 * tacc;
+        // The segments' durations themselves set their velocities: differences of the corner
+        // times hold them only to the rounding of those times, which a late start makes large
+        // against a short segment (at t0 = 3e6 s, 5e-10 s: accelerations 1.7e-8 over amax).
+        let spans: Vec<f64> = cruise.iter().map(|c| c.max(tacc)).collect();
         let mut corners = Vec::with_capacity(m + 1);
         corners.push(t0 + half);
         for k in 1..=m {
-            corners.push(corners[k - 1] + cruise[k - 1].max(tacc));
+            corners.push(corners[k - 1] + spans[k - 1]);
         }
         let mut times = corners.clone();
         times[0] = t0;
         times[m] = corners[m] + half;
         finite("tf", times[m])?;
-        Self::build(dof, times, corners, tacc, points)
+        Self::build(dof, times, corners, spans, tacc, points)
     }
 
     /// Stores the path (inputs already checked), after making sure that its velocities and
     /// accelerations are representable: absurdly short blends or segments (e.g. a 1e-300 s
     /// blend) are rejected rather than producing inf or NaN.
+    /// `spans[k - 1]` is the time from corner `k - 1` to corner `k`.
     fn build<R: AsRef<[f64]>>(
         dof: usize,
         times: Vec<f64>,
         corners: Vec<f64>,
+        spans: Vec<f64>,
         blend_time: f64,
         points: &[R],
     ) -> Result<Self, TrajectoryError> {
@@ -526,8 +533,7 @@ impl BlendedSegments {
             .flat_map(|p| p.as_ref().iter().copied())
             .collect();
         let mut velocities = vec![0.0; (n + 1) * dof];
-        for k in 1..n {
-            let span = corners[k] - corners[k - 1];
+        for (k, &span) in (1..n).zip(&spans) {
             for j in 0..dof {
                 let v = (values[k * dof + j] - values[(k - 1) * dof + j]) / span;
                 let change = (v - velocities[(k - 1) * dof + j]) / blend_time;

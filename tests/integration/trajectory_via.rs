@@ -616,3 +616,38 @@ fn blends_beyond_float_range_are_rejected() {
         "{e}"
     );
 }
+
+/// From limits, starting late: the segments' velocities come from their durations, not from
+/// differences of the corner times (which hold a 5e-10 s rounding at t0 = 3e6 s, large against
+/// millimetre segments of a few milliseconds), so every joint stays within its limits to
+/// rounding at any start time. From the corner times, the blends had exceeded amax by 1.7e-8
+/// of it in a sweep of 30,000 such paths.
+#[test]
+fn blends_from_limits_keep_the_limits_when_starting_late() {
+    let points = [
+        [0.0, 0.0, 0.0],
+        [1e-3, 2e-3, 5e-4],
+        [5e-4, 3e-3, 1e-3],
+        [2e-3, 1e-3, 0.0],
+        [2.5e-3, 1.5e-3, 7e-4],
+    ];
+    let (vmax, amax) = ([0.53, 0.71, 0.37], [1.13, 2.29, 0.71]);
+    let mut worst: f64 = 0.0;
+    for t0 in [0.0, -42.0, 1e3, 1e5, 3e6, 1e8] {
+        let path = BlendedSegments::from_limits(t0, &points, &vmax, &amax).unwrap();
+        let (a, b) = (path.start_time(), path.end_time());
+        let mut out = vec![Setpoint::rest(0.0); 3];
+        for i in 0..=20_000 {
+            let t = a + (b - a) * f64::from(i) / 20_000.0;
+            path.eval_into(t, &mut out).unwrap();
+            for (j, s) in out.iter().enumerate() {
+                worst = worst.max(s.qd.abs() / vmax[j]).max(s.qdd.abs() / amax[j]);
+            }
+        }
+        assert!(
+            worst <= 1.0 + 1e-12,
+            "t0 {t0}: a limit exceeded by {:e} of it",
+            worst - 1.0
+        );
+    }
+}
