@@ -517,8 +517,8 @@ impl BlendedSegments {
 
     /// Stores the path (inputs already checked), after making sure that its velocities and
     /// accelerations are representable: absurdly short blends or segments (e.g. a 1e-300 s
-    /// blend) are rejected rather than producing inf or NaN.
-    /// `spans[k - 1]` is the time from corner `k - 1` to corner `k`.
+    /// blend) are rejected rather than producing inf or NaN. `spans[k - 1]` is the time from
+    /// corner `k - 1` to corner `k`, which sets segment `k`'s velocity.
     fn build<R: AsRef<[f64]>>(
         dof: usize,
         times: Vec<f64>,
