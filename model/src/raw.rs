@@ -79,30 +79,63 @@ impl core::fmt::Display for Position {
     }
 }
 
-/// Byte offsets to [`Position`]s: the start of every line, searched by bisection (the TOML
-/// and URDF readers locate every value through one, in O(log n) each).
+/// Byte offsets to [`Position`]s: the start of every line, and marks of the column every
+/// [`MARK_BYTES`] bytes within a line, each searched by bisection (the TOML and URDF readers
+/// locate every value through one: O(log n) each, plus at most `MARK_BYTES` bytes counted in
+/// characters, however long the line; a file on one line of megabytes is read in linear time).
 pub(crate) struct LineIndex<'t> {
     text: &'t str,
     starts: Vec<usize>,
+    /// `(byte offset, column in characters from 0)`, at every line start and then every
+    /// `MARK_BYTES` bytes or so, on character boundaries.
+    marks: Vec<(usize, usize)>,
 }
+
+/// Spacing of [`LineIndex`]'s column marks.
+const MARK_BYTES: usize = 256;
 
 impl<'t> LineIndex<'t> {
     pub(crate) fn new(text: &'t str) -> Self {
         let starts = core::iter::once(0)
             .chain(text.match_indices('\n').map(|(i, _)| i + 1))
             .collect();
-        LineIndex { text, starts }
+        let mut marks = Vec::new();
+        let (mut column, mut next) = (0, 0);
+        for (i, c) in text.char_indices() {
+            if i >= next {
+                marks.push((i, column));
+                next = i + MARK_BYTES;
+            }
+            if c == '\n' {
+                // The next line's start is marked.
+                (column, next) = (0, i + 1);
+            } else {
+                column += 1;
+            }
+        }
+        LineIndex {
+            text,
+            starts,
+            marks,
+        }
     }
 
     pub(crate) fn position(&self, offset: usize) -> Position {
         let offset = offset.min(self.text.len());
         let line = self.starts.partition_point(|&s| s <= offset) - 1;
-        let start = self.starts[line];
+        // The last mark at or before `offset`: on its line, since every line start is one
+        // (an offset at the very end of a text ending in a newline has none on its line).
+        let (start, column) = match self.marks.partition_point(|&(b, _)| b <= offset) {
+            0 => (self.starts[line], 0),
+            k if self.marks[k - 1].0 >= self.starts[line] => self.marks[k - 1],
+            _ => (self.starts[line], 0),
+        };
         // Spans fall on character boundaries; should one not, count bytes rather than panic.
-        let column = self
-            .text
-            .get(start..offset)
-            .map_or(offset - start, |s| s.chars().count());
+        let column = column
+            + self
+                .text
+                .get(start..offset)
+                .map_or(offset - start, |s| s.chars().count());
         Position {
             line: line + 1,
             column: column + 1,
@@ -266,6 +299,39 @@ mod tests {
         assert!(e.message.contains("64-bit"), "{e:?}");
         let e = from_toml_text("big = 0xFFFFFFFFFFFFFFFF").unwrap_err();
         assert!(e.message.contains("64-bit"), "{e:?}");
+    }
+
+    /// Marks within long lines give the column a count from the line's start gives, at every
+    /// character boundary: lines longer than several marks, multi-byte characters, CRLF, empty
+    /// lines, a text with and without a final newline.
+    #[test]
+    fn column_marks_agree_with_counting_from_the_line_start() {
+        let long: String = (0..2000)
+            .map(|i| match i % 7 {
+                0 => 'é',
+                3 => '中',
+                5 => '\r',
+                _ => 'a',
+            })
+            .collect();
+        for text in [
+            format!("{long}\n\nx = 1\r\n{long}{long}\n"),
+            format!("{long}é"),
+            String::new(),
+            "\n\n".to_string(),
+        ] {
+            let index = super::LineIndex::new(&text);
+            for (offset, _) in text.char_indices().chain([(text.len(), ' ')]) {
+                let before = &text[..offset];
+                let line = before.matches('\n').count() + 1;
+                let column = before.rsplit('\n').next().map_or(0, |l| l.chars().count()) + 1;
+                assert_eq!(
+                    index.position(offset),
+                    Position { line, column },
+                    "offset {offset}"
+                );
+            }
+        }
     }
 
     #[test]
