@@ -2,9 +2,12 @@
 //! damping (Levenberg–Marquardt) on the geometric Jacobian.
 //!
 //! # Method
-//! The error of a configuration is the 6-vector `e = [p* − p; log(R* Rᵀ)]` (position error
+//! The error of a configuration is the 6-vector `e = [(p* − p)/L; log(R* Rᵀ)]` (position error
 //! and rotation vector of the remaining rotation, both in world axes, matching the rows
-//! `[v; ω]` of [`Arm::jacobian`]). Each iteration takes the step
+//! `[v/L; ω]` of [`Arm::jacobian`]), with `L` the arm's length scale at the seed: the largest
+//! distance of the tool from a revolute joint's axis (1 without one). Measured so, the
+//! iteration is the same for an arm and the same arm scaled to any size; the tolerances stay
+//! in metres and radians. Each iteration takes the step
 //! `Δq = Jᵀ (J Jᵀ + λ² I)⁻¹ e` (a 6×6 Cholesky solve, whatever the number of joints) and
 //! keeps it only if `|e|` decreases: then λ is divided by 3 (towards Gauss–Newton, quadratic
 //! convergence near the solution); otherwise λ is multiplied by 4 and the step retried. Near
@@ -46,7 +49,8 @@ pub struct NumericIk {
     pub orientation_tolerance: f64,
     /// Iteration cap (Jacobian evaluations), over all attempts. Default 500.
     pub max_iterations: usize,
-    /// Initial damping λ (same units as the Jacobian's singular values). Default 1e-2.
+    /// Initial damping λ, in the units of the singular values of the Jacobian whose position
+    /// rows are divided by the arm's length scale (see the module docs). Default 1e-2.
     pub initial_damping: f64,
     /// Keep every joint within its limits (where the arm gives them). Default true.
     pub respect_limits: bool,
@@ -163,13 +167,44 @@ pub enum IkError {
 }
 
 /// The error vector `[p* − p; log(R* Rᵀ)]` and its two norms.
-fn pose_residual(target: &Isometry3<f64>, pose: &Isometry3<f64>) -> (Vector6<f64>, f64, f64) {
+fn pose_residual(
+    target: &Isometry3<f64>,
+    pose: &Isometry3<f64>,
+    length: f64,
+) -> (Vector6<f64>, f64, f64) {
     let dp = target.translation.vector - pose.translation.vector;
     let rt: Rotation3<f64> = target.rotation.to_rotation_matrix();
     let r: Rotation3<f64> = pose.rotation.to_rotation_matrix();
     let dw = rotation_vector(&(rt * r.inverse()));
-    let e = Vector6::new(dp.x, dp.y, dp.z, dw.x, dw.y, dw.z);
+    let e = Vector6::new(
+        dp.x / length,
+        dp.y / length,
+        dp.z / length,
+        dw.x,
+        dw.y,
+        dw.z,
+    );
     (e, dp.norm(), dw.norm())
+}
+
+/// The arm's length scale at `q`: the largest distance of the tool from a revolute joint's
+/// axis (the norm of that joint's linear Jacobian column), 1 where no revolute joint moves
+/// the tool. Positions are measured in it, so that the damping and the weighting of position
+/// against orientation are the same for an arm and the same arm scaled (a 0.1 mm arm had
+/// converged on 0 to 5 % of poses its 1 m original solves).
+fn length_scale<A: Arm>(arm: &A, j: &OMatrix<f64, U6, A::Dof>) -> f64
+where
+    DefaultAllocator: ArmAllocator<A::Dof>,
+{
+    let length = (0..arm.dof())
+        .filter(|&k| !arm.is_prismatic(k))
+        .map(|k| j.fixed_view::<3, 1>(0, k).norm())
+        .fold(0.0, f64::max);
+    if length > 0.0 && length.is_finite() {
+        length
+    } else {
+        1.0
+    }
 }
 
 /// Largest damping before the solver gives up on a configuration.
@@ -273,6 +308,13 @@ impl NumericIk {
         );
         let mut q = seed.clone();
         self.clamp(arm, &mut q);
+        let length = length_scale(arm, &arm.jacobian(&q));
+        // The Jacobian's position rows in that scale, as the residual's.
+        let jacobian = |q: &OVector<f64, A::Dof>| {
+            let mut j = arm.jacobian(q);
+            j.fixed_rows_mut::<3>(0).unscale_mut(length);
+            j
+        };
         let mut trial = q.clone();
         let mut free = q.clone();
         let mut iterations = 0;
@@ -280,7 +322,7 @@ impl NumericIk {
         // The lowest error seen, reported on failure.
         let mut best = (f64::INFINITY, f64::INFINITY, f64::INFINITY);
         loop {
-            let (mut e, mut dp, mut dr) = pose_residual(target, &arm.fk(&q));
+            let (mut e, mut dp, mut dr) = pose_residual(target, &arm.fk(&q), length);
             let mut cost = e.norm_squared();
             let mut lambda = self.initial_damping;
             let mut window = (cost, iterations);
@@ -305,14 +347,14 @@ impl NumericIk {
                     });
                 }
                 iterations += 1;
-                let j = arm.jacobian(&q);
+                let j = jacobian(&q);
                 let mut accepted = false;
                 while lambda <= MAX_DAMPING {
                     if !self.step(arm, &j, &e, &q, lambda, &mut free, &mut trial) {
                         lambda = (lambda * 4.0).max(MIN_DAMPING);
                         continue;
                     }
-                    let (e_new, dp_new, dr_new) = pose_residual(target, &arm.fk(&trial));
+                    let (e_new, dp_new, dr_new) = pose_residual(target, &arm.fk(&trial), length);
                     let cost_new = e_new.norm_squared();
                     if cost_new < cost {
                         core::mem::swap(&mut q, &mut trial);
