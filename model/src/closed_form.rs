@@ -600,6 +600,12 @@ fn frame_error(a: &Rigid, b: &Rigid) -> (f64, f64) {
     ((a.p - b.p).norm(), 2.0 * chord.min(1.0).asin())
 }
 
+/// Whether two axes whose directions have the cosine `cos` are parallel or anti-parallel: the
+/// cosine within 1e-12 of ±1.
+fn parallel(cos: f64) -> bool {
+    (cos.abs() - 1.0).abs() <= 1e-12
+}
+
 fn rz(q: f64) -> Matrix3<f64> {
     let (s, c) = q.sin_cos();
     Matrix3::new(c, -s, 0.0, s, c, 0.0, 0.0, 0.0, 1.0)
@@ -871,7 +877,7 @@ impl DecoupledIk {
                 "axes 2, 3, 4 are parallel but two of them coincide: the planar arm they make \
                  has a link of length zero (a continuum of solutions or none)",
             )
-        } else if (c[4].r * Vector3::z()).z.abs() >= 1.0 - 1e-12 {
+        } else if parallel((c[4].r * Vector3::z()).z) {
             Some(
                 "axes 2, 3, 4 and 5 are parallel: the tool turns about two directions only (a \
                  continuum of solutions or none)",
@@ -891,7 +897,7 @@ impl DecoupledIk {
         // Axes 3 and 4 parallel to axis 2 (up to sign), in their predecessors' frames.
         let s3 = (c[2].r * z).z;
         let s4 = (c[3].r * z).z;
-        if (s3.abs() - 1.0).abs() > 1e-12 || (s4.abs() - 1.0).abs() > 1e-12 {
+        if !(parallel(s3) && parallel(s4)) {
             return None;
         }
         let n = c[1].r * z;

@@ -166,7 +166,8 @@ pub enum IkError {
     InvalidSettings(&'static str),
 }
 
-/// The error vector `[p* − p; log(R* Rᵀ)]` and its two norms.
+/// The error vector `[(p* − p)/length; log(R* Rᵀ)]` and the norms of its two parts, in metres
+/// and radians.
 fn pose_residual(
     target: &Isometry3<f64>,
     pose: &Isometry3<f64>,
@@ -308,13 +309,16 @@ impl NumericIk {
         );
         let mut q = seed.clone();
         self.clamp(arm, &mut q);
-        let length = length_scale(arm, &arm.jacobian(&q));
+        let mut at_seed = arm.jacobian(&q);
+        let length = length_scale(arm, &at_seed);
         // The Jacobian's position rows in that scale, as the residual's.
-        let jacobian = |q: &OVector<f64, A::Dof>| {
-            let mut j = arm.jacobian(q);
+        let scaled = |mut j: OMatrix<f64, U6, A::Dof>| {
             j.fixed_rows_mut::<3>(0).unscale_mut(length);
             j
         };
+        // The seed's, for the first iteration (which runs at the seed).
+        at_seed = scaled(at_seed);
+        let mut first = Some(at_seed);
         let mut trial = q.clone();
         let mut free = q.clone();
         let mut iterations = 0;
@@ -347,7 +351,7 @@ impl NumericIk {
                     });
                 }
                 iterations += 1;
-                let j = jacobian(&q);
+                let j = first.take().unwrap_or_else(|| scaled(arm.jacobian(&q)));
                 let mut accepted = false;
                 while lambda <= MAX_DAMPING {
                     if !self.step(arm, &j, &e, &q, lambda, &mut free, &mut trial) {

@@ -238,13 +238,8 @@ fn tree_add<const K: usize>(tree: &mut KdTree<f64, K>, q: &[f64], item: usize) {
     tree.add(&point::<K>(q), item as u64);
 }
 
+/// The `n` nearest, `0 < n ≤` the tree's size (kiddo asks for at least one).
 fn tree_nearest<const K: usize>(tree: &KdTree<f64, K>, q: &[f64], n: usize) -> Vec<(f64, usize)> {
-    // No more than the tree holds (a `neighbours` of `usize::MAX` asks for everything).
-    let n = n.min(usize::try_from(tree.size()).unwrap_or(usize::MAX));
-    if n == 0 {
-        // kiddo asks for at least one (an empty tree has none to give).
-        return Vec::new();
-    }
     let query = point::<K>(q);
     let pairs = |found: Vec<kiddo::NearestNeighbour<f64, u64>>| -> Vec<(f64, usize)> {
         let mut found: Vec<(f64, usize)> = found
@@ -300,11 +295,25 @@ impl NodeTree {
         }
     }
 
+    /// How many nodes it holds.
+    fn len(&self) -> usize {
+        match self {
+            NodeTree::Kd(kd) => {
+                each_tree!(kd, t => usize::try_from(t.size()).unwrap_or(usize::MAX))
+            }
+            NodeTree::Scan { items, .. } => items.len(),
+        }
+    }
+
     /// The `n` nearest nodes to `q`, nearest first: `(squared distance, node)`.
     fn nearest(&self, q: &[f64], n: usize) -> Vec<(f64, usize)> {
+        // No more than it holds (a `neighbours` of `usize::MAX` asks for everything).
+        let n = n.min(self.len());
+        if n == 0 {
+            return Vec::new();
+        }
         match self {
             NodeTree::Kd(kd) => each_tree!(kd, t => tree_nearest(t, q, n)),
-            NodeTree::Scan { .. } if n == 0 => Vec::new(),
             NodeTree::Scan { dim, points, items } => {
                 let mut found: Vec<(f64, usize)> = points
                     .chunks_exact(*dim)

@@ -3,7 +3,7 @@
 //! runtime robot, limits, and every error reason.
 
 use crate::catalogue::{cylindrical, panda, puma560, stanford};
-use crate::support::{allocations_during, runtime};
+use crate::support::{allocations_during, runtime, scaled};
 use dhgen::ik::{DecoupledIk, IkError, NumericIk, pose_error};
 use dhgen::nalgebra::{
     DVector, DefaultAllocator, Isometry3, OVector, SVector, Translation3, UnitQuaternion, Vector6,
@@ -144,18 +144,7 @@ fn scaled_arms_converge_as_the_originals() {
     let solver = NumericIk::default();
     for name in ["puma560", "panda", "stanford"] {
         for scale in [1e-4, 300.0] {
-            let mut model = runtime(name).model().clone();
-            for l in &mut model.links {
-                l.a *= scale;
-                if l.joint == dhgen::JointKind::Revolute {
-                    l.d *= scale;
-                } else if let Some(limits) = &mut l.limits {
-                    limits.iter_mut().for_each(|x| *x *= scale);
-                }
-            }
-            for pose in [&mut model.base, &mut model.tool].into_iter().flatten() {
-                pose.xyz.iter_mut().for_each(|x| *x *= scale);
-            }
+            let model = scaled(runtime(name).model().clone(), scale, 1.0);
             let robot = dhgen::Robot::from_model(model);
             let r = convergence(&robot, &solver, 100, 11);
             r.report(&format!("{name} ×{scale:e}"), solver.max_iterations);

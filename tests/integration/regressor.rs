@@ -333,27 +333,12 @@ generated_regressor!(
 /// 1e-10, had dropped the small arms' real ones: τ off by 3e-8 of its size.)
 #[test]
 fn base_parameters_hold_in_any_units() {
-    use dhgen::JointKind;
     use dhgen::model::random::{ArmStyle, random_arm};
     for (dof, seed) in [(4, 2), (9, 3), (7, 5)] {
         let mut counts = Vec::new();
         for (length, mass) in [(1.0, 1.0), (1e-3, 1e-4), (30.0, 1e3)] {
-            let mut model = random_arm(dof, ArmStyle::General, seed);
-            for l in &mut model.links {
-                l.a *= length;
-                if l.joint == JointKind::Revolute {
-                    l.d *= length;
-                } else if let Some(limits) = &mut l.limits {
-                    limits.iter_mut().for_each(|x| *x *= length);
-                }
-                let i = l.inertial.as_mut().unwrap();
-                i.mass *= mass;
-                i.com.iter_mut().for_each(|x| *x *= length);
-                i.inertia
-                    .iter_mut()
-                    .flatten()
-                    .for_each(|x| *x *= mass * length * length);
-            }
+            let model =
+                crate::support::scaled(random_arm(dof, ArmStyle::General, seed), length, mass);
             let pi = DVector::from_vec(dhgen::model::parameters::values(&model).unwrap());
             let robot = Robot::from_model(model);
             let base = robot.base_parameters();

@@ -11,6 +11,32 @@ pub fn runtime(name: &str) -> Robot {
     Robot::from_toml_file(format!("{}/robots/{name}.toml", env!("CARGO_MANIFEST_DIR"))).unwrap()
 }
 
+/// `model` at another scale: lengths (a, the revolute joints' d, the prismatic joints'
+/// limits, base and tool positions, centres of mass) times `length`, link masses times
+/// `mass` and their inertia tensors times `mass · length²`; motors and friction as they are.
+pub fn scaled(mut model: dhgen::RobotModel, length: f64, mass: f64) -> dhgen::RobotModel {
+    for l in &mut model.links {
+        l.a *= length;
+        if l.joint == dhgen::JointKind::Revolute {
+            l.d *= length;
+        } else if let Some(limits) = &mut l.limits {
+            limits.iter_mut().for_each(|x| *x *= length);
+        }
+        if let Some(i) = &mut l.inertial {
+            i.mass *= mass;
+            i.com.iter_mut().for_each(|x| *x *= length);
+            i.inertia
+                .iter_mut()
+                .flatten()
+                .for_each(|x| *x *= mass * length * length);
+        }
+    }
+    for pose in [&mut model.base, &mut model.tool].into_iter().flatten() {
+        pose.xyz.iter_mut().for_each(|x| *x *= length);
+    }
+    model
+}
+
 /// The path of the fixture `tests/fixtures/<name>.toml`.
 pub fn fixture_path(name: &str) -> PathBuf {
     PathBuf::from(format!(
