@@ -28,7 +28,7 @@
 use criterion::{Criterion, criterion_group, criterion_main};
 use dhgen::Robot;
 use rand::rngs::StdRng;
-use rand::{Rng, SeedableRng};
+use rand::{RngExt, SeedableRng};
 use std::hint::black_box;
 use std::time::Duration;
 

@@ -12,7 +12,7 @@ use dhgen::ik::{DecoupledIk, NumericIk};
 use dhgen::nalgebra::{Isometry3, SVector, Vector6};
 use dhgen::velocity::{Damping, JacobianSvd, inverse_velocity};
 use rand::rngs::StdRng;
-use rand::{Rng, SeedableRng};
+use rand::{RngExt, SeedableRng};
 use std::hint::black_box;
 
 dhgen::robot!(mod puma560 = "robots/puma560.toml");

@@ -10,7 +10,7 @@ use dhgen::payload::{self, Payload};
 use dhgen::{ArmDynamics, Robot};
 use nalgebra::{DVector, SVector};
 use rand::rngs::StdRng;
-use rand::{Rng, SeedableRng};
+use rand::{RngExt, SeedableRng};
 use std::hint::black_box;
 use std::time::Duration;
 

@@ -15,7 +15,7 @@ use dhgen::nalgebra::{DVector, SVector};
 use dhgen::planning::{CollisionChecker, Prm, PrmConfig, Scene};
 use dhgen::{Arm, ArmAllocator, JointVector, Robot};
 use rand::rngs::StdRng;
-use rand::{Rng, SeedableRng};
+use rand::{RngExt, SeedableRng};
 use std::hint::black_box;
 use std::time::Duration;
 

@@ -42,7 +42,7 @@
 //! ```
 
 use super::PlanError;
-use rand::{Rng, SeedableRng};
+use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
 /// Gains of the configuration-space potential of 6.2.

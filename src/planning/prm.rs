@@ -5,8 +5,9 @@
 //!    discarded.
 //! 2. Connection (6.4.2): every node is joined to each of its `k` nearest nodes (Euclidean
 //!    joint-space distance: a kd-tree, `kiddo`, for up to [`KD_TREE_DOF`] joints, an exact
-//!    scan of every node beyond, where a kd-tree prunes little) by the straight-line local
-//!    planner [`CollisionChecker::motion_is_free`] at the stated `resolution`.
+//!    scan of every node beyond, where a kd-tree prunes little, and of the few nodes a
+//!    kd-tree cannot hold) by the straight-line local planner
+//!    [`CollisionChecker::motion_is_free`] at the stated `resolution`.
 //! 3. Enhancement (6.4.3), while start and goal lie in different connected components and
 //!    the budget allows: each smaller component tries to connect to the largest one through
 //!    its node closest to it (the closest pairs first), then new nodes are sampled, mostly
@@ -41,11 +42,11 @@
 
 use super::{CollisionChecker, PlanError};
 use crate::{Arm, ArmAllocator, JointVector};
-use kiddo::{KdTree, SquaredEuclidean};
+use kiddo::{MutableKdTree, QueryResultItem, SquaredEuclidean};
 use nalgebra::{DefaultAllocator, U1};
 use petgraph::graph::{NodeIndex, UnGraph};
 use petgraph::unionfind::UnionFind;
-use rand::{Rng, SeedableRng};
+use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use std::time::{Duration, Instant};
 
@@ -191,28 +192,32 @@ pub struct PrmPath<V> {
     pub stats: PrmStats,
 }
 
-/// The node configurations, searched for nearest neighbours: a kd-tree for the arm's number
-/// of joints up to [`KD_TREE_DOF`], a scan of all of them beyond.
-enum NodeTree {
-    Kd(Kd),
-    /// Every configuration, `dim` coordinates each, and its node.
-    Scan {
-        dim: usize,
-        points: Vec<f64>,
-        items: Vec<usize>,
-    },
+/// The node configurations, searched for nearest neighbours: by a kd-tree for the arm's
+/// number of joints up to [`KD_TREE_DOF`], and by a scan of the points it does not hold
+/// (all of them beyond [`KD_TREE_DOF`] joints; those it refused below: `kiddo` cannot split a
+/// bucket of more than 32 points that share a coordinate, such as samples clamped to one
+/// joint limit).
+struct NodeTree {
+    dim: usize,
+    kd: Option<Kd>,
+    /// The points not in the kd-tree, `dim` coordinates each, and their nodes.
+    points: Vec<f64>,
+    items: Vec<usize>,
 }
+
+/// A kd-tree for the arm's number of joints; its items are the nodes.
+type KdTree<const K: usize> = MutableKdTree<f64, K>;
 
 /// A kd-tree for the arm's number of joints.
 enum Kd {
-    D1(KdTree<f64, 1>),
-    D2(KdTree<f64, 2>),
-    D3(KdTree<f64, 3>),
-    D4(KdTree<f64, 4>),
-    D5(KdTree<f64, 5>),
-    D6(KdTree<f64, 6>),
-    D7(KdTree<f64, 7>),
-    D8(KdTree<f64, 8>),
+    D1(KdTree<1>),
+    D2(KdTree<2>),
+    D3(KdTree<3>),
+    D4(KdTree<4>),
+    D5(KdTree<5>),
+    D6(KdTree<6>),
+    D7(KdTree<7>),
+    D8(KdTree<8>),
 }
 
 macro_rules! each_tree {
@@ -234,14 +239,16 @@ fn point<const K: usize>(q: &[f64]) -> [f64; K] {
     core::array::from_fn(|i| q[i])
 }
 
-fn tree_add<const K: usize>(tree: &mut KdTree<f64, K>, q: &[f64], item: usize) {
-    tree.add(&point::<K>(q), item as u64);
+/// Adds node `item` at `q`; false where the tree refuses it (a node number beyond `u32`, or
+/// a bucket it cannot split).
+fn tree_add<const K: usize>(tree: &mut KdTree<K>, q: &[f64], item: usize) -> bool {
+    u32::try_from(item).is_ok_and(|item| tree.add(&point::<K>(q), item).is_ok())
 }
 
 /// The `n` nearest, `0 < n ≤` the tree's size (kiddo asks for at least one).
-fn tree_nearest<const K: usize>(tree: &KdTree<f64, K>, q: &[f64], n: usize) -> Vec<(f64, usize)> {
+fn tree_nearest<const K: usize>(tree: &KdTree<K>, q: &[f64], n: usize) -> Vec<(f64, usize)> {
     let query = point::<K>(q);
-    let pairs = |found: Vec<kiddo::NearestNeighbour<f64, u64>>| -> Vec<(f64, usize)> {
+    let pairs = |found: Vec<QueryResultItem<(), u32, f64>>| -> Vec<(f64, usize)> {
         let mut found: Vec<(f64, usize)> = found
             .into_iter()
             .map(|nn| (nn.distance, nn.item as usize))
@@ -252,10 +259,20 @@ fn tree_nearest<const K: usize>(tree: &KdTree<f64, K>, q: &[f64], n: usize) -> V
     // One more than asked, to see whether nodes tie at the last distance taken: the tree
     // picks among those by its layout, so then all of them are fetched and the first in
     // node order kept. Equal distances in node order: the scan's answer, whatever the layout.
-    let more = n.saturating_add(1);
-    let mut found = pairs(tree.nearest_n::<SquaredEuclidean>(&query, more));
+    let more =
+        core::num::NonZeroUsize::new(n.saturating_add(1)).unwrap_or(core::num::NonZeroUsize::MIN);
+    let mut found = pairs(
+        tree.query(&query)
+            .nearest_n::<SquaredEuclidean<f64>>(more)
+            .execute(),
+    );
     if found.len() > n && found[n].0 == found[n - 1].0 {
-        found = pairs(tree.within_unsorted::<SquaredEuclidean>(&query, found[n - 1].0));
+        found = pairs(
+            tree.query(&query)
+                .within::<SquaredEuclidean<f64>>(found[n - 1].0)
+                .unsorted()
+                .execute(),
+        );
     }
     found.truncate(n);
     found
@@ -268,66 +285,82 @@ fn nearer(a: &(f64, usize), b: &(f64, usize)) -> core::cmp::Ordering {
 
 impl NodeTree {
     fn new(dim: usize) -> NodeTree {
-        match dim {
-            1 => NodeTree::Kd(Kd::D1(KdTree::new())),
-            2 => NodeTree::Kd(Kd::D2(KdTree::new())),
-            3 => NodeTree::Kd(Kd::D3(KdTree::new())),
-            4 => NodeTree::Kd(Kd::D4(KdTree::new())),
-            5 => NodeTree::Kd(Kd::D5(KdTree::new())),
-            6 => NodeTree::Kd(Kd::D6(KdTree::new())),
-            7 => NodeTree::Kd(Kd::D7(KdTree::new())),
-            8 => NodeTree::Kd(Kd::D8(KdTree::new())),
-            dim => NodeTree::Scan {
-                dim,
-                points: Vec::new(),
-                items: Vec::new(),
-            },
+        let kd = match dim {
+            1 => Some(Kd::D1(KdTree::default())),
+            2 => Some(Kd::D2(KdTree::default())),
+            3 => Some(Kd::D3(KdTree::default())),
+            4 => Some(Kd::D4(KdTree::default())),
+            5 => Some(Kd::D5(KdTree::default())),
+            6 => Some(Kd::D6(KdTree::default())),
+            7 => Some(Kd::D7(KdTree::default())),
+            8 => Some(Kd::D8(KdTree::default())),
+            _ => None,
+        };
+        NodeTree {
+            kd,
+            ..NodeTree::scan(dim)
+        }
+    }
+
+    /// Without a kd-tree: every query scans.
+    fn scan(dim: usize) -> NodeTree {
+        NodeTree {
+            dim,
+            kd: None,
+            points: Vec::new(),
+            items: Vec::new(),
         }
     }
 
     fn add(&mut self, q: &[f64], item: usize) {
-        match self {
-            NodeTree::Kd(kd) => each_tree!(kd, t => tree_add(t, q, item)),
-            NodeTree::Scan { points, items, .. } => {
-                points.extend_from_slice(q);
-                items.push(item);
-            }
+        let held = self
+            .kd
+            .as_mut()
+            .is_some_and(|kd| each_tree!(kd, t => tree_add(t, q, item)));
+        if !held {
+            self.points.extend_from_slice(q);
+            self.items.push(item);
         }
+    }
+
+    /// How many points the kd-tree holds.
+    fn in_tree(&self) -> usize {
+        self.kd
+            .as_ref()
+            .map_or(0, |kd| each_tree!(kd, t => t.size()))
     }
 
     /// How many nodes it holds.
     fn len(&self) -> usize {
-        match self {
-            NodeTree::Kd(kd) => {
-                each_tree!(kd, t => usize::try_from(t.size()).unwrap_or(usize::MAX))
-            }
-            NodeTree::Scan { items, .. } => items.len(),
-        }
+        self.in_tree() + self.items.len()
     }
 
-    /// The `n` nearest nodes to `q`, nearest first: `(squared distance, node)`.
+    /// The `n` nearest nodes to `q`, nearest first: `(squared distance, node)`. The `n`
+    /// nearest of the kd-tree's and the `n` nearest of the rest, merged.
     fn nearest(&self, q: &[f64], n: usize) -> Vec<(f64, usize)> {
         // No more than it holds (a `neighbours` of `usize::MAX` asks for everything).
         let n = n.min(self.len());
         if n == 0 {
             return Vec::new();
         }
-        match self {
-            NodeTree::Kd(kd) => each_tree!(kd, t => tree_nearest(t, q, n)),
-            NodeTree::Scan { dim, points, items } => {
-                let mut found: Vec<(f64, usize)> = points
-                    .chunks_exact(*dim)
-                    .zip(items)
-                    .map(|(p, &item)| (p.iter().zip(q).map(|(a, b)| (a - b) * (a - b)).sum(), item))
-                    .collect();
-                if n < found.len() {
-                    found.select_nth_unstable_by(n - 1, nearer);
-                    found.truncate(n);
-                }
-                found.sort_by(nearer);
-                found
+        let mut found: Vec<(f64, usize)> = match &self.kd {
+            Some(kd) if self.in_tree() > 0 => {
+                each_tree!(kd, t => tree_nearest(t, q, n.min(self.in_tree())))
             }
+            _ => Vec::new(),
+        };
+        found.extend(
+            self.points
+                .chunks_exact(self.dim)
+                .zip(&self.items)
+                .map(|(p, &item)| (p.iter().zip(q).map(|(a, b)| (a - b) * (a - b)).sum(), item)),
+        );
+        if n < found.len() {
+            found.select_nth_unstable_by(n - 1, nearer);
+            found.truncate(n);
         }
+        found.sort_by(nearer);
+        found
     }
 }
 
@@ -447,9 +480,9 @@ where
     fn add_node(&mut self, q: JointVector<A>) -> usize {
         let i = self.nodes.len();
         // A node at exactly the configuration of one in the tree (samples clamped to a joint
-        // limit land on it again and again) is left out of the tree, which holds at most 32
-        // items at one point (kiddo panics beyond); it still joins the roadmap through its
-        // own neighbours, among them its twin.
+        // limit land on it again and again) is left out of the tree, whose kd-tree holds at
+        // most 32 items at one point (beyond, they would be scanned); it still joins the
+        // roadmap through its own neighbours, among them its twin.
         let twin = self
             .tree
             .nearest(q.as_slice(), 1)
@@ -798,7 +831,7 @@ where
 #[cfg(test)]
 mod tests {
     use super::NodeTree;
-    use rand::{Rng, SeedableRng};
+    use rand::{RngExt, SeedableRng};
     use rand_chacha::ChaCha8Rng;
 
     /// The scan (more joints than the kd-trees have) finds what a kd-tree finds: the same
@@ -809,12 +842,7 @@ mod tests {
         let mut rng = ChaCha8Rng::seed_from_u64(11);
         for dim in 1..=8 {
             let mut tree = NodeTree::new(dim);
-            assert!(matches!(tree, NodeTree::Kd(_)));
-            let mut scan = NodeTree::Scan {
-                dim,
-                points: Vec::new(),
-                items: Vec::new(),
-            };
+            let mut scan = NodeTree::scan(dim);
             let mut points: Vec<Vec<f64>> = Vec::new();
             for i in 0..400 {
                 let q: Vec<f64> = if i % 7 == 3 {
@@ -843,7 +871,48 @@ mod tests {
                     assert_eq!(tree.nearest(&q, n), scan.nearest(&q, n), "dim {dim}, n {n}");
                 }
             }
+            assert!(
+                tree.items.is_empty(),
+                "dim {dim}: the kd-tree held every point"
+            );
         }
-        assert!(matches!(NodeTree::new(9), NodeTree::Scan { dim: 9, .. }));
+        assert!(NodeTree::new(9).kd.is_none());
+    }
+
+    /// Points a kd-tree cannot hold (more than a bucket's 32 at one point, the roadmap's
+    /// twins, and more than 32 on one plane of equal coordinates, samples clamped to one
+    /// joint limit) leave the answers unchanged: the points it refuses are scanned.
+    #[test]
+    fn points_the_kd_tree_refuses_leave_the_answers_unchanged() {
+        let mut rng = ChaCha8Rng::seed_from_u64(12);
+        for (dim, twins) in [(1, true), (2, true), (3, false), (6, true), (6, false)] {
+            let mut tree = NodeTree::new(dim);
+            let mut scan = NodeTree::scan(dim);
+            for i in 0..300 {
+                let q: Vec<f64> = (0..dim)
+                    .map(|j| match (twins, j) {
+                        (true, _) if i % 3 == 0 => 0.25,
+                        (false, 0) => 1.5,
+                        _ => rng.random_range(-2.0..2.0),
+                    })
+                    .collect();
+                tree.add(&q, i);
+                scan.add(&q, i);
+            }
+            for _ in 0..50 {
+                let q: Vec<f64> = (0..dim).map(|_| rng.random_range(-2.5..2.5)).collect();
+                for n in [1, 2, 10, 40, 1000] {
+                    assert_eq!(tree.nearest(&q, n), scan.nearest(&q, n), "dim {dim}, n {n}");
+                }
+            }
+            let q = vec![0.25; dim];
+            assert_eq!(
+                tree.nearest(&q, 120),
+                scan.nearest(&q, 120),
+                "dim {dim}, twins"
+            );
+            // The tree refused some points, and holds the rest.
+            assert!(!tree.items.is_empty() && tree.in_tree() >= 32, "dim {dim}");
+        }
     }
 }

@@ -17,7 +17,7 @@ use crate::catalogue::{
 use crate::support::{fixture, max_abs, runtime};
 use dhgen::Robot;
 use dhgen::nalgebra::{DMatrix, SMatrix, SVector};
-use rand::{Rng, SeedableRng, rngs::StdRng};
+use rand::{RngExt, SeedableRng, rngs::StdRng};
 
 /// `|a − b|` largest entry, relative to the larger of 1 and `b`'s largest entry.
 fn relative(a: impl IntoIterator<Item = f64>, b: impl IntoIterator<Item = f64>) -> f64 {

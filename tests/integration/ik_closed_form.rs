@@ -13,7 +13,7 @@ use dhgen::nalgebra::{Isometry3, SVector, Translation3, UnitQuaternion, Vector3}
 use dhgen::rotation::wrap_angle;
 use dhgen::{Robot, RobotModel};
 use rand::rngs::StdRng;
-use rand::{Rng, SeedableRng};
+use rand::{RngExt, SeedableRng};
 use std::f64::consts::PI;
 
 fn model(name: &str) -> RobotModel {

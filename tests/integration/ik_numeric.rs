@@ -11,7 +11,7 @@ use dhgen::nalgebra::{
 use dhgen::velocity::{Damping, inverse_acceleration, inverse_velocity};
 use dhgen::{Arm, ArmAllocator};
 use rand::rngs::StdRng;
-use rand::{Rng, SeedableRng};
+use rand::{RngExt, SeedableRng};
 
 fn random_q<A: Arm>(arm: &A, rng: &mut StdRng) -> OVector<f64, A::Dof>
 where

@@ -9,7 +9,7 @@ use dhgen::Robot;
 use dhgen::ik::{ArmKind, DecoupledIk, VERIFY_TOLERANCE, pose_error};
 use dhgen::nalgebra::SVector;
 use rand::rngs::StdRng;
-use rand::{Rng, SeedableRng};
+use rand::{RngExt, SeedableRng};
 use std::f64::consts::PI;
 
 /// A twist in (−π, π) at least 0.2 rad from 0 and ±π (so axes are not parallel).

@@ -8,7 +8,7 @@ use dhgen::Robot;
 use dhgen::model::{Collision, RobotModel};
 use dhgen::nalgebra::{DVector, Isometry3, Point3, SVector, Translation3, UnitQuaternion, Vector3};
 use dhgen::planning::{CollisionChecker, CollisionModel, Obstacle, PlanError, Scene};
-use rand::{Rng, SeedableRng, rngs::StdRng};
+use rand::{RngExt, SeedableRng, rngs::StdRng};
 
 /// Distance from point `p` to the segment `a`–`b`, by projection.
 fn point_segment(p: &Point3<f64>, a: &Point3<f64>, b: &Point3<f64>) -> f64 {

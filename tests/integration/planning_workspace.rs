@@ -8,7 +8,7 @@ use dhgen::nalgebra::SVector;
 use dhgen::planning::{
     CollisionChecker, DescentParams, Obstacle, PlanError, Scene, WorkspaceField, WorkspacePlanner,
 };
-use rand::{Rng, SeedableRng, rngs::StdRng};
+use rand::{RngExt, SeedableRng, rngs::StdRng};
 
 type Q2 = SVector<f64, 2>;
 type Q6 = SVector<f64, 6>;

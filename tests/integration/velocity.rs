@@ -18,7 +18,7 @@ use dhgen::velocity::{
 };
 use dhgen::{Arm, ArmAllocator};
 use rand::rngs::StdRng;
-use rand::{Rng, SeedableRng};
+use rand::{RngExt, SeedableRng};
 use std::f64::consts::FRAC_PI_2;
 
 fn random_q<A: Arm>(arm: &A, rng: &mut StdRng) -> OVector<f64, A::Dof>
