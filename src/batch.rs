@@ -273,6 +273,31 @@ where
     }
 }
 
+impl<A: Unpack, B: Unpack, C: Unpack> Unpack for (A, B, C)
+where
+    A::Lane: 'static,
+    B::Lane: 'static,
+    C::Lane: 'static,
+{
+    type Lane = (A::Lane, B::Lane, C::Lane);
+    #[inline]
+    fn lane(&self, i: usize) -> Self::Lane {
+        (self.0.lane(i), self.1.lane(i), self.2.lane(i))
+    }
+    #[inline]
+    fn lane_into(&self, i: usize, out: &mut Self::Lane) {
+        self.0.lane_into(i, &mut out.0);
+        self.1.lane_into(i, &mut out.1);
+        self.2.lane_into(i, &mut out.2);
+    }
+    #[inline]
+    fn unpack_at<L>(&self, out: &mut [L], at: impl Fn(&mut L) -> &mut Self::Lane) {
+        self.0.unpack_at(out, |o: &mut L| &mut at(o).0);
+        self.1.unpack_at(out, |o: &mut L| &mut at(o).1);
+        self.2.unpack_at(out, |o: &mut L| &mut at(o).2);
+    }
+}
+
 impl<P> Unpack for Isometry3<P>
 where
     P: Real + Leaf,

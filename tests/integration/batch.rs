@@ -228,18 +228,33 @@ fn batch_derivatives_and_regressor_equal_scalar() {
             regressor(qd, qdd),
             base_regressor(qd, qdd),
             mass_matrix_inverse(),
+            forward_dynamics_derivatives(qd, tau),
         ]
     );
     check!(
         puma560_derivatives,
         f64,
-        [inverse_dynamics_derivatives(qd, qdd), mass_matrix_inverse()]
+        [
+            inverse_dynamics_derivatives(qd, qdd),
+            mass_matrix_inverse(),
+            forward_dynamics_derivatives(qd, tau),
+        ]
+    );
+    // D beside ∂τ in one derivation (`forward_dynamics_terms`), factored between its stages.
+    check!(
+        panda_derivatives,
+        f64,
+        [forward_dynamics_derivatives(qd, tau)]
     );
     // The looped Cholesky factorisation (past the joints it is unrolled for).
     check!(
         snake17_derivatives,
         f64,
-        [forward_dynamics(qd, tau), mass_matrix_inverse()]
+        [
+            forward_dynamics(qd, tau),
+            mass_matrix_inverse(),
+            forward_dynamics_derivatives(qd, tau),
+        ]
     );
 }
 
@@ -274,6 +289,25 @@ fn forward_dynamics_lanes_are_independent() {
     assert_eq!(dhgen::nalgebra::SimdBool::bitmask(ok), 0b1011);
     tau[2][3] = 0.5;
     assert!(puma560::forward_dynamics(&pack(&q), &pack(&qd), &pack(&tau)).is_some());
+}
+
+/// The derivatives of forward dynamics too: a lane whose q̈ is not finite is `None`, its
+/// neighbours get the scalar answers.
+#[test]
+fn forward_dynamics_derivative_lanes_are_independent() {
+    let mut s = Stream::new(8);
+    let q = s.states::<6>(4);
+    let qd = s.states::<6>(4);
+    let mut tau = s.states::<6>(4);
+    tau[1][0] = f64::INFINITY;
+    let mut out = vec![None; 4];
+    puma560_derivatives::batch::forward_dynamics_derivatives(&q, &qd, &tau, &mut out).unwrap();
+    assert!(out[1].is_none());
+    for c in [0, 2, 3] {
+        let scalar = puma560_derivatives::forward_dynamics_derivatives(&q[c], &qd[c], &tau[c]);
+        assert!(out[c].is_some() && scalar.is_some());
+        close("forward_dynamics_derivatives", c, &out[c], &scalar);
+    }
 }
 
 #[test]

@@ -538,7 +538,71 @@ pub mod one_joint {
             let (value, ok) = self.mass_matrix_inverse_lanes();
             na::SimdBool::all(ok).then_some(value)
         }
-        ///The derivatives of forward dynamics, `(∂q̈/∂q, ∂q̈/∂q̇, ∂q̈/∂τ = D⁻¹)` at (q, q̇, τ), from ∂q̈/∂x = −D⁻¹ ∂τ/∂x at q̈ = D⁻¹(τ − C q̇ − g − friction); `None` where D(q) is singular to working precision or q̈ is not finite, as for `forward_dynamics` (for a SIMD pack, unless every lane has an answer).
+        ///`forward_dynamics_derivatives` with the mask of the lanes where it is an answer (D(q) not singular to working precision and q̈ finite; for a scalar, a `bool`), as `forward_dynamics_lanes` is to `forward_dynamics`: for SIMD packs (`dhgen::batch`) whose lanes each get the scalar path's answer.
+        #[must_use]
+        pub fn forward_dynamics_derivatives_lanes(
+            &self,
+            qd: &impl ::dhgen::JointArray<T, DOF>,
+            tau: &impl ::dhgen::JointArray<T, DOF>,
+        ) -> (
+            (
+                na::SMatrix<T, DOF, DOF>,
+                na::SMatrix<T, DOF, DOF>,
+                na::SMatrix<T, DOF, DOF>,
+            ),
+            <T as na::SimdValue>::SimdBool,
+        ) {
+            let qd = &qd.to_array();
+            let tau = &tau.to_array();
+            let g = self.gravity();
+            let applied = na::SVector::<T, DOF>::from(*tau);
+            let zero = || na::SMatrix::<
+                T,
+                DOF,
+                DOF,
+            >::from_data(na::ArrayStorage([[T::zero(); DOF]; DOF]));
+            let (inverse, ok) = self.mass_matrix_inverse_lanes();
+            let mut terms = (zero(), zero());
+            let qdd = self
+                .inverse_dynamics_derivatives_then(
+                    qd,
+                    |(_, dqd)| {
+                        let inverse = &inverse;
+                        let half = ::dhgen::nalgebra::convert::<f64, T>(0.5);
+                        let tau: [T; DOF] = ::core::array::from_fn(|k| {
+                            let s = dqd
+                                .row(k)
+                                .iter()
+                                .zip(qd)
+                                .fold(T::zero(), |s, (&d, &v)| s + d * v);
+                            g[k] + half * s
+                        });
+                        (inverse * (applied - na::SVector::<T, DOF>::from(tau))).into()
+                    },
+                    &mut terms,
+                );
+            let ok = ok & ::dhgen::Real::is_finite_lanes(qdd[0]);
+            let (dq, dqd) = &mut terms;
+            let columns = &inverse.data.0;
+            let minus_inverse_times = |
+                x: &mut na::SMatrix<T, DOF, DOF>,
+                used: [bool; DOF]|
+            {
+                for (x, _) in x.data.0.iter_mut().zip(used).filter(|(_, u)| *u) {
+                    let mut p = [T::zero(); DOF];
+                    for (column, &xk) in columns.iter().zip(&*x) {
+                        for (o, &a) in p.iter_mut().zip(column) {
+                            *o = ::dhgen::Real::mul_add_fast(-a, xk, *o);
+                        }
+                    }
+                    *x = p;
+                }
+            };
+            minus_inverse_times(dq, [false]);
+            minus_inverse_times(dqd, [false]);
+            ((terms.0, terms.1, inverse), ok)
+        }
+        ///The derivatives of forward dynamics, `(∂q̈/∂q, ∂q̈/∂q̇, ∂q̈/∂τ = D⁻¹)` at (q, q̇, τ), from ∂q̈/∂x = −D⁻¹ ∂τ/∂x at q̈ = D⁻¹(τ − C q̇ − g − friction); `None` where D(q) is singular to working precision or q̈ is not finite, as for `forward_dynamics` (for a SIMD pack, unless every lane has an answer: `forward_dynamics_derivatives_lanes` gives them lane by lane).
         #[doc(alias = "computeABADerivatives")]
         #[doc(alias = "aba_derivatives")]
         #[must_use]
@@ -985,6 +1049,16 @@ pub mod one_joint {
             State { c, s, d }
         }
         #[inline]
+        fn for_forward_dynamics_derivatives_lanes(
+            q: &impl ::dhgen::JointArray<T, DOF>,
+        ) -> Self {
+            let _ = q;
+            let c = [T::zero(); DOF];
+            let s = [T::zero(); DOF];
+            let d = [T::zero(); DOF];
+            State { c, s, d }
+        }
+        #[inline]
         fn for_forward_dynamics_derivatives(
             q: &impl ::dhgen::JointArray<T, DOF>,
         ) -> Self {
@@ -1278,7 +1352,20 @@ pub mod one_joint {
     ) -> Option<na::SMatrix<T, DOF, DOF>> {
         State::for_mass_matrix_inverse(q).mass_matrix_inverse()
     }
-    ///The derivatives of forward dynamics, `(∂q̈/∂q, ∂q̈/∂q̇, ∂q̈/∂τ = D⁻¹)` at (q, q̇, τ), from ∂q̈/∂x = −D⁻¹ ∂τ/∂x at q̈ = D⁻¹(τ − C q̇ − g − friction); `None` where D(q) is singular to working precision or q̈ is not finite, as for `forward_dynamics` (for a SIMD pack, unless every lane has an answer).
+    ///`forward_dynamics_derivatives` with the mask of the lanes where it is an answer (D(q) not singular to working precision and q̈ finite; for a scalar, a `bool`), as `forward_dynamics_lanes` is to `forward_dynamics`: for SIMD packs (`dhgen::batch`) whose lanes each get the scalar path's answer.
+    #[must_use]
+    pub fn forward_dynamics_derivatives_lanes<T: ::dhgen::Real>(
+        q: &impl ::dhgen::JointArray<T, DOF>,
+        qd: &impl ::dhgen::JointArray<T, DOF>,
+        tau: &impl ::dhgen::JointArray<T, DOF>,
+    ) -> (
+        (na::SMatrix<T, DOF, DOF>, na::SMatrix<T, DOF, DOF>, na::SMatrix<T, DOF, DOF>),
+        <T as na::SimdValue>::SimdBool,
+    ) {
+        State::for_forward_dynamics_derivatives_lanes(q)
+            .forward_dynamics_derivatives_lanes(qd, tau)
+    }
+    ///The derivatives of forward dynamics, `(∂q̈/∂q, ∂q̈/∂q̇, ∂q̈/∂τ = D⁻¹)` at (q, q̇, τ), from ∂q̈/∂x = −D⁻¹ ∂τ/∂x at q̈ = D⁻¹(τ − C q̇ − g − friction); `None` where D(q) is singular to working precision or q̈ is not finite, as for `forward_dynamics` (for a SIMD pack, unless every lane has an answer: `forward_dynamics_derivatives_lanes` gives them lane by lane).
     #[doc(alias = "computeABADerivatives")]
     #[doc(alias = "aba_derivatives")]
     #[must_use]
@@ -1551,6 +1638,35 @@ pub mod one_joint {
                 out,
                 |[q]| {
                     let (value, ok) = super::mass_matrix_inverse_lanes(q);
+                    ::dhgen::batch::Masked(value, ok)
+                },
+            )
+        }
+        /// [`forward_dynamics_derivatives_lanes`](super::forward_dynamics_derivatives_lanes) for each configuration: `out[c]` from `q[c]`, `qd[c]`, `tau[c]`, four `f64` or eight `f32` configurations per call (`dhgen::batch`).
+        ///
+        /// # Errors
+        /// `LengthMismatch` (nothing written) unless every slice has `out.len()` entries.
+        pub fn forward_dynamics_derivatives<T: ::dhgen::batch::Lanes>(
+            q: &[[T; DOF]],
+            qd: &[[T; DOF]],
+            tau: &[[T; DOF]],
+            out: &mut [Option<
+                (
+                    na::SMatrix<T, DOF, DOF>,
+                    na::SMatrix<T, DOF, DOF>,
+                    na::SMatrix<T, DOF, DOF>,
+                ),
+            >],
+        ) -> Result<(), ::dhgen::batch::LengthMismatch> {
+            ::dhgen::batch::run(
+                [q, qd, tau],
+                out,
+                |[q, qd, tau]| {
+                    let (value, ok) = super::forward_dynamics_derivatives_lanes(
+                        q,
+                        qd,
+                        tau,
+                    );
                     ::dhgen::batch::Masked(value, ok)
                 },
             )

@@ -534,7 +534,8 @@ impl Items {
 
     /// The `batch` function of a public quantity whose inputs are joint vectors and whose value
     /// [`::dhgen::batch::Unpack`] reads lane by lane (an `Option` from the lane-wise form:
-    /// `forward_dynamics` is `forward_dynamics_lanes`, masked).
+    /// `forward_dynamics` is `forward_dynamics_lanes`, masked, and so are
+    /// `mass_matrix_inverse` and `forward_dynamics_derivatives`).
     fn add_batch(&mut self, q: &Quantity, inputs: &[Ident]) {
         let t = quote!(T);
         let (name, ty, wrap) = match q.shape {
@@ -553,6 +554,17 @@ impl Items {
             Shape::SquareMask => (
                 q.name.trim_end_matches("_lanes"),
                 quote!(Option<na::SMatrix<T, DOF, DOF>>),
+                true,
+            ),
+            Shape::SquareTripleMask => (
+                q.name.trim_end_matches("_lanes"),
+                quote!(
+                    Option<(
+                        na::SMatrix<T, DOF, DOF>,
+                        na::SMatrix<T, DOF, DOF>,
+                        na::SMatrix<T, DOF, DOF>,
+                    )>
+                ),
                 true,
             ),
             shape => (q.name, shape.ty(&t), false),

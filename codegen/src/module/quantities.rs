@@ -181,6 +181,138 @@ fn with_coulomb_columns(
     then(quote!(y), call, quote!(#(#signs)*), reads)
 }
 
+/// The derivatives of forward dynamics: with the mask of the lanes where they are an answer
+/// (`lanes`: `forward_dynamics_derivatives_lanes`, for SIMD packs), or as an `Option`
+/// (`forward_dynamics_derivatives`). Two bodies rather than the `Option` from the masked
+/// form, whose three n×n matrices would be copied once more on the way (Panda: 1.7 % more
+/// instructions per call, PUMA 560: 2.7 %); both call the same staged terms.
+fn forward_dynamics_derivatives(cx: &Context<'_>, lanes: bool) -> Made {
+    let n = cx.chain.dof();
+    let joints = 0..n;
+    // ½ viscous_j q̇_j where the joint has viscous friction.
+    let viscous = super::state::friction_terms(cx, |f| 0.5 * f.viscous, |k, j| quote!(#k * qd[#j]));
+    let coulomb = cx.coulomb();
+    // The bias h from ∂τ/∂q̇ (`dqd`), which does not depend on q̈: the velocity terms
+    // of τ are quadratic in q̇ (so Σ_j q̇_j ∂/∂q̇_j doubles them) and viscous friction
+    // is linear, so h = g + ½ (∂τ/∂q̇ + diag(viscous)) q̇ + Coulomb; then q̈ = D⁻¹(τ − h).
+    // Friction, if any, is added to the bias in place.
+    let mutable = (!viscous.is_empty() || !coulomb.is_empty()).then(|| quote!(mut));
+    let acceleration = quote! {
+        let half = ::dhgen::nalgebra::convert::<f64, T>(0.5);
+        let #mutable tau: [T; DOF] = ::core::array::from_fn(|k| {
+            let s = dqd
+                .row(k)
+                .iter()
+                .zip(qd)
+                .fold(T::zero(), |s, (&d, &v)| s + d * v);
+            g[k] + half * s
+        });
+        #viscous
+        #coulomb
+        (inverse * (applied - na::SVector::<T, DOF>::from(tau))).into()
+    };
+    // Per column of ∂τ/∂q and of ∂τ/∂q̇, whether it may be non-zero.
+    let (_, e) = cx.inverse_dynamics_derivatives();
+    let used = |half: usize| -> Vec<bool> {
+        (0..n)
+            .map(|m| (0..n).any(|k| !matches!(e[half * n * n + k * n + m], E::K(x) if x == 0.0)))
+            .collect()
+    };
+    let (used_q, used_qd) = (used(0), used(1));
+    // −D⁻¹ X column by column, in place (column m of the product reads only column m
+    // of X), in plain loops the compiler unrolls (40 % fewer instructions than
+    // nalgebra's general product at 6 × 6), with fused multiply-adds; `used`: the
+    // columns of X that may be non-zero (−D⁻¹ times a structurally zero column is
+    // zero, and is not computed). Building the products where the result holds them
+    // and D⁻¹ where D was leaves one copy, of the result.
+    let products = quote! {
+        let columns = &inverse.data.0;
+        let minus_inverse_times = |x: &mut na::SMatrix<T, DOF, DOF>, used: [bool; DOF]| {
+            for (x, _) in x.data.0.iter_mut().zip(used).filter(|(_, u)| *u) {
+                let mut p = [T::zero(); DOF];
+                for (column, &xk) in columns.iter().zip(&*x) {
+                    for (o, &a) in p.iter_mut().zip(column) {
+                        *o = ::dhgen::Real::mul_add_fast(-a, xk, *o);
+                    }
+                }
+                *x = p;
+            }
+        };
+        minus_inverse_times(dq, [#(#used_q),*]);
+        minus_inverse_times(dqd, [#(#used_qd),*]);
+    };
+    let finite = quote!(let ok = ok #(& ::dhgen::Real::is_finite_lanes(qdd[#joints]))*;);
+    // ∂τ/∂q, ∂τ/∂q̇ (and D, factorised between the stages, where it is cheaper beside
+    // them) with q̈ computed between the stages.
+    let (body, reads): (_, &'static [&'static str]) = if cx.derivatives_with_mass_matrix().is_some()
+    {
+        // Its entries need no check of their own: q̈ = D⁻¹(τ − h) is checked.
+        let (inverse, _) = cholesky::inverse(n, false);
+        let finish = if lanes {
+            quote!((terms, ok))
+        } else {
+            quote!(na::SimdBool::all(ok).then_some(terms))
+        };
+        (
+            quote! {
+                // No lane is an answer until D is factored.
+                let mut factored = !::dhgen::Real::is_finite_lanes(T::zero());
+                let mut terms = (zero(), zero(), zero());
+                let qdd = self.forward_dynamics_terms_then(qd, |(_, dqd, dm)| {
+                    let (inverse, ok) = { #inverse };
+                    // D⁻¹ where D was, for the result; q̈ from the local copy (read
+                    // back from memory right after its stores, the Panda's q̈ took
+                    // 40 % longer: the loads wait for the stores).
+                    *dm = inverse;
+                    factored = ok;
+                    let inverse = &inverse;
+                    #acceleration
+                }, &mut terms);
+                let ok = factored;
+                #finite
+                let (dq, dqd, inverse) = &mut terms;
+                #products
+                #finish
+            },
+            &["forward_dynamics_terms", "gravity"],
+        )
+    } else {
+        let finish = if lanes {
+            quote!(((terms.0, terms.1, inverse), ok))
+        } else {
+            quote!(na::SimdBool::all(ok).then(|| (terms.0, terms.1, inverse)))
+        };
+        (
+            quote! {
+                let (inverse, ok) = self.mass_matrix_inverse_lanes();
+                let mut terms = (zero(), zero());
+                let qdd = self.inverse_dynamics_derivatives_then(qd, |(_, dqd)| {
+                    let inverse = &inverse;
+                    #acceleration
+                }, &mut terms);
+                #finite
+                let (dq, dqd) = &mut terms;
+                #products
+                #finish
+            },
+            &[
+                "mass_matrix_inverse_lanes",
+                "gravity",
+                "inverse_dynamics_derivatives",
+            ],
+        )
+    };
+    composed(
+        quote! {
+            let g = self.gravity();
+            let applied = na::SVector::<T, DOF>::from(*tau);
+            let zero = || na::SMatrix::<T, DOF, DOF>::from_data(na::ArrayStorage([[T::zero(); DOF]; DOF]));
+            #body
+        },
+        reads,
+    )
+}
+
 /// A lane-wise value and mask (`call`, reading `reads`) as an `Option`: `Some` when every
 /// lane holds an answer (for a scalar, when it does).
 fn all_lanes(call: TokenStream, reads: &'static [&'static str]) -> Made {
@@ -986,136 +1118,32 @@ pub const QUANTITIES: &[Quantity] = &[
         arm: None,
     },
     Quantity {
+        name: "forward_dynamics_derivatives_lanes",
+        doc: "`forward_dynamics_derivatives` with the mask of the lanes where it is an answer \
+              (D(q) not singular to working precision and q̈ finite; for a scalar, a `bool`), \
+              as `forward_dynamics_lanes` is to `forward_dynamics`: for SIMD packs \
+              (`dhgen::batch`) whose lanes each get the scalar path's answer.",
+        aliases: &[],
+        inputs: &[Input::Qd, Input::Tau],
+        shape: Shape::SquareTripleMask,
+        available: Availability::Derivatives,
+        public: true,
+        make: |cx| forward_dynamics_derivatives(cx, true),
+        arm: None,
+    },
+    Quantity {
         name: "forward_dynamics_derivatives",
         doc: "The derivatives of forward dynamics, `(∂q̈/∂q, ∂q̈/∂q̇, ∂q̈/∂τ = D⁻¹)` at (q, q̇, τ), \
               from ∂q̈/∂x = −D⁻¹ ∂τ/∂x at q̈ = D⁻¹(τ − C q̇ − g − friction); `None` where D(q) \
               is singular to working precision or q̈ is not finite, as for `forward_dynamics` \
-              (for a SIMD pack, unless every lane has an answer).",
+              (for a SIMD pack, unless every lane has an answer: \
+              `forward_dynamics_derivatives_lanes` gives them lane by lane).",
         aliases: &["computeABADerivatives", "aba_derivatives"],
         inputs: &[Input::Qd, Input::Tau],
         shape: Shape::OptionSquareTriple,
         available: Availability::Derivatives,
         public: true,
-        make: |cx| {
-            let n = cx.chain.dof();
-            let joints = 0..n;
-            // ½ viscous_j q̇_j where the joint has viscous friction.
-            let viscous =
-                super::state::friction_terms(cx, |f| 0.5 * f.viscous, |k, j| quote!(#k * qd[#j]));
-            let coulomb = cx.coulomb();
-            // The bias h from ∂τ/∂q̇ (`dqd`), which does not depend on q̈: the velocity terms
-            // of τ are quadratic in q̇ (so Σ_j q̇_j ∂/∂q̇_j doubles them) and viscous friction
-            // is linear, so h = g + ½ (∂τ/∂q̇ + diag(viscous)) q̇ + Coulomb; then q̈ = D⁻¹(τ − h).
-            // Friction, if any, is added to the bias in place.
-            let mutable = (!viscous.is_empty() || !coulomb.is_empty()).then(|| quote!(mut));
-            let acceleration = quote! {
-                let half = ::dhgen::nalgebra::convert::<f64, T>(0.5);
-                let #mutable tau: [T; DOF] = ::core::array::from_fn(|k| {
-                    let s = dqd
-                        .row(k)
-                        .iter()
-                        .zip(qd)
-                        .fold(T::zero(), |s, (&d, &v)| s + d * v);
-                    g[k] + half * s
-                });
-                #viscous
-                #coulomb
-                (inverse * (applied - na::SVector::<T, DOF>::from(tau))).into()
-            };
-            // Per column of ∂τ/∂q and of ∂τ/∂q̇, whether it may be non-zero.
-            let (_, e) = cx.inverse_dynamics_derivatives();
-            let used = |half: usize| -> Vec<bool> {
-                (0..n)
-                    .map(|m| {
-                        (0..n).any(|k| !matches!(e[half * n * n + k * n + m], E::K(x) if x == 0.0))
-                    })
-                    .collect()
-            };
-            let (used_q, used_qd) = (used(0), used(1));
-            // −D⁻¹ X column by column, in place (column m of the product reads only column m
-            // of X), in plain loops the compiler unrolls (40 % fewer instructions than
-            // nalgebra's general product at 6 × 6), with fused multiply-adds; `used`: the
-            // columns of X that may be non-zero (−D⁻¹ times a structurally zero column is
-            // zero, and is not computed). Building the products where the result holds them
-            // and D⁻¹ where D was leaves one copy, of the result.
-            let products = quote! {
-                let columns = &inverse.data.0;
-                let minus_inverse_times = |x: &mut na::SMatrix<T, DOF, DOF>, used: [bool; DOF]| {
-                    for (x, _) in x.data.0.iter_mut().zip(used).filter(|(_, u)| *u) {
-                        let mut p = [T::zero(); DOF];
-                        for (column, &xk) in columns.iter().zip(&*x) {
-                            for (o, &a) in p.iter_mut().zip(column) {
-                                *o = ::dhgen::Real::mul_add_fast(-a, xk, *o);
-                            }
-                        }
-                        *x = p;
-                    }
-                };
-                minus_inverse_times(dq, [#(#used_q),*]);
-                minus_inverse_times(dqd, [#(#used_qd),*]);
-            };
-            let finite = quote!(let ok = ok #(& ::dhgen::Real::is_finite_lanes(qdd[#joints]))*;);
-            // ∂τ/∂q, ∂τ/∂q̇ (and D, factorised between the stages, where it is cheaper beside
-            // them) with q̈ computed between the stages.
-            let (body, reads): (_, &'static [&'static str]) =
-                if cx.derivatives_with_mass_matrix().is_some() {
-                    // Its entries need no check of their own: q̈ = D⁻¹(τ − h) is checked.
-                    let (inverse, _) = cholesky::inverse(n, false);
-                    (
-                        quote! {
-                            let mut factored = None;
-                            let mut terms = (zero(), zero(), zero());
-                            let qdd = self.forward_dynamics_terms_then(qd, |(_, dqd, dm)| {
-                                let (inverse, ok) = { #inverse };
-                                // D⁻¹ where D was, for the result; q̈ from the local copy (read
-                                // back from memory right after its stores, the Panda's q̈ took
-                                // 40 % longer: the loads wait for the stores).
-                                *dm = inverse;
-                                factored = Some(ok);
-                                let inverse = &inverse;
-                                #acceleration
-                            }, &mut terms);
-                            let Some(ok) = factored else {
-                                return None;
-                            };
-                            #finite
-                            let (dq, dqd, inverse) = &mut terms;
-                            #products
-                            na::SimdBool::all(ok).then_some(terms)
-                        },
-                        &["forward_dynamics_terms", "gravity"],
-                    )
-                } else {
-                    (
-                        quote! {
-                            let (inverse, ok) = self.mass_matrix_inverse_lanes();
-                            let mut terms = (zero(), zero());
-                            let qdd = self.inverse_dynamics_derivatives_then(qd, |(_, dqd)| {
-                                let inverse = &inverse;
-                                #acceleration
-                            }, &mut terms);
-                            #finite
-                            let (dq, dqd) = &mut terms;
-                            #products
-                            na::SimdBool::all(ok).then(|| (terms.0, terms.1, inverse))
-                        },
-                        &[
-                            "mass_matrix_inverse_lanes",
-                            "gravity",
-                            "inverse_dynamics_derivatives",
-                        ],
-                    )
-                };
-            composed(
-                quote! {
-                    let g = self.gravity();
-                    let applied = na::SVector::<T, DOF>::from(*tau);
-                    let zero = || na::SMatrix::<T, DOF, DOF>::from_data(na::ArrayStorage([[T::zero(); DOF]; DOF]));
-                    #body
-                },
-                reads,
-            )
-        },
+        make: |cx| forward_dynamics_derivatives(cx, false),
         arm: None,
     },
     Quantity {

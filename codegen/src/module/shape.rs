@@ -38,6 +38,8 @@ pub enum Shape {
     OptionSquare,
     /// Three optional n×n matrices.
     OptionSquareTriple,
+    /// Three n×n matrices and the mask of the lanes where they are valid.
+    SquareTripleMask,
     /// An n×n×n array `[i][j][k]`.
     Cube,
     /// The `Terms` struct.
@@ -82,6 +84,14 @@ impl Shape {
                     na::SMatrix<#t, DOF, DOF>,
                 )>
             ),
+            Shape::SquareTripleMask => quote!((
+                (
+                    na::SMatrix<#t, DOF, DOF>,
+                    na::SMatrix<#t, DOF, DOF>,
+                    na::SMatrix<#t, DOF, DOF>,
+                ),
+                <#t as na::SimdValue>::SimdBool,
+            )),
             Shape::Cube => quote!([[[#t; DOF]; DOF]; DOF]),
             Shape::Terms => quote!(Terms<#t>),
             Shape::Regressor => quote!(na::SMatrix<#t, DOF, PARAMETERS>),
@@ -132,6 +142,7 @@ impl Shape {
             | Shape::SquareMask
             | Shape::OptionSquare
             | Shape::OptionSquareTriple
+            | Shape::SquareTripleMask
             | Shape::Terms => {
                 unreachable!("{self:?} values are composed, never derived entry by entry")
             }
@@ -196,6 +207,7 @@ impl Shape {
             | Shape::SquareMask
             | Shape::OptionSquare
             | Shape::OptionSquareTriple
+            | Shape::SquareTripleMask
             | Shape::Terms => {
                 unreachable!("{self:?} values are composed, never derived entry by entry")
             }
