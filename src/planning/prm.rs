@@ -259,8 +259,7 @@ fn tree_nearest<const K: usize>(tree: &KdTree<K>, q: &[f64], n: usize) -> Vec<(f
     // One more than asked, to see whether nodes tie at the last distance taken: the tree
     // picks among those by its layout, so then all of them are fetched and the first in
     // node order kept. Equal distances in node order: the scan's answer, whatever the layout.
-    let more =
-        core::num::NonZeroUsize::new(n.saturating_add(1)).unwrap_or(core::num::NonZeroUsize::MIN);
+    let more = core::num::NonZeroUsize::MIN.saturating_add(n);
     let mut found = pairs(
         tree.query(&query)
             .nearest_n::<SquaredEuclidean<f64>>(more)
