@@ -309,7 +309,7 @@ impl NumericIk {
         );
         let mut q = seed.clone();
         self.clamp(arm, &mut q);
-        let mut at_seed = arm.jacobian(&q);
+        let at_seed = arm.jacobian(&q);
         let length = length_scale(arm, &at_seed);
         // The Jacobian's position rows in that scale, as the residual's.
         let scaled = |mut j: OMatrix<f64, U6, A::Dof>| {
@@ -317,8 +317,7 @@ impl NumericIk {
             j
         };
         // The seed's, for the first iteration (which runs at the seed).
-        at_seed = scaled(at_seed);
-        let mut first = Some(at_seed);
+        let mut first = Some(scaled(at_seed));
         let mut trial = q.clone();
         let mut free = q.clone();
         let mut iterations = 0;

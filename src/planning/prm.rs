@@ -348,6 +348,10 @@ impl NodeTree {
             }
             _ => Vec::new(),
         };
+        if self.items.is_empty() {
+            // The kd-tree holds every node: its answer is the answer.
+            return found;
+        }
         found.extend(
             self.points
                 .chunks_exact(self.dim)
