@@ -11,7 +11,8 @@
 //! `libm`'s, faster one value at a time. Each generated module's `batch`
 //! submodule wraps this for slices: `batch::mass_matrix(&qs, &mut out)` packs the
 //! configurations, evaluates, and writes one output per configuration; [`run`] is the loop
-//! they share.
+//! they share. A payload (`batch::*_with_payload`) is one for the whole slice, [`splat`] over
+//! the lanes.
 //!
 //! The width a pack's arithmetic really gets is the compiler's choice of target: the default
 //! `x86_64` target has SSE2 (two `f64` per instruction); `-C target-cpu=native` (or
@@ -53,6 +54,19 @@ impl Lanes for f32 {
     fn pack(lane: impl FnMut(usize) -> f32) -> WideF32x8 {
         WideF32x8::from(core::array::from_fn::<f32, 8, _>(lane))
     }
+}
+
+/// `values` in every lane: the packs of an input that is the same for every configuration of a
+/// batch (a payload's ten parameters in the generated `batch::*_with_payload`).
+///
+/// ```
+/// use dhgen::batch::splat;
+/// let packs = splat(&[1.5_f64, -2.0]);
+/// assert_eq!(packs[1].0.to_array(), [-2.0; 4]);
+/// ```
+#[inline]
+pub fn splat<T: Lanes, const N: usize>(values: &[T; N]) -> [T::Pack; N] {
+    values.map(|v| T::pack(|_| v))
 }
 
 /// A value computed on packs, read back one lane at a time.

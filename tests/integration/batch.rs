@@ -42,7 +42,8 @@ fn same<A: std::fmt::Debug, B: std::fmt::Debug>(what: &str, c: usize, batch: &A,
     assert_eq!(a, b, "{what}, configuration {c}: batch differs from scalar");
 }
 
-/// The input a name stands for, from `(q̇, q̈, τ)`.
+/// The input a name stands for, one per configuration, from `(q̇, q̈, τ, payload)` (the
+/// payload is the same for every configuration).
 macro_rules! pick {
     (qd, $s:ident) => {
         $s.0
@@ -52,6 +53,20 @@ macro_rules! pick {
     };
     (tau, $s:ident) => {
         $s.2
+    };
+    (payload, $s:ident) => {
+        $s.3
+    };
+}
+
+/// The argument of a batch function a name stands for: a slice of joint vectors, or the one
+/// payload of every configuration.
+macro_rules! batch_arg {
+    (payload, $s:ident) => {
+        &$s.3[0]
+    };
+    ($x:ident, $s:ident) => {
+        &pick!($x, $s)
     };
 }
 
@@ -129,12 +144,21 @@ macro_rules! check {
         let qd = cast(s.states::<N>(11));
         let qdd = cast(s.states::<N>(11));
         let tau = cast(s.states::<N>(11));
-        let inputs = (qd, qdd, tau);
+        // A payload off the tool's axis, with products of inertia.
+        let payload = dhgen::payload::Payload::new(
+            2.5,
+            [0.02, -0.03, 0.06],
+            [[4e-3, 2e-4, -1e-4], [2e-4, 5e-3, 3e-4], [-1e-4, 3e-4, 6e-3]],
+        )
+        .expect("a physical payload")
+        .parameters()
+        .map(|x| x as $t);
+        let inputs = (qd, qdd, tau, vec![payload; q.len()]);
         let _ = &inputs;
         $(
             // Any value of the right type to overwrite: configuration 0's.
             let mut out = vec![m::$f(&q[0], $(&pick!($x, inputs)[0]),*); q.len()];
-            m::batch::$f(&q, $(&pick!($x, inputs),)* &mut out).expect("lengths agree");
+            m::batch::$f(&q, $(batch_arg!($x, inputs),)* &mut out).expect("lengths agree");
             for (c, o) in out.iter().enumerate() {
                 agree::<$t, _, _>(
                     concat!(stringify!($m), "::", stringify!($f), " ", stringify!($t)),
@@ -178,6 +202,12 @@ macro_rules! dynamics {
                 bias(qd),
                 forward_dynamics(qd, tau),
                 kinetic_energy(qd),
+                inverse_dynamics_with_payload(qd, qdd, payload),
+                bias_with_payload(qd, payload),
+                mass_matrix_with_payload(payload),
+                gravity_with_payload(payload),
+                coriolis_with_payload(qd, payload),
+                forward_dynamics_with_payload(qd, tau, payload),
             ]
         )
     }};

@@ -1387,7 +1387,7 @@ pub mod one_joint {
     ) -> Terms<T> {
         State::for_terms(q).terms(qd)
     }
-    /// Every function above whose inputs are joint vectors, for slices of
+    /// Every function above whose value is read lane by lane, for slices of
     /// configurations: evaluated on SIMD packs (`dhgen::batch`), each configuration's
     /// value equal to the scalar function's.
     pub mod batch {
@@ -1510,6 +1510,86 @@ pub mod one_joint {
                 |[q, qd, qdd]| super::inverse_dynamics(q, qd, qdd),
             )
         }
+        /// [`inverse_dynamics_with_payload`](super::inverse_dynamics_with_payload) for each configuration: `out[c]` from `q[c]`, `qd[c]`, `qdd[c]` and `payload` (the same for every configuration), four `f64` or eight `f32` configurations per call (`dhgen::batch`).
+        ///
+        /// # Errors
+        /// `LengthMismatch` (nothing written) unless every slice has `out.len()` entries.
+        pub fn inverse_dynamics_with_payload<T: ::dhgen::batch::Lanes>(
+            q: &[[T; DOF]],
+            qd: &[[T; DOF]],
+            qdd: &[[T; DOF]],
+            payload: &[T; 10],
+            out: &mut [na::SVector<T, DOF>],
+        ) -> Result<(), ::dhgen::batch::LengthMismatch> {
+            let payload = &::dhgen::batch::splat(payload);
+            ::dhgen::batch::run(
+                [q, qd, qdd],
+                out,
+                |[q, qd, qdd]| super::inverse_dynamics_with_payload(q, qd, qdd, payload),
+            )
+        }
+        /// [`bias_with_payload`](super::bias_with_payload) for each configuration: `out[c]` from `q[c]`, `qd[c]` and `payload` (the same for every configuration), four `f64` or eight `f32` configurations per call (`dhgen::batch`).
+        ///
+        /// # Errors
+        /// `LengthMismatch` (nothing written) unless every slice has `out.len()` entries.
+        pub fn bias_with_payload<T: ::dhgen::batch::Lanes>(
+            q: &[[T; DOF]],
+            qd: &[[T; DOF]],
+            payload: &[T; 10],
+            out: &mut [na::SVector<T, DOF>],
+        ) -> Result<(), ::dhgen::batch::LengthMismatch> {
+            let payload = &::dhgen::batch::splat(payload);
+            ::dhgen::batch::run(
+                [q, qd],
+                out,
+                |[q, qd]| super::bias_with_payload(q, qd, payload),
+            )
+        }
+        /// [`mass_matrix_with_payload`](super::mass_matrix_with_payload) for each configuration: `out[c]` from `q[c]` and `payload` (the same for every configuration), four `f64` or eight `f32` configurations per call (`dhgen::batch`).
+        ///
+        /// # Errors
+        /// `LengthMismatch` (nothing written) unless every slice has `out.len()` entries.
+        pub fn mass_matrix_with_payload<T: ::dhgen::batch::Lanes>(
+            q: &[[T; DOF]],
+            payload: &[T; 10],
+            out: &mut [na::SMatrix<T, DOF, DOF>],
+        ) -> Result<(), ::dhgen::batch::LengthMismatch> {
+            let payload = &::dhgen::batch::splat(payload);
+            ::dhgen::batch::run(
+                [q],
+                out,
+                |[q]| super::mass_matrix_with_payload(q, payload),
+            )
+        }
+        /// [`gravity_with_payload`](super::gravity_with_payload) for each configuration: `out[c]` from `q[c]` and `payload` (the same for every configuration), four `f64` or eight `f32` configurations per call (`dhgen::batch`).
+        ///
+        /// # Errors
+        /// `LengthMismatch` (nothing written) unless every slice has `out.len()` entries.
+        pub fn gravity_with_payload<T: ::dhgen::batch::Lanes>(
+            q: &[[T; DOF]],
+            payload: &[T; 10],
+            out: &mut [na::SVector<T, DOF>],
+        ) -> Result<(), ::dhgen::batch::LengthMismatch> {
+            let payload = &::dhgen::batch::splat(payload);
+            ::dhgen::batch::run([q], out, |[q]| super::gravity_with_payload(q, payload))
+        }
+        /// [`coriolis_with_payload`](super::coriolis_with_payload) for each configuration: `out[c]` from `q[c]`, `qd[c]` and `payload` (the same for every configuration), four `f64` or eight `f32` configurations per call (`dhgen::batch`).
+        ///
+        /// # Errors
+        /// `LengthMismatch` (nothing written) unless every slice has `out.len()` entries.
+        pub fn coriolis_with_payload<T: ::dhgen::batch::Lanes>(
+            q: &[[T; DOF]],
+            qd: &[[T; DOF]],
+            payload: &[T; 10],
+            out: &mut [na::SMatrix<T, DOF, DOF>],
+        ) -> Result<(), ::dhgen::batch::LengthMismatch> {
+            let payload = &::dhgen::batch::splat(payload);
+            ::dhgen::batch::run(
+                [q, qd],
+                out,
+                |[q, qd]| super::coriolis_with_payload(q, qd, payload),
+            )
+        }
         /// [`regressor`](super::regressor) for each configuration: `out[c]` from `q[c]`, `qd[c]`, `qdd[c]`, four `f64` or eight `f32` configurations per call (`dhgen::batch`).
         ///
         /// # Errors
@@ -1568,6 +1648,32 @@ pub mod one_joint {
                 out,
                 |[q, qd, tau]| {
                     let (value, ok) = super::forward_dynamics_lanes(q, qd, tau);
+                    ::dhgen::batch::Masked(value, ok)
+                },
+            )
+        }
+        /// [`forward_dynamics_with_payload_lanes`](super::forward_dynamics_with_payload_lanes) for each configuration: `out[c]` from `q[c]`, `qd[c]`, `tau[c]` and `payload` (the same for every configuration), four `f64` or eight `f32` configurations per call (`dhgen::batch`).
+        ///
+        /// # Errors
+        /// `LengthMismatch` (nothing written) unless every slice has `out.len()` entries.
+        pub fn forward_dynamics_with_payload<T: ::dhgen::batch::Lanes>(
+            q: &[[T; DOF]],
+            qd: &[[T; DOF]],
+            tau: &[[T; DOF]],
+            payload: &[T; 10],
+            out: &mut [Option<na::SVector<T, DOF>>],
+        ) -> Result<(), ::dhgen::batch::LengthMismatch> {
+            let payload = &::dhgen::batch::splat(payload);
+            ::dhgen::batch::run(
+                [q, qd, tau],
+                out,
+                |[q, qd, tau]| {
+                    let (value, ok) = super::forward_dynamics_with_payload_lanes(
+                        q,
+                        qd,
+                        tau,
+                        payload,
+                    );
                     ::dhgen::batch::Masked(value, ok)
                 },
             )

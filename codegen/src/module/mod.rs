@@ -532,10 +532,12 @@ impl Items {
         }
     }
 
-    /// The `batch` function of a public quantity whose inputs are joint vectors and whose value
-    /// [`::dhgen::batch::Unpack`] reads lane by lane (an `Option` from the lane-wise form:
-    /// `forward_dynamics` is `forward_dynamics_lanes`, masked, and so are
-    /// `mass_matrix_inverse` and `forward_dynamics_derivatives`).
+    /// The `batch` function of a public quantity whose value [`::dhgen::batch::Unpack`] reads
+    /// lane by lane (an `Option` from the lane-wise form: `forward_dynamics` is
+    /// `forward_dynamics_lanes`, masked, and so are `mass_matrix_inverse` and
+    /// `forward_dynamics_derivatives`). Joint vectors come one per configuration; a payload is
+    /// one for all of them (the object the arm holds while a planner samples its motions),
+    /// spread over every lane once per call.
     fn add_batch(&mut self, q: &Quantity, inputs: &[Ident]) {
         let t = quote!(T);
         let (name, ty, wrap) = match q.shape {
@@ -545,7 +547,6 @@ impl Items {
             | Shape::Terms => {
                 return;
             }
-            _ if !q.inputs.iter().all(|i| i.is_joint_vector()) => return,
             Shape::VectorMask => (
                 q.name.trim_end_matches("_lanes"),
                 quote!(Option<na::SVector<T, DOF>>),
@@ -571,6 +572,15 @@ impl Items {
         };
         let call = format_ident!("{}", q.name);
         let name = format_ident!("{}", name);
+        let (joint, shared): (Vec<_>, Vec<_>) = inputs
+            .iter()
+            .zip(q.inputs)
+            .partition(|(_, i)| i.is_joint_vector());
+        let joint: Vec<&Ident> = joint.into_iter().map(|(n, _)| n).collect();
+        let (shared, shared_tys): (Vec<&Ident>, Vec<TokenStream>) = shared
+            .into_iter()
+            .map(|(n, i)| (n, array_ty(i.name())))
+            .unzip();
         let value = quote!(super::#call(q, #(#inputs),*));
         let value = if wrap {
             quote!({
@@ -581,11 +591,15 @@ impl Items {
             value
         };
         let doc = format!(
-            " [`{call}`](super::{call}) for each configuration: `out[c]` from `q[c]`{}, {} \
+            " [`{call}`](super::{call}) for each configuration: `out[c]` from `q[c]`{}{}, {} \
              configurations per call (`dhgen::batch`).",
-            inputs
+            joint
                 .iter()
                 .map(|i| format!(", `{i}[c]`"))
+                .collect::<String>(),
+            shared
+                .iter()
+                .map(|i| format!(" and `{i}` (the same for every configuration)"))
                 .collect::<String>(),
             "four `f64` or eight `f32`"
         );
@@ -596,10 +610,12 @@ impl Items {
             /// `LengthMismatch` (nothing written) unless every slice has `out.len()` entries.
             pub fn #name<T: ::dhgen::batch::Lanes>(
                 q: &[[T; DOF]],
-                #(#inputs: &[[T; DOF]],)*
+                #(#joint: &[[T; DOF]],)*
+                #(#shared: #shared_tys,)*
                 out: &mut [#ty],
             ) -> Result<(), ::dhgen::batch::LengthMismatch> {
-                ::dhgen::batch::run([q, #(#inputs),*], out, |[q, #(#inputs),*]| #value)
+                #(let #shared = &::dhgen::batch::splat(#shared);)*
+                ::dhgen::batch::run([q, #(#joint),*], out, |[q, #(#joint),*]| #value)
             }
         });
     }
@@ -905,7 +921,7 @@ pub fn generate_with(
 
             #(#free)*
 
-            /// Every function above whose inputs are joint vectors, for slices of
+            /// Every function above whose value is read lane by lane, for slices of
             /// configurations: evaluated on SIMD packs (`dhgen::batch`), each configuration's
             /// value equal to the scalar function's.
             pub mod batch {
