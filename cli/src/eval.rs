@@ -1,4 +1,5 @@
-//! `dhgen eval`: T, J, D, C, g and τ at one configuration, on the runtime path.
+//! `dhgen eval`: T, J, D, C, g and τ at one configuration, on the runtime path, and with
+//! `--derivatives` those of inverse and forward dynamics.
 
 use crate::table::{degrees, trimmed};
 use dhgen::Robot;
@@ -24,6 +25,41 @@ struct Dynamics {
     c: DMatrix<f64>,
     g: DVector<f64>,
     tau: DVector<f64>,
+    /// Present when asked for (`--derivatives`).
+    derivatives: Option<Derivatives>,
+}
+
+/// The derivatives of inverse dynamics at (q, q̇, q̈), and of forward dynamics at (q, q̇, τ)
+/// for the τ above (whose accelerations are q̈).
+struct Derivatives {
+    dtau_dq: DMatrix<f64>,
+    dtau_dqd: DMatrix<f64>,
+    /// (∂q̈/∂q, ∂q̈/∂q̇, D⁻¹); `None` where D(q) is singular to working precision.
+    forward: Option<(DMatrix<f64>, DMatrix<f64>, DMatrix<f64>)>,
+}
+
+impl Dynamics {
+    /// Every result, named as `eval` prints it (the text's titles are longer), with its JSON
+    /// key; vectors as one-row matrices.
+    fn named(&self) -> Vec<(&'static str, &'static str, DMatrix<f64>)> {
+        let row = |v: &DVector<f64>| DMatrix::from_row_slice(1, v.len(), v.as_slice());
+        let mut all = vec![
+            ("D(q)", "D", self.d.clone()),
+            ("C(q, q̇)", "C", self.c.clone()),
+            ("g(q)", "g", row(&self.g)),
+            ("τ", "tau", row(&self.tau)),
+        ];
+        if let Some(d) = &self.derivatives {
+            all.push(("∂τ/∂q", "dtau_dq", d.dtau_dq.clone()));
+            all.push(("∂τ/∂q̇", "dtau_dqd", d.dtau_dqd.clone()));
+            if let Some((dq, dqd, inverse)) = &d.forward {
+                all.push(("∂q̈/∂q", "dqdd_dq", dq.clone()));
+                all.push(("∂q̈/∂q̇", "dqdd_dqd", dqd.clone()));
+                all.push(("D(q)⁻¹", "Minv", inverse.clone()));
+            }
+        }
+        all
+    }
 }
 
 /// Reads joint positions: numbers (rad or m), and for revolute joints also the angle forms
@@ -110,7 +146,8 @@ pub fn check_len(robot: &Robot, flag: &str, len: usize) -> Result<(), String> {
     }
 }
 
-/// Evaluates at `q`, `qd`, `qdd` (lengths already checked, values finite), the one place
+/// Evaluates at `q`, `qd`, `qdd` (lengths already checked, values finite), with the
+/// derivatives of the dynamics when `derivatives` is set; the one place
 /// `eval` checks its input against the robot (docs/conventions.md, "Non-finite input": the
 /// runtime path does not check, so the command does):
 ///
@@ -126,6 +163,7 @@ pub fn evaluate(
     q: Vec<f64>,
     qd: Vec<f64>,
     qdd: Vec<f64>,
+    derivatives: bool,
 ) -> Result<Evaluation, String> {
     let mut warnings = Vec::new();
     for (i, (l, &x)) in robot.model().links.iter().zip(&q).enumerate() {
@@ -156,19 +194,16 @@ pub fn evaluate(
             ));
         }
     }
-    let e = compute(robot, q, qd, qdd);
+    let e = compute(robot, q, qd, qdd, derivatives);
     let matrices: [(&str, DMatrix<f64>); 2] = [
         ("T", DMatrix::from_fn(4, 4, |r, c| e.pose[(r, c)])),
         ("J", e.jacobian.clone()),
     ];
-    let dynamics = e.dynamics.iter().flat_map(|Dynamics { d, c, g, tau }| {
-        [
-            ("D(q)", d.clone()),
-            ("C(q, q̇)", c.clone()),
-            ("g(q)", DMatrix::from_row_slice(1, g.len(), g.as_slice())),
-            ("τ", DMatrix::from_row_slice(1, tau.len(), tau.as_slice())),
-        ]
-    });
+    let dynamics = e
+        .dynamics
+        .iter()
+        .flat_map(Dynamics::named)
+        .map(|(name, _, m)| (name, m));
     for (name, m) in matrices.into_iter().chain(dynamics) {
         let bad = (0..m.nrows())
             .flat_map(|r| (0..m.ncols()).map(move |c| (r, c)))
@@ -195,16 +230,35 @@ pub fn evaluate(
     Ok(e)
 }
 
-/// T, J and (with mass properties) D, C, g and τ at `q`, `qd`, `qdd`, unchecked.
-fn compute(robot: &Robot, q: Vec<f64>, qd: Vec<f64>, qdd: Vec<f64>) -> Evaluation {
+/// T, J and (with mass properties) D, C, g, τ and, if asked, the derivatives at `q`, `qd`,
+/// `qdd`, unchecked.
+fn compute(
+    robot: &Robot,
+    q: Vec<f64>,
+    qd: Vec<f64>,
+    qdd: Vec<f64>,
+    derivatives: bool,
+) -> Evaluation {
     let pose = robot.fk(&q).to_homogeneous();
     let j = robot.jacobian(&q);
     let jacobian = DMatrix::from_column_slice(6, robot.dof(), j.as_slice());
-    let dynamics = robot.has_dynamics().then(|| Dynamics {
-        d: robot.mass_matrix(&q),
-        c: robot.coriolis(&q, &qd),
-        g: robot.gravity(&q),
-        tau: robot.inverse_dynamics(&q, &qd, &qdd),
+    let dynamics = robot.has_dynamics().then(|| {
+        let tau = robot.inverse_dynamics(&q, &qd, &qdd);
+        let derivatives = derivatives.then(|| {
+            let (dtau_dq, dtau_dqd) = robot.inverse_dynamics_derivatives(&q, &qd, &qdd);
+            Derivatives {
+                dtau_dq,
+                dtau_dqd,
+                forward: robot.forward_dynamics_derivatives(&q, &qd, tau.as_slice()),
+            }
+        });
+        Dynamics {
+            d: robot.mass_matrix(&q),
+            c: robot.coriolis(&q, &qd),
+            g: robot.gravity(&q),
+            tau,
+            derivatives,
+        }
     });
     Evaluation {
         q,
@@ -218,7 +272,9 @@ fn compute(robot: &Robot, q: Vec<f64>, qd: Vec<f64>, qdd: Vec<f64>) -> Evaluatio
 
 impl Evaluation {
     /// The evaluation as JSON: vectors as arrays, matrices as arrays of rows; `D`, `C`, `g`
-    /// and `tau` only when the robot has dynamics.
+    /// and `tau` only when the robot has dynamics; with `--derivatives` also `dtau_dq`,
+    /// `dtau_dqd` (entry `[k][m]` = ∂τ_k/∂x_m) and, unless D(q) is singular, `dqdd_dq`,
+    /// `dqdd_dqd` and `Minv` (forward dynamics' derivatives at the τ above).
     pub fn json(&self, robot: &Robot) -> Value {
         let rows = |m: &DMatrix<f64>| -> Value {
             Value::from(
@@ -238,11 +294,16 @@ impl Evaluation {
             "T": rows(&pose),
             "J": rows(&self.jacobian),
         });
-        if let (Some(Dynamics { d, c, g, tau }), Some(obj)) = (&self.dynamics, v.as_object_mut()) {
-            obj.insert("D".into(), rows(d));
-            obj.insert("C".into(), rows(c));
-            obj.insert("g".into(), Value::from(g.as_slice().to_vec()));
-            obj.insert("tau".into(), Value::from(tau.as_slice().to_vec()));
+        if let (Some(dynamics), Some(obj)) = (&self.dynamics, v.as_object_mut()) {
+            for (_, key, m) in dynamics.named() {
+                // Vectors (one row) as arrays, matrices as arrays of rows.
+                let value = if matches!(key, "g" | "tau") {
+                    Value::from(m.as_slice().to_vec())
+                } else {
+                    rows(&m)
+                };
+                obj.insert(key.into(), value);
+            }
         }
         v
     }
@@ -269,7 +330,13 @@ impl Evaluation {
             &self.jacobian,
         );
         match &self.dynamics {
-            Some(Dynamics { d, c, g, tau }) => {
+            Some(Dynamics {
+                d,
+                c,
+                g,
+                tau,
+                derivatives,
+            }) => {
                 block(&mut out, "D(q): joint-space inertia matrix", d);
                 block(
                     &mut out,
@@ -286,6 +353,32 @@ impl Evaluation {
                     "τ = D(q) q̈ + C(q, q̇) q̇ + g(q) (+ friction), transposed",
                     &DMatrix::from_row_slice(1, tau.len(), tau.as_slice()),
                 );
+                if let Some(Derivatives {
+                    dtau_dq,
+                    dtau_dqd,
+                    forward,
+                }) = derivatives
+                {
+                    block(&mut out, "∂τ/∂q: entry (k, m) = ∂τ_k/∂q_m", dtau_dq);
+                    block(
+                        &mut out,
+                        "∂τ/∂q̇ (= 2 C(q, q̇) + viscous friction on the diagonal)",
+                        dtau_dqd,
+                    );
+                    match forward {
+                        Some((dq, dqd, inverse)) => {
+                            block(&mut out, "∂q̈/∂q at the τ above (= −D⁻¹ ∂τ/∂q)", dq);
+                            block(&mut out, "∂q̈/∂q̇ at the τ above (= −D⁻¹ ∂τ/∂q̇)", dqd);
+                            block(&mut out, "∂q̈/∂τ = D(q)⁻¹", inverse);
+                        }
+                        None => {
+                            let _ = writeln!(
+                                out,
+                                "\nno forward dynamics derivatives: D(q) is singular to working precision"
+                            );
+                        }
+                    }
+                }
             }
             None => {
                 let _ = writeln!(out, "\nno dynamics: the description has no mass properties");

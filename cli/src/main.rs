@@ -1,8 +1,8 @@
 //! `dhgen`: the command line of dhgen.
 //!
 //! - `dhgen info ROBOT.toml`: the DH table, joints, limits, masses, spherical wrist;
-//! - `dhgen eval ROBOT.toml --q ... [--qd ...] [--qdd ...] [--json]`: T, J, D, C, g, τ on
-//!   the runtime path;
+//! - `dhgen eval ROBOT.toml --q ... [--qd ...] [--qdd ...] [--json] [--derivatives]`: T, J, D, C,
+//!   g, τ (and the derivatives of the dynamics) on the runtime path;
 //! - `dhgen emit ROBOT.toml [-o FILE] [--name MOD] [--derivatives] [--regressor]`: the module `robot!`
 //!   generates, formatted;
 //! - `dhgen latex ROBOT.toml`: D(q), c_ijk and g(q) as LaTeX equations;
@@ -62,6 +62,10 @@ enum Command {
         /// Print JSON instead of text.
         #[arg(long)]
         json: bool,
+        /// Also print the derivatives of inverse dynamics (∂τ/∂q, ∂τ/∂q̇) and of forward
+        /// dynamics at the τ printed (∂q̈/∂q, ∂q̈/∂q̇, D⁻¹), analytic, on the runtime path.
+        #[arg(long)]
+        derivatives: bool,
     },
     /// Write the module `dhgen::robot!` generates for the description, formatted, as a Rust
     /// source file.
@@ -267,12 +271,13 @@ fn run(command: Command) -> Result<String, String> {
             qd,
             qdd,
             json,
+            derivatives,
         } => {
             let r = load(&robot)?;
             let q = eval::positions(&r, &eval::split("--q", &q)?)?;
             let qd = eval::rates(&r, "--qd", qd.as_deref())?;
             let qdd = eval::rates(&r, "--qdd", qdd.as_deref())?;
-            let e = eval::evaluate(&r, q, qd, qdd)?;
+            let e = eval::evaluate(&r, q, qd, qdd, derivatives)?;
             Ok(if json {
                 format!("{}\n", e.json(&r))
             } else {

@@ -135,6 +135,21 @@ fn block(out: &str, title: &str) -> Vec<Vec<f64>> {
         .collect()
 }
 
+/// `eval`'s arguments for `file` at one state, asking for JSON.
+fn eval_json(file: &str, q: &[f64], qd: &[f64], qdd: &[f64]) -> Vec<String> {
+    let list = |v: &[f64]| v.iter().map(f64::to_string).collect::<Vec<_>>().join(",");
+    let (q, qd, qdd) = (list(q), list(qd), list(qdd));
+    [
+        "eval", file, "--q", &q, "--qd", &qd, "--qdd", &qdd, "--json",
+    ]
+    .map(String::from)
+    .to_vec()
+}
+
+fn as_strs(args: &[String]) -> Vec<&str> {
+    args.iter().map(String::as_str).collect()
+}
+
 #[test]
 fn eval_text_matches_the_runtime_at_zero() {
     let out = stdout(&["eval", "robots/puma560.toml", "--q", "0,0,0,0,0,0"]);
@@ -170,18 +185,7 @@ fn eval_json_matches_the_runtime() {
     let q = [0.1, -0.6, 0.4, 0.3, 0.8, -0.2];
     let qd = [0.5, -0.3, 0.2, 1.0, -0.7, 0.4];
     let qdd = [1.0, 0.5, -0.5, 0.2, 0.3, -1.0];
-    let list = |v: &[f64]| v.iter().map(f64::to_string).collect::<Vec<_>>().join(",");
-    let out = stdout(&[
-        "eval",
-        "robots/puma560.toml",
-        "--q",
-        &list(&q),
-        "--qd",
-        &list(&qd),
-        "--qdd",
-        &list(&qdd),
-        "--json",
-    ]);
+    let out = stdout(&as_strs(&eval_json("robots/puma560.toml", &q, &qd, &qdd)));
     let v: serde_json::Value = serde_json::from_str(&out).expect("valid JSON");
     let robot = puma();
     let matrix = |key: &str| -> Vec<Vec<f64>> {
@@ -241,6 +245,68 @@ fn eval_json_matches_the_runtime() {
     assert_eq!(v["robot"], "puma560");
     assert_eq!(v["dof"], 6);
     assert_eq!(v["has_dynamics"], true);
+}
+
+#[test]
+fn eval_prints_the_derivatives_of_the_runtime() {
+    // The SCARA: a prismatic joint, motors, viscous and Coulomb friction.
+    let file = "robots/scara.toml";
+    let robot = Robot::from_toml_file(root().join(file)).expect("scara loads");
+    let (q, qd, qdd) = (
+        [0.4, -1.1, 0.05, 0.7],
+        [0.3, -0.8, 0.2, 1.5],
+        [1.0, -0.5, 0.3, 2.0],
+    );
+    let args = eval_json(file, &q, &qd, &qdd);
+    let args = as_strs(&args);
+    let plain: serde_json::Value = serde_json::from_str(&stdout(&args)).expect("valid JSON");
+    for key in ["dtau_dq", "dtau_dqd", "dqdd_dq", "dqdd_dqd", "Minv"] {
+        assert!(
+            plain.get(key).is_none(),
+            "{key} printed without --derivatives"
+        );
+    }
+    let v: serde_json::Value =
+        serde_json::from_str(&stdout(&[&args[..], &["--derivatives"]].concat()))
+            .expect("valid JSON");
+    let (dtau_dq, dtau_dqd) = robot.inverse_dynamics_derivatives(&q, &qd, &qdd);
+    let tau = robot.inverse_dynamics(&q, &qd, &qdd);
+    let (dqdd_dq, dqdd_dqd, inverse) = robot
+        .forward_dynamics_derivatives(&q, &qd, tau.as_slice())
+        .expect("D is regular");
+    let want = [
+        ("dtau_dq", &dtau_dq),
+        ("dtau_dqd", &dtau_dqd),
+        ("dqdd_dq", &dqdd_dq),
+        ("dqdd_dqd", &dqdd_dqd),
+        ("Minv", &inverse),
+    ];
+    for (key, m) in want {
+        let rows = v[key].as_array().unwrap_or_else(|| panic!("{key} missing"));
+        assert_eq!(rows.len(), 4, "{key}");
+        for (r, row) in rows.iter().enumerate() {
+            let row = row.as_array().unwrap();
+            assert_eq!(row.len(), 4, "{key}");
+            for (c, x) in row.iter().enumerate() {
+                let x = x.as_f64().unwrap();
+                assert!(
+                    (x - m[(r, c)]).abs() <= 1e-12 * (1.0 + m.amax()),
+                    "{key}[{r}][{c}]: {x} vs {}",
+                    m[(r, c)]
+                );
+            }
+        }
+    }
+    // The viscous friction of joint 3 (20 N·s/m) is on the diagonal of ∂τ/∂q̇.
+    let viscous = v["dtau_dqd"][2][2].as_f64().unwrap() - 2.0 * v["C"][2][2].as_f64().unwrap();
+    assert!((viscous - 20.0).abs() < 1e-12, "{viscous}");
+    let text = stdout(&[&args[..args.len() - 1], &["--derivatives"]].concat());
+    for title in ["∂τ/∂q:", "∂τ/∂q̇", "∂q̈/∂q at", "∂q̈/∂q̇ at", "∂q̈/∂τ = D(q)⁻¹"]
+    {
+        assert!(text.contains(title), "{title} missing from\n{text}");
+    }
+    let m = block(&text, "∂q̈/∂τ = D(q)⁻¹");
+    assert!((m[1][1] - inverse[(1, 1)]).abs() <= 5e-7 * (1.0 + inverse[(1, 1)].abs()));
 }
 
 #[test]
