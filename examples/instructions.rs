@@ -5,11 +5,11 @@
 //! ```sh
 //! cargo build --release --example instructions
 //! B=target/release/examples/instructions
-//! for path in none generated runtime; do
-//!   valgrind --tool=callgrind --callgrind-out-file=/dev/null $B puma560 mass_matrix $path 2>&1 | grep Collected
+//! for args in "none generated" "mass_matrix generated" "mass_matrix runtime"; do
+//!   valgrind --tool=callgrind --callgrind-out-file=/dev/null $B puma560 $args 2>&1 | grep Collected
 //! done
 //! ```
-//! Instructions per call = (count − count of `none`) / 1000. `batch` evaluates the same 1,000
+//! Instructions per call = (count − count of the quantity `none`) / 1000. `batch` evaluates the same 1,000
 //! configurations through the module's `batch` functions (SIMD packs of four `f64`): its
 //! count per configuration is the same formula. `packs` calls the generated functions on the
 //! packs themselves (what `batch` does before unpacking each lane's value).
@@ -194,6 +194,9 @@ macro_rules! run {
                 }
                 ("inverse_dynamics_derivatives", false) => {
                     robot.inverse_dynamics_derivatives(q, qd, qd).0[(1, 0)]
+                }
+                ("inverse_dynamics_derivatives_with_payload", true) => {
+                    $m::inverse_dynamics_derivatives_with_payload(q, qd, qd, &pp).0[(1, 0)]
                 }
                 ("forward_dynamics_derivatives", true) => {
                     $m::forward_dynamics_derivatives(q, qd, qd).map_or(0.0, |x| x.0[(1, 0)])

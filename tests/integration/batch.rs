@@ -253,6 +253,7 @@ fn batch_derivatives_and_regressor_equal_scalar() {
         f64,
         [
             inverse_dynamics_derivatives(qd, qdd),
+            inverse_dynamics_derivatives_with_payload(qd, qdd, payload),
             mass_matrix_rate(qd),
             coriolis_transpose_qd(qd),
             regressor(qd, qdd),
@@ -266,6 +267,7 @@ fn batch_derivatives_and_regressor_equal_scalar() {
         f64,
         [
             inverse_dynamics_derivatives(qd, qdd),
+            inverse_dynamics_derivatives_with_payload(qd, qdd, payload),
             mass_matrix_inverse(),
             forward_dynamics_derivatives(qd, tau),
         ]

@@ -483,6 +483,25 @@ pub mod one_joint {
             self.inverse_dynamics_derivatives_then(qd, |_| *qdd, &mut out);
             out
         }
+        ///The derivatives of inverse dynamics with a payload held by the tool, `(∂τ/∂q, ∂τ/∂q̇)` at (q, q̇, q̈) (`payload`: its ten parameters, as for `inverse_dynamics_with_payload`; ∂τ/∂q̈ is `mass_matrix_with_payload`): what MPC linearises while the arm carries what it picked up, with the payload's parameters inputs rather than constants. Coulomb friction contributes 0, as in `inverse_dynamics_derivatives`.
+        #[must_use]
+        pub fn inverse_dynamics_derivatives_with_payload(
+            &self,
+            qd: &impl ::dhgen::JointArray<T, DOF>,
+            qdd: &impl ::dhgen::JointArray<T, DOF>,
+            payload: &[T; 10],
+        ) -> (na::SMatrix<T, DOF, DOF>, na::SMatrix<T, DOF, DOF>) {
+            let _ = qd;
+            let _ = qdd;
+            let _ = payload;
+            let mut out: (na::SMatrix<T, DOF, DOF>, na::SMatrix<T, DOF, DOF>) = (
+                na::Matrix::from_data(na::ArrayStorage([[T::zero(); DOF]; DOF])),
+                na::Matrix::from_data(na::ArrayStorage([[T::zero(); DOF]; DOF])),
+            );
+            out.0[(0, 0)] = ::dhgen::nalgebra::convert::<f64, T>(0f64);
+            out.1[(0, 0)] = ::dhgen::nalgebra::convert::<f64, T>(0f64);
+            out
+        }
         ///The time derivative of the inertia matrix, Ḋ(q, q̇) = Σ_i ∂D/∂q_i q̇_i (= C + Cᵀ): with [`coriolis_transpose_qd`](Self::coriolis_transpose_qd), what a generalized-momentum collision observer needs every cycle.
         #[doc(alias = "dD")]
         #[doc(alias = "computeMassMatrixTimeVariation")]
@@ -1017,6 +1036,16 @@ pub mod one_joint {
             State { c, s, d }
         }
         #[inline]
+        fn for_inverse_dynamics_derivatives_with_payload(
+            q: &impl ::dhgen::JointArray<T, DOF>,
+        ) -> Self {
+            let _ = q;
+            let c = [T::zero(); DOF];
+            let s = [T::zero(); DOF];
+            let d = [T::zero(); DOF];
+            State { c, s, d }
+        }
+        #[inline]
         fn for_mass_matrix_rate(q: &impl ::dhgen::JointArray<T, DOF>) -> Self {
             let _ = q;
             let c = [T::zero(); DOF];
@@ -1316,6 +1345,17 @@ pub mod one_joint {
         qdd: &impl ::dhgen::JointArray<T, DOF>,
     ) -> (na::SMatrix<T, DOF, DOF>, na::SMatrix<T, DOF, DOF>) {
         State::for_inverse_dynamics_derivatives(q).inverse_dynamics_derivatives(qd, qdd)
+    }
+    ///The derivatives of inverse dynamics with a payload held by the tool, `(∂τ/∂q, ∂τ/∂q̇)` at (q, q̇, q̈) (`payload`: its ten parameters, as for `inverse_dynamics_with_payload`; ∂τ/∂q̈ is `mass_matrix_with_payload`): what MPC linearises while the arm carries what it picked up, with the payload's parameters inputs rather than constants. Coulomb friction contributes 0, as in `inverse_dynamics_derivatives`.
+    #[must_use]
+    pub fn inverse_dynamics_derivatives_with_payload<T: ::dhgen::Real>(
+        q: &impl ::dhgen::JointArray<T, DOF>,
+        qd: &impl ::dhgen::JointArray<T, DOF>,
+        qdd: &impl ::dhgen::JointArray<T, DOF>,
+        payload: &[T; 10],
+    ) -> (na::SMatrix<T, DOF, DOF>, na::SMatrix<T, DOF, DOF>) {
+        State::for_inverse_dynamics_derivatives_with_payload(q)
+            .inverse_dynamics_derivatives_with_payload(qd, qdd, payload)
     }
     ///The time derivative of the inertia matrix, Ḋ(q, q̇) = Σ_i ∂D/∂q_i q̇_i (= C + Cᵀ): with [`coriolis_transpose_qd`](Self::coriolis_transpose_qd), what a generalized-momentum collision observer needs every cycle.
     #[doc(alias = "dD")]
@@ -1703,6 +1743,29 @@ pub mod one_joint {
                 [q, qd, qdd],
                 out,
                 |[q, qd, qdd]| super::inverse_dynamics_derivatives(q, qd, qdd),
+            )
+        }
+        /// [`inverse_dynamics_derivatives_with_payload`](super::inverse_dynamics_derivatives_with_payload) for each configuration: `out[c]` from `q[c]`, `qd[c]`, `qdd[c]` and `payload` (the same for every configuration), four `f64` or eight `f32` configurations per call (`dhgen::batch`).
+        ///
+        /// # Errors
+        /// `LengthMismatch` (nothing written) unless every slice has `out.len()` entries.
+        pub fn inverse_dynamics_derivatives_with_payload<T: ::dhgen::batch::Lanes>(
+            q: &[[T; DOF]],
+            qd: &[[T; DOF]],
+            qdd: &[[T; DOF]],
+            payload: &[T; 10],
+            out: &mut [(na::SMatrix<T, DOF, DOF>, na::SMatrix<T, DOF, DOF>)],
+        ) -> Result<(), ::dhgen::batch::LengthMismatch> {
+            let payload = &::dhgen::batch::splat(payload);
+            ::dhgen::batch::run(
+                [q, qd, qdd],
+                out,
+                |[q, qd, qdd]| super::inverse_dynamics_derivatives_with_payload(
+                    q,
+                    qd,
+                    qdd,
+                    payload,
+                ),
             )
         }
         /// [`mass_matrix_rate`](super::mass_matrix_rate) for each configuration: `out[c]` from `q[c]`, `qd[c]`, four `f64` or eight `f32` configurations per call (`dhgen::batch`).

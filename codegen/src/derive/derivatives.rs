@@ -23,9 +23,29 @@ use crate::graph::{E, SharedGraph, Sym};
 use dhgen_model::ChainRef;
 use std::rc::Rc;
 
+/// Entry `(k, m)` of the viscous friction's ∂τ/∂q̇: its coefficient on the diagonal.
+pub(super) fn viscous(chain: ChainRef<'_>, k: usize, m: usize) -> E {
+    E::K(if k == m {
+        chain.bodies[k].friction.viscous
+    } else {
+        0.0
+    })
+}
+
 /// The Newton–Euler recursion on duals in `graph`: `lanes` = n seeds the joint variables only,
 /// 2n also the joint velocities (lanes n..2n). Returns τ as duals.
 fn dual_rnea(chain: ChainRef<'_>, graph: &SharedGraph, lanes: usize) -> Vec<Dual> {
+    dual_rnea_with(chain, graph, lanes, |_, _| {})
+}
+
+/// [`dual_rnea`] on the chain as `modify` leaves it (the payload's derivatives add a body's
+/// worth of input symbols to its last link).
+pub(super) fn dual_rnea_with<'c>(
+    chain: ChainRef<'c>,
+    graph: &SharedGraph,
+    lanes: usize,
+    modify: impl FnOnce(&mut RingChain<'c, Dual>, &SharedGraph),
+) -> Vec<Dual> {
     let n = chain.dof();
     let symbols = DualSymbols { graph, n: lanes };
     let qd: Vec<Dual> = (0..n)
@@ -46,7 +66,9 @@ fn dual_rnea(chain: ChainRef<'_>, graph: &SharedGraph, lanes: usize) -> Vec<Dual
             d: Rc::from(Vec::new()),
         })
         .collect();
-    RingChain::new(chain, &symbols).rnea(&qd, &qdd, true)
+    let mut rc = RingChain::new(chain, &symbols);
+    modify(&mut rc, graph);
+    rc.rnea(&qd, &qdd, true)
 }
 
 /// `[∂τ/∂q row-major, ∂τ/∂q̇ row-major]`: `2n²` scalars, entry `(k, m)` = ∂τ_k/∂x_m; the
@@ -86,13 +108,7 @@ pub fn inverse_dynamics_derivatives(
             .map(|idx| columns[idx % n][idx / n].clone())
             .collect()
     };
-    let viscous = |k: usize, m: usize| {
-        E::K(if k == m {
-            chain.bodies[k].friction.viscous
-        } else {
-            0.0
-        })
-    };
+    let viscous = |k: usize, m: usize| viscous(chain, k, m);
     let both_lanes = {
         let graph = SharedGraph::default();
         let tau = dual_rnea(chain, &graph, 2 * n);

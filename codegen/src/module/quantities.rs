@@ -1008,6 +1008,25 @@ pub const QUANTITIES: &[Quantity] = &[
         arm: None,
     },
     Quantity {
+        name: "inverse_dynamics_derivatives_with_payload",
+        doc: "The derivatives of inverse dynamics with a payload held by the tool, `(∂τ/∂q, \
+              ∂τ/∂q̇)` at (q, q̇, q̈) (`payload`: its ten parameters, as for \
+              `inverse_dynamics_with_payload`; ∂τ/∂q̈ is `mass_matrix_with_payload`): what MPC \
+              linearises while the arm carries what it picked up, with the payload's \
+              parameters inputs rather than constants. Coulomb friction contributes 0, as in \
+              `inverse_dynamics_derivatives`.",
+        aliases: &[],
+        inputs: &[Input::Qd, Input::Qdd, Input::Payload],
+        shape: Shape::SquarePair,
+        available: Availability::Derivatives,
+        public: true,
+        make: |cx| {
+            let (graph, e) = payload::inverse_dynamics_derivatives(cx.chain);
+            derived(graph, e)
+        },
+        arm: None,
+    },
+    Quantity {
         name: "mass_matrix_rate",
         doc: "The time derivative of the inertia matrix, Ḋ(q, q̇) = Σ_i ∂D/∂q_i q̇_i \
               (= C + Cᵀ): with [`coriolis_transpose_qd`](Self::coriolis_transpose_qd), what \
