@@ -198,6 +198,10 @@ macro_rules! run {
                 ("inverse_dynamics_derivatives_with_payload", true) => {
                     $m::inverse_dynamics_derivatives_with_payload(q, qd, qd, &pp).0[(1, 0)]
                 }
+                ("forward_dynamics_derivatives_with_payload", true) => {
+                    $m::forward_dynamics_derivatives_with_payload(q, qd, qd, &pp)
+                        .map_or(0.0, |x| x.0[(1, 0)])
+                }
                 ("forward_dynamics_derivatives", true) => {
                     $m::forward_dynamics_derivatives(q, qd, qd).map_or(0.0, |x| x.0[(1, 0)])
                 }

@@ -254,6 +254,7 @@ fn batch_derivatives_and_regressor_equal_scalar() {
         [
             inverse_dynamics_derivatives(qd, qdd),
             inverse_dynamics_derivatives_with_payload(qd, qdd, payload),
+            forward_dynamics_derivatives_with_payload(qd, tau, payload),
             mass_matrix_rate(qd),
             coriolis_transpose_qd(qd),
             regressor(qd, qdd),
@@ -268,6 +269,7 @@ fn batch_derivatives_and_regressor_equal_scalar() {
         [
             inverse_dynamics_derivatives(qd, qdd),
             inverse_dynamics_derivatives_with_payload(qd, qdd, payload),
+            forward_dynamics_derivatives_with_payload(qd, tau, payload),
             mass_matrix_inverse(),
             forward_dynamics_derivatives(qd, tau),
         ]

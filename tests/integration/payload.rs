@@ -163,7 +163,9 @@ fn generated_payload_equals_the_body_in_the_description() {
 /// description holding the same body (to 1e-12) and against central differences of the
 /// generated τ with the payload (to 1e-6); with no payload, the plain derivatives. The PUMA
 /// 560's last link is symmetric about its axis, so its plain derivations drop joint 6: the
-/// payload must bring it back.
+/// payload must bring it back. Forward dynamics' derivatives with the payload, at the τ of
+/// that state, against the runtime's of the same description (to 1e-14 of D's condition
+/// number, and at least 1e-12: D⁻¹ amplifies the rounding of D by it).
 #[test]
 fn generated_payload_derivatives_equal_the_body_in_the_description() {
     macro_rules! check_derivatives {
@@ -204,6 +206,33 @@ fn generated_payload_derivatives_equal_the_body_in_the_description() {
                     close_to(&what, dq.column(j).as_slice(), along_q.as_slice(), 1e-6);
                     close_to(&what, dqd.column(j).as_slice(), along_qd.as_slice(), 1e-6);
                 }
+                let torque = tau(&q, &qd, &qdd);
+                let (fq, fqd, inverse) =
+                    m::forward_dynamics_derivatives_with_payload(&q, &qd, &torque, &params)
+                        .expect("D is regular");
+                let (want_fq, want_fqd, want_inverse) = merged
+                    .forward_dynamics_derivatives(&q, &qd, torque.as_slice())
+                    .expect("D is regular");
+                let eigen = merged.mass_matrix(&q).symmetric_eigenvalues();
+                let tol = (1e-14 * eigen.max() / eigen.min()).max(1e-12);
+                close_to(
+                    &format!("{name} ∂q̈/∂q"),
+                    fq.as_slice(),
+                    want_fq.as_slice(),
+                    tol,
+                );
+                close_to(
+                    &format!("{name} ∂q̈/∂q̇"),
+                    fqd.as_slice(),
+                    want_fqd.as_slice(),
+                    tol,
+                );
+                close_to(
+                    &format!("{name} D⁻¹"),
+                    inverse.as_slice(),
+                    want_inverse.as_slice(),
+                    tol,
+                );
                 let (dq0, dqd0) =
                     m::inverse_dynamics_derivatives_with_payload(&q, &qd, &qdd, &none);
                 let (plain_q, plain_qd) = m::inverse_dynamics_derivatives(&q, &qd, &qdd);

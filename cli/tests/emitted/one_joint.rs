@@ -686,6 +686,67 @@ pub mod one_joint {
             minus_inverse_times(dqd, [false]);
             na::SimdBool::all(ok).then(|| (terms.0, terms.1, inverse))
         }
+        ///`forward_dynamics_derivatives_with_payload` with the mask of the lanes where it is an answer, as `forward_dynamics_derivatives_lanes` is to `forward_dynamics_derivatives`.
+        #[must_use]
+        pub fn forward_dynamics_derivatives_with_payload_lanes(
+            &self,
+            qd: &impl ::dhgen::JointArray<T, DOF>,
+            tau: &impl ::dhgen::JointArray<T, DOF>,
+            payload: &[T; 10],
+        ) -> (
+            (
+                na::SMatrix<T, DOF, DOF>,
+                na::SMatrix<T, DOF, DOF>,
+                na::SMatrix<T, DOF, DOF>,
+            ),
+            <T as na::SimdValue>::SimdBool,
+        ) {
+            let qd = &qd.to_array();
+            let tau = &tau.to_array();
+            let (inverse, ok) = {
+                let dm = self.mass_matrix_with_payload(payload);
+                let floor: T = ::dhgen::cholesky_pivot_floor(DOF, dm[(0, 0)]);
+                let pivot: T = dm[(0, 0)];
+                let ok = na::SimdPartialOrd::simd_gt(pivot, floor);
+                let inv0: T = T::one() / pivot;
+                let d0_0: T = inv0;
+                let ok = ok & ::dhgen::Real::is_finite_lanes(d0_0);
+                let mut out: na::SMatrix<T, DOF, DOF> = na::Matrix::from_data(
+                    na::ArrayStorage([[T::zero(); DOF]; DOF]),
+                );
+                out[(0, 0)] = d0_0;
+                (out, ok)
+            };
+            let h = self.bias_with_payload(qd, payload);
+            let qdd: [T; DOF] = (inverse * (na::SVector::<T, DOF>::from(*tau) - h))
+                .into();
+            let ok = qdd
+                .iter()
+                .fold(ok, |ok, &a| ok & ::dhgen::Real::is_finite_lanes(a));
+            let (dq, dqd) = self
+                .inverse_dynamics_derivatives_with_payload(qd, &qdd, payload);
+            ((-(inverse * dq), -(inverse * dqd), inverse), ok)
+        }
+        ///The derivatives of forward dynamics with a payload held by the tool, `(∂q̈/∂q, ∂q̈/∂q̇, ∂q̈/∂τ = D⁻¹)` at (q, q̇, τ) (`payload`: its ten parameters, as for `inverse_dynamics_with_payload`): D⁻¹ by the Cholesky factorisation of `mass_matrix_with_payload`, q̈ from `bias_with_payload`, and −D⁻¹ times `inverse_dynamics_derivatives_with_payload` at that q̈; `None` as for `forward_dynamics_derivatives`.
+        #[must_use]
+        pub fn forward_dynamics_derivatives_with_payload(
+            &self,
+            qd: &impl ::dhgen::JointArray<T, DOF>,
+            tau: &impl ::dhgen::JointArray<T, DOF>,
+            payload: &[T; 10],
+        ) -> Option<
+            (
+                na::SMatrix<T, DOF, DOF>,
+                na::SMatrix<T, DOF, DOF>,
+                na::SMatrix<T, DOF, DOF>,
+            ),
+        > {
+            let qd = &qd.to_array();
+            let tau = &tau.to_array();
+            let (value, ok) = self
+                .forward_dynamics_derivatives_with_payload_lanes(qd, tau, payload);
+            na::SimdBool::all(ok).then_some(value)
+        }
         ///D, C, g and J at once, as a controller needs them, sharing one state's sines and cosines.
         #[doc(alias = "computeAllTerms")]
         #[must_use]
@@ -1098,6 +1159,26 @@ pub mod one_joint {
             State { c, s, d }
         }
         #[inline]
+        fn for_forward_dynamics_derivatives_with_payload_lanes(
+            q: &impl ::dhgen::JointArray<T, DOF>,
+        ) -> Self {
+            let _ = q;
+            let c = [T::zero(); DOF];
+            let s = [T::zero(); DOF];
+            let d = [T::zero(); DOF];
+            State { c, s, d }
+        }
+        #[inline]
+        fn for_forward_dynamics_derivatives_with_payload(
+            q: &impl ::dhgen::JointArray<T, DOF>,
+        ) -> Self {
+            let _ = q;
+            let c = [T::zero(); DOF];
+            let s = [T::zero(); DOF];
+            let d = [T::zero(); DOF];
+            State { c, s, d }
+        }
+        #[inline]
         fn for_terms(q: &impl ::dhgen::JointArray<T, DOF>) -> Self {
             let q = q.to_array();
             let mut c = [T::zero(); DOF];
@@ -1417,6 +1498,33 @@ pub mod one_joint {
         (na::SMatrix<T, DOF, DOF>, na::SMatrix<T, DOF, DOF>, na::SMatrix<T, DOF, DOF>),
     > {
         State::for_forward_dynamics_derivatives(q).forward_dynamics_derivatives(qd, tau)
+    }
+    ///`forward_dynamics_derivatives_with_payload` with the mask of the lanes where it is an answer, as `forward_dynamics_derivatives_lanes` is to `forward_dynamics_derivatives`.
+    #[must_use]
+    pub fn forward_dynamics_derivatives_with_payload_lanes<T: ::dhgen::Real>(
+        q: &impl ::dhgen::JointArray<T, DOF>,
+        qd: &impl ::dhgen::JointArray<T, DOF>,
+        tau: &impl ::dhgen::JointArray<T, DOF>,
+        payload: &[T; 10],
+    ) -> (
+        (na::SMatrix<T, DOF, DOF>, na::SMatrix<T, DOF, DOF>, na::SMatrix<T, DOF, DOF>),
+        <T as na::SimdValue>::SimdBool,
+    ) {
+        State::for_forward_dynamics_derivatives_with_payload_lanes(q)
+            .forward_dynamics_derivatives_with_payload_lanes(qd, tau, payload)
+    }
+    ///The derivatives of forward dynamics with a payload held by the tool, `(∂q̈/∂q, ∂q̈/∂q̇, ∂q̈/∂τ = D⁻¹)` at (q, q̇, τ) (`payload`: its ten parameters, as for `inverse_dynamics_with_payload`): D⁻¹ by the Cholesky factorisation of `mass_matrix_with_payload`, q̈ from `bias_with_payload`, and −D⁻¹ times `inverse_dynamics_derivatives_with_payload` at that q̈; `None` as for `forward_dynamics_derivatives`.
+    #[must_use]
+    pub fn forward_dynamics_derivatives_with_payload<T: ::dhgen::Real>(
+        q: &impl ::dhgen::JointArray<T, DOF>,
+        qd: &impl ::dhgen::JointArray<T, DOF>,
+        tau: &impl ::dhgen::JointArray<T, DOF>,
+        payload: &[T; 10],
+    ) -> Option<
+        (na::SMatrix<T, DOF, DOF>, na::SMatrix<T, DOF, DOF>, na::SMatrix<T, DOF, DOF>),
+    > {
+        State::for_forward_dynamics_derivatives_with_payload(q)
+            .forward_dynamics_derivatives_with_payload(qd, tau, payload)
     }
     ///D, C, g and J at once, as a controller needs them, sharing one state's sines and cosines.
     #[doc(alias = "computeAllTerms")]
@@ -1835,6 +1943,38 @@ pub mod one_joint {
                         q,
                         qd,
                         tau,
+                    );
+                    ::dhgen::batch::Masked(value, ok)
+                },
+            )
+        }
+        /// [`forward_dynamics_derivatives_with_payload_lanes`](super::forward_dynamics_derivatives_with_payload_lanes) for each configuration: `out[c]` from `q[c]`, `qd[c]`, `tau[c]` and `payload` (the same for every configuration), four `f64` or eight `f32` configurations per call (`dhgen::batch`).
+        ///
+        /// # Errors
+        /// `LengthMismatch` (nothing written) unless every slice has `out.len()` entries.
+        pub fn forward_dynamics_derivatives_with_payload<T: ::dhgen::batch::Lanes>(
+            q: &[[T; DOF]],
+            qd: &[[T; DOF]],
+            tau: &[[T; DOF]],
+            payload: &[T; 10],
+            out: &mut [Option<
+                (
+                    na::SMatrix<T, DOF, DOF>,
+                    na::SMatrix<T, DOF, DOF>,
+                    na::SMatrix<T, DOF, DOF>,
+                ),
+            >],
+        ) -> Result<(), ::dhgen::batch::LengthMismatch> {
+            let payload = &::dhgen::batch::splat(payload);
+            ::dhgen::batch::run(
+                [q, qd, tau],
+                out,
+                |[q, qd, tau]| {
+                    let (value, ok) = super::forward_dynamics_derivatives_with_payload_lanes(
+                        q,
+                        qd,
+                        tau,
+                        payload,
                     );
                     ::dhgen::batch::Masked(value, ok)
                 },

@@ -1166,6 +1166,60 @@ pub const QUANTITIES: &[Quantity] = &[
         arm: None,
     },
     Quantity {
+        name: "forward_dynamics_derivatives_with_payload_lanes",
+        doc: "`forward_dynamics_derivatives_with_payload` with the mask of the lanes where it is \
+              an answer, as `forward_dynamics_derivatives_lanes` is to \
+              `forward_dynamics_derivatives`.",
+        aliases: &[],
+        inputs: &[Input::Qd, Input::Tau, Input::Payload],
+        shape: Shape::SquareTripleMask,
+        available: Availability::Derivatives,
+        public: true,
+        make: |cx| {
+            let (inverse, _) = cholesky::inverse(cx.chain.dof(), true);
+            composed(
+                quote! {
+                    let (inverse, ok) = {
+                        let dm = self.mass_matrix_with_payload(payload);
+                        #inverse
+                    };
+                    let h = self.bias_with_payload(qd, payload);
+                    let qdd: [T; DOF] = (inverse * (na::SVector::<T, DOF>::from(*tau) - h)).into();
+                    let ok = qdd.iter().fold(ok, |ok, &a| ok & ::dhgen::Real::is_finite_lanes(a));
+                    let (dq, dqd) = self.inverse_dynamics_derivatives_with_payload(qd, &qdd, payload);
+                    ((-(inverse * dq), -(inverse * dqd), inverse), ok)
+                },
+                &[
+                    "mass_matrix_with_payload",
+                    "bias_with_payload",
+                    "inverse_dynamics_derivatives_with_payload",
+                ],
+            )
+        },
+        arm: None,
+    },
+    Quantity {
+        name: "forward_dynamics_derivatives_with_payload",
+        doc: "The derivatives of forward dynamics with a payload held by the tool, \
+              `(∂q̈/∂q, ∂q̈/∂q̇, ∂q̈/∂τ = D⁻¹)` at (q, q̇, τ) (`payload`: its ten parameters, as \
+              for `inverse_dynamics_with_payload`): D⁻¹ by the Cholesky factorisation of \
+              `mass_matrix_with_payload`, q̈ from `bias_with_payload`, and −D⁻¹ times \
+              `inverse_dynamics_derivatives_with_payload` at that q̈; `None` as for \
+              `forward_dynamics_derivatives`.",
+        aliases: &[],
+        inputs: &[Input::Qd, Input::Tau, Input::Payload],
+        shape: Shape::OptionSquareTriple,
+        available: Availability::Derivatives,
+        public: true,
+        make: |_| {
+            all_lanes(
+                quote!(self.forward_dynamics_derivatives_with_payload_lanes(qd, tau, payload)),
+                &["forward_dynamics_derivatives_with_payload_lanes"],
+            )
+        },
+        arm: None,
+    },
+    Quantity {
         name: "terms",
         doc: "D, C, g and J at once, as a controller needs them, sharing one state's sines \
               and cosines.",
