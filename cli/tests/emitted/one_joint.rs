@@ -491,15 +491,18 @@ pub mod one_joint {
             qdd: &impl ::dhgen::JointArray<T, DOF>,
             payload: &[T; 10],
         ) -> (na::SMatrix<T, DOF, DOF>, na::SMatrix<T, DOF, DOF>) {
-            let _ = qd;
-            let _ = qdd;
-            let _ = payload;
+            let qd = &qd.to_array();
+            let qdd = &qdd.to_array();
             let mut out: (na::SMatrix<T, DOF, DOF>, na::SMatrix<T, DOF, DOF>) = (
                 na::Matrix::from_data(na::ArrayStorage([[T::zero(); DOF]; DOF])),
                 na::Matrix::from_data(na::ArrayStorage([[T::zero(); DOF]; DOF])),
             );
-            out.0[(0, 0)] = ::dhgen::nalgebra::convert::<f64, T>(0f64);
-            out.1[(0, 0)] = ::dhgen::nalgebra::convert::<f64, T>(0f64);
+            self.inverse_dynamics_derivatives_with_payload_then(
+                qd,
+                payload,
+                |_| *qdd,
+                &mut out,
+            );
             out
         }
         ///The time derivative of the inertia matrix, Ḋ(q, q̇) = Σ_i ∂D/∂q_i q̇_i (= C + Cᵀ): with [`coriolis_transpose_qd`](Self::coriolis_transpose_qd), what a generalized-momentum collision observer needs every cycle.
@@ -703,6 +706,13 @@ pub mod one_joint {
         ) {
             let qd = &qd.to_array();
             let tau = &tau.to_array();
+            let g = self.gravity_with_payload(payload);
+            let applied = na::SVector::<T, DOF>::from(*tau);
+            let zero = || na::SMatrix::<
+                T,
+                DOF,
+                DOF,
+            >::from_data(na::ArrayStorage([[T::zero(); DOF]; DOF]));
             let (inverse, ok) = {
                 let dm = self.mass_matrix_with_payload(payload);
                 let floor: T = ::dhgen::cholesky_pivot_floor(DOF, dm[(0, 0)]);
@@ -717,17 +727,48 @@ pub mod one_joint {
                 out[(0, 0)] = d0_0;
                 (out, ok)
             };
-            let h = self.bias_with_payload(qd, payload);
-            let qdd: [T; DOF] = (inverse * (na::SVector::<T, DOF>::from(*tau) - h))
-                .into();
-            let ok = qdd
-                .iter()
-                .fold(ok, |ok, &a| ok & ::dhgen::Real::is_finite_lanes(a));
-            let (dq, dqd) = self
-                .inverse_dynamics_derivatives_with_payload(qd, &qdd, payload);
-            ((-(inverse * dq), -(inverse * dqd), inverse), ok)
+            let mut terms = (zero(), zero());
+            let qdd = self
+                .inverse_dynamics_derivatives_with_payload_then(
+                    qd,
+                    payload,
+                    |(_, dqd)| {
+                        let inverse = &inverse;
+                        let half = ::dhgen::nalgebra::convert::<f64, T>(0.5);
+                        let tau: [T; DOF] = ::core::array::from_fn(|k| {
+                            let s = dqd
+                                .row(k)
+                                .iter()
+                                .zip(qd)
+                                .fold(T::zero(), |s, (&d, &v)| s + d * v);
+                            g[k] + half * s
+                        });
+                        (inverse * (applied - na::SVector::<T, DOF>::from(tau))).into()
+                    },
+                    &mut terms,
+                );
+            let ok = ok & ::dhgen::Real::is_finite_lanes(qdd[0]);
+            let (dq, dqd) = &mut terms;
+            let columns = &inverse.data.0;
+            let minus_inverse_times = |
+                x: &mut na::SMatrix<T, DOF, DOF>,
+                used: [bool; DOF]|
+            {
+                for (x, _) in x.data.0.iter_mut().zip(used).filter(|(_, u)| *u) {
+                    let mut p = [T::zero(); DOF];
+                    for (column, &xk) in columns.iter().zip(&*x) {
+                        for (o, &a) in p.iter_mut().zip(column) {
+                            *o = ::dhgen::Real::mul_add_fast(-a, xk, *o);
+                        }
+                    }
+                    *x = p;
+                }
+            };
+            minus_inverse_times(dq, [true]);
+            minus_inverse_times(dqd, [true]);
+            ((terms.0, terms.1, inverse), ok)
         }
-        ///The derivatives of forward dynamics with a payload held by the tool, `(∂q̈/∂q, ∂q̈/∂q̇, ∂q̈/∂τ = D⁻¹)` at (q, q̇, τ) (`payload`: its ten parameters, as for `inverse_dynamics_with_payload`): D⁻¹ by the Cholesky factorisation of `mass_matrix_with_payload`, q̈ from `bias_with_payload`, and −D⁻¹ times `inverse_dynamics_derivatives_with_payload` at that q̈; `None` as for `forward_dynamics_derivatives`.
+        ///The derivatives of forward dynamics with a payload held by the tool, `(∂q̈/∂q, ∂q̈/∂q̇, ∂q̈/∂τ = D⁻¹)` at (q, q̇, τ) (`payload`: its ten parameters, as for `inverse_dynamics_with_payload`), as `forward_dynamics_derivatives` computes them: D⁻¹ by the Cholesky factorisation of `mass_matrix_with_payload`, the bias from ∂τ/∂q̇ with the payload (which does not read q̈), q̈, then ∂τ/∂q at that q̈ and −D⁻¹ times both; `None` as for `forward_dynamics_derivatives`.
         #[must_use]
         pub fn forward_dynamics_derivatives_with_payload(
             &self,
@@ -743,9 +784,67 @@ pub mod one_joint {
         > {
             let qd = &qd.to_array();
             let tau = &tau.to_array();
-            let (value, ok) = self
-                .forward_dynamics_derivatives_with_payload_lanes(qd, tau, payload);
-            na::SimdBool::all(ok).then_some(value)
+            let g = self.gravity_with_payload(payload);
+            let applied = na::SVector::<T, DOF>::from(*tau);
+            let zero = || na::SMatrix::<
+                T,
+                DOF,
+                DOF,
+            >::from_data(na::ArrayStorage([[T::zero(); DOF]; DOF]));
+            let (inverse, ok) = {
+                let dm = self.mass_matrix_with_payload(payload);
+                let floor: T = ::dhgen::cholesky_pivot_floor(DOF, dm[(0, 0)]);
+                let pivot: T = dm[(0, 0)];
+                let ok = na::SimdPartialOrd::simd_gt(pivot, floor);
+                let inv0: T = T::one() / pivot;
+                let d0_0: T = inv0;
+                let ok = ok & ::dhgen::Real::is_finite_lanes(d0_0);
+                let mut out: na::SMatrix<T, DOF, DOF> = na::Matrix::from_data(
+                    na::ArrayStorage([[T::zero(); DOF]; DOF]),
+                );
+                out[(0, 0)] = d0_0;
+                (out, ok)
+            };
+            let mut terms = (zero(), zero());
+            let qdd = self
+                .inverse_dynamics_derivatives_with_payload_then(
+                    qd,
+                    payload,
+                    |(_, dqd)| {
+                        let inverse = &inverse;
+                        let half = ::dhgen::nalgebra::convert::<f64, T>(0.5);
+                        let tau: [T; DOF] = ::core::array::from_fn(|k| {
+                            let s = dqd
+                                .row(k)
+                                .iter()
+                                .zip(qd)
+                                .fold(T::zero(), |s, (&d, &v)| s + d * v);
+                            g[k] + half * s
+                        });
+                        (inverse * (applied - na::SVector::<T, DOF>::from(tau))).into()
+                    },
+                    &mut terms,
+                );
+            let ok = ok & ::dhgen::Real::is_finite_lanes(qdd[0]);
+            let (dq, dqd) = &mut terms;
+            let columns = &inverse.data.0;
+            let minus_inverse_times = |
+                x: &mut na::SMatrix<T, DOF, DOF>,
+                used: [bool; DOF]|
+            {
+                for (x, _) in x.data.0.iter_mut().zip(used).filter(|(_, u)| *u) {
+                    let mut p = [T::zero(); DOF];
+                    for (column, &xk) in columns.iter().zip(&*x) {
+                        for (o, &a) in p.iter_mut().zip(column) {
+                            *o = ::dhgen::Real::mul_add_fast(-a, xk, *o);
+                        }
+                    }
+                    *x = p;
+                }
+            };
+            minus_inverse_times(dq, [true]);
+            minus_inverse_times(dqd, [true]);
+            na::SimdBool::all(ok).then(|| (terms.0, terms.1, inverse))
         }
         ///D, C, g and J at once, as a controller needs them, sharing one state's sines and cosines.
         #[doc(alias = "computeAllTerms")]
@@ -865,6 +964,23 @@ pub mod one_joint {
             out: &mut (na::SMatrix<T, DOF, DOF>, na::SMatrix<T, DOF, DOF>),
         ) -> [T; DOF] {
             let _ = qd;
+            out.0[(0, 0)] = ::dhgen::nalgebra::convert::<f64, T>(0f64);
+            out.1[(0, 0)] = ::dhgen::nalgebra::convert::<f64, T>(0f64);
+            let qdd = &qdd(&mut *out);
+            *qdd
+        }
+        #[inline]
+        fn inverse_dynamics_derivatives_with_payload_then(
+            &self,
+            qd: &[T; DOF],
+            payload: &[T; 10],
+            qdd: impl FnOnce(
+                &mut (na::SMatrix<T, DOF, DOF>, na::SMatrix<T, DOF, DOF>),
+            ) -> [T; DOF],
+            out: &mut (na::SMatrix<T, DOF, DOF>, na::SMatrix<T, DOF, DOF>),
+        ) -> [T; DOF] {
+            let _ = qd;
+            let _ = payload;
             out.0[(0, 0)] = ::dhgen::nalgebra::convert::<f64, T>(0f64);
             out.1[(0, 0)] = ::dhgen::nalgebra::convert::<f64, T>(0f64);
             let qdd = &qdd(&mut *out);
@@ -1513,7 +1629,7 @@ pub mod one_joint {
         State::for_forward_dynamics_derivatives_with_payload_lanes(q)
             .forward_dynamics_derivatives_with_payload_lanes(qd, tau, payload)
     }
-    ///The derivatives of forward dynamics with a payload held by the tool, `(∂q̈/∂q, ∂q̈/∂q̇, ∂q̈/∂τ = D⁻¹)` at (q, q̇, τ) (`payload`: its ten parameters, as for `inverse_dynamics_with_payload`): D⁻¹ by the Cholesky factorisation of `mass_matrix_with_payload`, q̈ from `bias_with_payload`, and −D⁻¹ times `inverse_dynamics_derivatives_with_payload` at that q̈; `None` as for `forward_dynamics_derivatives`.
+    ///The derivatives of forward dynamics with a payload held by the tool, `(∂q̈/∂q, ∂q̈/∂q̇, ∂q̈/∂τ = D⁻¹)` at (q, q̇, τ) (`payload`: its ten parameters, as for `inverse_dynamics_with_payload`), as `forward_dynamics_derivatives` computes them: D⁻¹ by the Cholesky factorisation of `mass_matrix_with_payload`, the bias from ∂τ/∂q̇ with the payload (which does not read q̈), q̈, then ∂τ/∂q at that q̈ and −D⁻¹ times both; `None` as for `forward_dynamics_derivatives`.
     #[must_use]
     pub fn forward_dynamics_derivatives_with_payload<T: ::dhgen::Real>(
         q: &impl ::dhgen::JointArray<T, DOF>,

@@ -185,8 +185,10 @@ fn with_coulomb_columns(
 /// (`lanes`: `forward_dynamics_derivatives_lanes`, for SIMD packs), or as an `Option`
 /// (`forward_dynamics_derivatives`). Two bodies rather than the `Option` from the masked
 /// form, whose three n×n matrices would be copied once more on the way (Panda: 1.7 % more
-/// instructions per call, PUMA 560: 2.7 %); both call the same staged terms.
-fn forward_dynamics_derivatives(cx: &Context<'_>, lanes: bool) -> Made {
+/// instructions per call, PUMA 560: 2.7 %); both call the same staged terms. With `payload`,
+/// those with a payload held by the tool (`*_with_payload`): D, g and the staged ∂τ with the
+/// payload's parameters as inputs.
+fn forward_dynamics_derivatives(cx: &Context<'_>, lanes: bool, payload: bool) -> Made {
     let n = cx.chain.dof();
     let joints = 0..n;
     // ½ viscous_j q̇_j where the joint has viscous friction.
@@ -211,11 +213,15 @@ fn forward_dynamics_derivatives(cx: &Context<'_>, lanes: bool) -> Made {
         #coulomb
         (inverse * (applied - na::SVector::<T, DOF>::from(tau))).into()
     };
-    // Per column of ∂τ/∂q and of ∂τ/∂q̇, whether it may be non-zero.
+    // Per column of ∂τ/∂q and of ∂τ/∂q̇, whether it may be non-zero (with a payload, every
+    // column: it breaks the symmetries that zero some).
     let (_, e) = cx.inverse_dynamics_derivatives();
     let used = |half: usize| -> Vec<bool> {
         (0..n)
-            .map(|m| (0..n).any(|k| !matches!(e[half * n * n + k * n + m], E::K(x) if x == 0.0)))
+            .map(|m| {
+                payload
+                    || (0..n).any(|k| !matches!(e[half * n * n + k * n + m], E::K(x) if x == 0.0))
+            })
             .collect()
     };
     let (used_q, used_qd) = (used(0), used(1));
@@ -244,8 +250,36 @@ fn forward_dynamics_derivatives(cx: &Context<'_>, lanes: bool) -> Made {
     let finite = quote!(let ok = ok #(& ::dhgen::Real::is_finite_lanes(qdd[#joints]))*;);
     // ∂τ/∂q, ∂τ/∂q̇ (and D, factorised between the stages, where it is cheaper beside
     // them) with q̈ computed between the stages.
-    let (body, reads): (_, &'static [&'static str]) = if cx.derivatives_with_mass_matrix().is_some()
-    {
+    let (body, reads): (_, &'static [&'static str]) = if payload {
+        let (inverse, _) = cholesky::inverse(n, true);
+        let finish = if lanes {
+            quote!(((terms.0, terms.1, inverse), ok))
+        } else {
+            quote!(na::SimdBool::all(ok).then(|| (terms.0, terms.1, inverse)))
+        };
+        (
+            quote! {
+                let (inverse, ok) = {
+                    let dm = self.mass_matrix_with_payload(payload);
+                    #inverse
+                };
+                let mut terms = (zero(), zero());
+                let qdd = self.inverse_dynamics_derivatives_with_payload_then(qd, payload, |(_, dqd)| {
+                    let inverse = &inverse;
+                    #acceleration
+                }, &mut terms);
+                #finite
+                let (dq, dqd) = &mut terms;
+                #products
+                #finish
+            },
+            &[
+                "mass_matrix_with_payload",
+                "gravity_with_payload",
+                "inverse_dynamics_derivatives_with_payload",
+            ],
+        )
+    } else if cx.derivatives_with_mass_matrix().is_some() {
         // Its entries need no check of their own: q̈ = D⁻¹(τ − h) is checked.
         let (inverse, _) = cholesky::inverse(n, false);
         let finish = if lanes {
@@ -302,9 +336,14 @@ fn forward_dynamics_derivatives(cx: &Context<'_>, lanes: bool) -> Made {
             ],
         )
     };
+    let g = if payload {
+        quote!(self.gravity_with_payload(payload))
+    } else {
+        quote!(self.gravity())
+    };
     composed(
         quote! {
-            let g = self.gravity();
+            let g = #g;
             let applied = na::SVector::<T, DOF>::from(*tau);
             let zero = || na::SMatrix::<T, DOF, DOF>::from_data(na::ArrayStorage([[T::zero(); DOF]; DOF]));
             #body
@@ -1022,7 +1061,9 @@ pub const QUANTITIES: &[Quantity] = &[
         public: true,
         make: |cx| {
             let (graph, e) = payload::inverse_dynamics_derivatives(cx.chain);
-            derived(graph, e)
+            // ∂τ/∂q̇ does not read q̈: `forward_dynamics_derivatives_with_payload` takes the
+            // bias torques from it before q̈ is known.
+            Made::Staged(graph, e, Input::Qdd)
         },
         arm: None,
     },
@@ -1147,7 +1188,7 @@ pub const QUANTITIES: &[Quantity] = &[
         shape: Shape::SquareTripleMask,
         available: Availability::Derivatives,
         public: true,
-        make: |cx| forward_dynamics_derivatives(cx, true),
+        make: |cx| forward_dynamics_derivatives(cx, true, false),
         arm: None,
     },
     Quantity {
@@ -1162,7 +1203,7 @@ pub const QUANTITIES: &[Quantity] = &[
         shape: Shape::OptionSquareTriple,
         available: Availability::Derivatives,
         public: true,
-        make: |cx| forward_dynamics_derivatives(cx, false),
+        make: |cx| forward_dynamics_derivatives(cx, false, false),
         arm: None,
     },
     Quantity {
@@ -1175,48 +1216,23 @@ pub const QUANTITIES: &[Quantity] = &[
         shape: Shape::SquareTripleMask,
         available: Availability::Derivatives,
         public: true,
-        make: |cx| {
-            let (inverse, _) = cholesky::inverse(cx.chain.dof(), true);
-            composed(
-                quote! {
-                    let (inverse, ok) = {
-                        let dm = self.mass_matrix_with_payload(payload);
-                        #inverse
-                    };
-                    let h = self.bias_with_payload(qd, payload);
-                    let qdd: [T; DOF] = (inverse * (na::SVector::<T, DOF>::from(*tau) - h)).into();
-                    let ok = qdd.iter().fold(ok, |ok, &a| ok & ::dhgen::Real::is_finite_lanes(a));
-                    let (dq, dqd) = self.inverse_dynamics_derivatives_with_payload(qd, &qdd, payload);
-                    ((-(inverse * dq), -(inverse * dqd), inverse), ok)
-                },
-                &[
-                    "mass_matrix_with_payload",
-                    "bias_with_payload",
-                    "inverse_dynamics_derivatives_with_payload",
-                ],
-            )
-        },
+        make: |cx| forward_dynamics_derivatives(cx, true, true),
         arm: None,
     },
     Quantity {
         name: "forward_dynamics_derivatives_with_payload",
         doc: "The derivatives of forward dynamics with a payload held by the tool, \
               `(∂q̈/∂q, ∂q̈/∂q̇, ∂q̈/∂τ = D⁻¹)` at (q, q̇, τ) (`payload`: its ten parameters, as \
-              for `inverse_dynamics_with_payload`): D⁻¹ by the Cholesky factorisation of \
-              `mass_matrix_with_payload`, q̈ from `bias_with_payload`, and −D⁻¹ times \
-              `inverse_dynamics_derivatives_with_payload` at that q̈; `None` as for \
-              `forward_dynamics_derivatives`.",
+              for `inverse_dynamics_with_payload`), as `forward_dynamics_derivatives` computes \
+              them: D⁻¹ by the Cholesky factorisation of `mass_matrix_with_payload`, the bias \
+              from ∂τ/∂q̇ with the payload (which does not read q̈), q̈, then ∂τ/∂q at that q̈ \
+              and −D⁻¹ times both; `None` as for `forward_dynamics_derivatives`.",
         aliases: &[],
         inputs: &[Input::Qd, Input::Tau, Input::Payload],
         shape: Shape::OptionSquareTriple,
         available: Availability::Derivatives,
         public: true,
-        make: |_| {
-            all_lanes(
-                quote!(self.forward_dynamics_derivatives_with_payload_lanes(qd, tau, payload)),
-                &["forward_dynamics_derivatives_with_payload_lanes"],
-            )
-        },
+        make: |cx| forward_dynamics_derivatives(cx, false, true),
         arm: None,
     },
     Quantity {
