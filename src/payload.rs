@@ -122,6 +122,48 @@ impl Payload {
     }
 }
 
+impl crate::Robot {
+    /// This robot holding `payload` at its tool: the payload joined rigidly to the last link
+    /// (carried into the link's frame by the tool pose), so that every runtime quantity
+    /// includes it, the derivatives of the dynamics and the regressor as well as τ, D, C, g and
+    /// q̈. The same as writing the body into the description; what the generated
+    /// `*_with_payload` functions compute with the payload as an input. A new model: build one
+    /// per payload, not per call. `None` if the robot has no mass properties.
+    ///
+    /// ```
+    /// use dhgen::payload::Payload;
+    /// let arm = dhgen::Robot::from_toml_file("robots/puma560.toml")?;
+    /// let part = Payload::new(2.0, [0.0, 0.0, 0.05], [[3e-3, 0.0, 0.0], [0.0, 3e-3, 0.0], [0.0, 0.0, 3e-3]])
+    ///     .unwrap();
+    /// let holding = arm.with_payload(&part).unwrap();
+    /// let q = dhgen::nalgebra::DVector::from_row_slice(&[0.1, -0.6, 0.4, 0.3, 0.8, -0.2]);
+    /// let (qd, qdd) = (q.map(|_| 0.2), q.map(|_| 0.5));
+    /// let (dq, dqd) = holding.inverse_dynamics_derivatives(&q, &qd, &qdd);
+    /// let tau = dhgen::payload::inverse_dynamics(&arm, &part, &q, &qd, &qdd);
+    /// assert!((holding.inverse_dynamics(&q, &qd, &qdd) - tau).amax() < 1e-12);
+    /// # Ok::<(), dhgen::Error>(())
+    /// ```
+    #[must_use]
+    pub fn with_payload(&self, payload: &Payload) -> Option<crate::Robot> {
+        if !self.has_dynamics() {
+            return None;
+        }
+        let mut model = self.model().clone();
+        let tool = model
+            .tool
+            .map_or_else(dhgen_model::Frame::identity, |t| t.frame::<f64>());
+        let held = dhgen_model::Inertial {
+            mass: payload.mass,
+            com: payload.com,
+            inertia: payload.inertia,
+        }
+        .in_frame(&tool);
+        let last = model.links.last_mut()?;
+        last.inertial = Some(last.inertial?.combined(&held));
+        Some(crate::Robot::from_model(model))
+    }
+}
+
 /// The payload in world axes at the tool pose: mass, first moment `h = m·c` and inertia about
 /// the tool origin.
 struct World {

@@ -131,6 +131,17 @@ fn check_runtime(name: &str, robot: &Robot) {
         close(name, d.as_slice(), merged.mass_matrix(&q).as_slice());
         let acc = payload::forward_dynamics(robot, &p, &q, &qd, &tau).unwrap();
         close(name, acc.as_slice(), qdd.as_slice());
+        // The robot holding it, built without the description's text.
+        let holding = robot.with_payload(&p).expect("a robot with dynamics");
+        close(
+            name,
+            holding.inverse_dynamics(&q, &qd, &qdd).as_slice(),
+            tau.as_slice(),
+        );
+        let (dq, dqd) = holding.inverse_dynamics_derivatives(&q, &qd, &qdd);
+        let (want_q, want_qd) = merged.inverse_dynamics_derivatives(&q, &qd, &qdd);
+        close(name, dq.as_slice(), want_q.as_slice());
+        close(name, dqd.as_slice(), want_qd.as_slice());
     }
 }
 
@@ -272,6 +283,13 @@ fn runtime_payload_equals_the_body_in_the_description() {
     )
     .unwrap();
     check_runtime("ur5.urdf", &Robot::from_model(urdf.model));
+    // Without mass properties there is nothing to add the payload to.
+    let kinematic = Robot::from_toml_file(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/robots/cylindrical.toml"
+    ))
+    .unwrap();
+    assert!(kinematic.with_payload(&box_payload()).is_none());
 }
 
 #[test]
