@@ -250,92 +250,89 @@ fn forward_dynamics_derivatives(cx: &Context<'_>, lanes: bool, payload: bool) ->
     let finite = quote!(let ok = ok #(& ::dhgen::Real::is_finite_lanes(qdd[#joints]))*;);
     // ∂τ/∂q, ∂τ/∂q̇ (and D, factorised between the stages, where it is cheaper beside
     // them) with q̈ computed between the stages.
-    let (body, reads): (_, &'static [&'static str]) = if payload {
-        let (inverse, _) = cholesky::inverse(n, true);
-        let finish = if lanes {
-            quote!(((terms.0, terms.1, inverse), ok))
+    let (body, reads): (_, &'static [&'static str]) =
+        if !payload && cx.derivatives_with_mass_matrix().is_some() {
+            // Its entries need no check of their own: q̈ = D⁻¹(τ − h) is checked.
+            let (inverse, _) = cholesky::inverse(n, false);
+            let finish = if lanes {
+                quote!((terms, ok))
+            } else {
+                quote!(na::SimdBool::all(ok).then_some(terms))
+            };
+            (
+                quote! {
+                    // No lane is an answer until D is factored.
+                    let mut factored = !::dhgen::Real::is_finite_lanes(T::zero());
+                    let mut terms = (zero(), zero(), zero());
+                    let qdd = self.forward_dynamics_terms_then(qd, |(_, dqd, dm)| {
+                        let (inverse, ok) = { #inverse };
+                        // D⁻¹ where D was, for the result; q̈ from the local copy (read
+                        // back from memory right after its stores, the Panda's q̈ took
+                        // 40 % longer: the loads wait for the stores).
+                        *dm = inverse;
+                        factored = ok;
+                        let inverse = &inverse;
+                        #acceleration
+                    }, &mut terms);
+                    let ok = factored;
+                    #finite
+                    let (dq, dqd, inverse) = &mut terms;
+                    #products
+                    #finish
+                },
+                &["forward_dynamics_terms", "gravity"],
+            )
         } else {
-            quote!(na::SimdBool::all(ok).then(|| (terms.0, terms.1, inverse)))
+            // D⁻¹ on its own, then ∂τ staged at q̈: of the arm, or with the payload's parameters
+            // as inputs.
+            let (inverse, staged, inputs, reads): (_, _, _, &'static [&'static str]) = if payload {
+                let (inverse, _) = cholesky::inverse(n, true);
+                (
+                    quote!({
+                        let dm = self.mass_matrix_with_payload(payload);
+                        #inverse
+                    }),
+                    quote!(inverse_dynamics_derivatives_with_payload_then),
+                    quote!(qd, payload),
+                    &[
+                        "mass_matrix_with_payload",
+                        "gravity_with_payload",
+                        "inverse_dynamics_derivatives_with_payload",
+                    ],
+                )
+            } else {
+                (
+                    quote!(self.mass_matrix_inverse_lanes()),
+                    quote!(inverse_dynamics_derivatives_then),
+                    quote!(qd),
+                    &[
+                        "mass_matrix_inverse_lanes",
+                        "gravity",
+                        "inverse_dynamics_derivatives",
+                    ],
+                )
+            };
+            let finish = if lanes {
+                quote!(((terms.0, terms.1, inverse), ok))
+            } else {
+                quote!(na::SimdBool::all(ok).then(|| (terms.0, terms.1, inverse)))
+            };
+            (
+                quote! {
+                    let (inverse, ok) = #inverse;
+                    let mut terms = (zero(), zero());
+                    let qdd = self.#staged(#inputs, |(_, dqd)| {
+                        let inverse = &inverse;
+                        #acceleration
+                    }, &mut terms);
+                    #finite
+                    let (dq, dqd) = &mut terms;
+                    #products
+                    #finish
+                },
+                reads,
+            )
         };
-        (
-            quote! {
-                let (inverse, ok) = {
-                    let dm = self.mass_matrix_with_payload(payload);
-                    #inverse
-                };
-                let mut terms = (zero(), zero());
-                let qdd = self.inverse_dynamics_derivatives_with_payload_then(qd, payload, |(_, dqd)| {
-                    let inverse = &inverse;
-                    #acceleration
-                }, &mut terms);
-                #finite
-                let (dq, dqd) = &mut terms;
-                #products
-                #finish
-            },
-            &[
-                "mass_matrix_with_payload",
-                "gravity_with_payload",
-                "inverse_dynamics_derivatives_with_payload",
-            ],
-        )
-    } else if cx.derivatives_with_mass_matrix().is_some() {
-        // Its entries need no check of their own: q̈ = D⁻¹(τ − h) is checked.
-        let (inverse, _) = cholesky::inverse(n, false);
-        let finish = if lanes {
-            quote!((terms, ok))
-        } else {
-            quote!(na::SimdBool::all(ok).then_some(terms))
-        };
-        (
-            quote! {
-                // No lane is an answer until D is factored.
-                let mut factored = !::dhgen::Real::is_finite_lanes(T::zero());
-                let mut terms = (zero(), zero(), zero());
-                let qdd = self.forward_dynamics_terms_then(qd, |(_, dqd, dm)| {
-                    let (inverse, ok) = { #inverse };
-                    // D⁻¹ where D was, for the result; q̈ from the local copy (read
-                    // back from memory right after its stores, the Panda's q̈ took
-                    // 40 % longer: the loads wait for the stores).
-                    *dm = inverse;
-                    factored = ok;
-                    let inverse = &inverse;
-                    #acceleration
-                }, &mut terms);
-                let ok = factored;
-                #finite
-                let (dq, dqd, inverse) = &mut terms;
-                #products
-                #finish
-            },
-            &["forward_dynamics_terms", "gravity"],
-        )
-    } else {
-        let finish = if lanes {
-            quote!(((terms.0, terms.1, inverse), ok))
-        } else {
-            quote!(na::SimdBool::all(ok).then(|| (terms.0, terms.1, inverse)))
-        };
-        (
-            quote! {
-                let (inverse, ok) = self.mass_matrix_inverse_lanes();
-                let mut terms = (zero(), zero());
-                let qdd = self.inverse_dynamics_derivatives_then(qd, |(_, dqd)| {
-                    let inverse = &inverse;
-                    #acceleration
-                }, &mut terms);
-                #finite
-                let (dq, dqd) = &mut terms;
-                #products
-                #finish
-            },
-            &[
-                "mass_matrix_inverse_lanes",
-                "gravity",
-                "inverse_dynamics_derivatives",
-            ],
-        )
-    };
     let g = if payload {
         quote!(self.gravity_with_payload(payload))
     } else {
