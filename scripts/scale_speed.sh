@@ -11,7 +11,7 @@
 # `--more` also expands the derivatives (`robot!(..., derivatives)`) and times c_ijk, the
 # payload's D, g, τ, q̈ and C (against `dhgen::payload`'s functions on `Robot`; C against the
 # runtime's C without the payload, which has no payload variant: its cost is the same), Ḋ,
-# Cᵀq̇, ∂τ, ∂q̈ and D⁻¹. A 30-joint arm takes about five minutes to build (about eight with
+# Cᵀq̇, ∂τ, ∂q̈ and D⁻¹, and ∂τ and ∂q̈ with the payload (against `Robot::with_payload`'s). A 30-joint arm takes about five minutes to build (about eight with
 # `--more`). Scratch files in target/scale-speed/.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -42,7 +42,9 @@ if $more; then
             ("coriolis_transpose_qd", time(|i| { let [q, qd, _] = black_box(&s[i % 64]); $m::coriolis_transpose_qd(q, qd) }), time(|i| { let [q, qd, _] = black_box(&d[i % 64]); robot.coriolis_transpose_qd(q, qd) })),
             ("inverse_dynamics_derivatives", time(|i| { let [q, qd, qdd] = black_box(&s[i % 64]); $m::inverse_dynamics_derivatives(q, qd, qdd) }), time(|i| { let [q, qd, qdd] = black_box(&d[i % 64]); robot.inverse_dynamics_derivatives(q, qd, qdd) })),
             ("forward_dynamics_derivatives", time(|i| { let [q, qd, t] = black_box(&s[i % 64]); $m::forward_dynamics_derivatives(q, qd, t) }), time(|i| { let [q, qd, t] = black_box(&d[i % 64]); robot.forward_dynamics_derivatives(q, qd, t) })),
-            ("mass_matrix_inverse", time(|i| $m::mass_matrix_inverse(&black_box(&s[i % 64])[0])), time(|i| robot.mass_matrix_inverse(&black_box(&d[i % 64])[0]))),'
+            ("mass_matrix_inverse", time(|i| $m::mass_matrix_inverse(&black_box(&s[i % 64])[0])), time(|i| robot.mass_matrix_inverse(&black_box(&d[i % 64])[0]))),
+            ("inverse_dynamics_derivatives_with_payload", time(|i| { let [q, qd, qdd] = black_box(&s[i % 64]); $m::inverse_dynamics_derivatives_with_payload(q, qd, qdd, &pp) }), time(|i| { let [q, qd, qdd] = black_box(&d[i % 64]); held.inverse_dynamics_derivatives(q, qd, qdd) })),
+            ("forward_dynamics_derivatives_with_payload", time(|i| { let [q, qd, t] = black_box(&s[i % 64]); $m::forward_dynamics_derivatives_with_payload(q, qd, t, &pp) }), time(|i| { let [q, qd, t] = black_box(&d[i % 64]); held.forward_dynamics_derivatives(q, qd, t) })),'
 fi
 for n in "${sizes[@]}"; do
   target/release/dhgen random --dof "$n" --style "$style" --seed 1 -o "$crate/${style}_$n.toml"
@@ -101,7 +103,8 @@ macro_rules! arm {
         let (s, d) = (&s, &d);
         let pl = dhgen::payload::Payload::new(1.5, [0.01, -0.02, 0.05], [[0.01, 0.0, 0.0], [0.0, 0.012, 0.0], [0.0, 0.0, 0.008]]).unwrap();
         let pp = pl.parameters();
-        let _ = (&pl, &pp);
+        let held = robot.with_payload(&pl).unwrap();
+        let _ = (&pl, &pp, &held);
         let rows: Vec<(&str, f64, f64)> = vec![
             ("fk", time(|i| g.fk(&black_box(&s[i % 64])[0])), time(|i| robot.fk(&black_box(&d[i % 64])[0]))),
             ("jacobian", time(|i| g.jacobian(&black_box(&s[i % 64])[0])), time(|i| robot.jacobian(&black_box(&d[i % 64])[0]))),
