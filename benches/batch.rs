@@ -4,8 +4,10 @@
 //! `{robot}/{quantity}/{scalar_f64|batch_f64x4|packs_f64x4}` evaluates the same 64 seeded configurations
 //! (`scalar`: a loop of the generated function; `batch`: the module's `batch` function over
 //! the slice; `packs`: the generated function called on the 16 packs themselves, the
-//! values left as packs): divide by 64 for the time per configuration. `sincos/{dhgen|dhgen_f64x4|libm}`:
-//! 64 angles in [−π, π], one at a time or four per pack.
+//! values left as packs): divide by 64 for the time per configuration;
+//! `{scalar_f32|batch_f32x8|packs_f32x8}` the same configurations in `f32` (8 packs of 8).
+//! `sincos/{dhgen|dhgen_f64x4|libm|dhgen_f32x8|libm_f32}`: 64 angles in [−π, π], one at a
+//! time or four (eight) per pack.
 //!
 //! `cargo bench --bench batch`.
 
@@ -52,6 +54,22 @@ fn packs<const N: usize>(v: &[[f64; N]]) -> Vec<[dhgen::batch::WideF64x4; N]> {
         .collect()
 }
 
+/// The same configurations in `f32`.
+fn narrow<const N: usize>(v: &[[f64; N]]) -> Vec<[f32; N]> {
+    v.iter().map(|x| x.map(|e| e as f32)).collect()
+}
+
+/// Eight `f32` configurations per pack.
+fn packs8<const N: usize>(v: &[[f32; N]]) -> Vec<[dhgen::batch::WideF32x8; N]> {
+    v.chunks(8)
+        .map(|c| {
+            std::array::from_fn(|j| {
+                dhgen::batch::WideF32x8(std::array::from_fn::<f32, 8, _>(|l| c[l][j]).into())
+            })
+        })
+        .collect()
+}
+
 macro_rules! pair {
     ($c:expr, $m:ident, $name:literal, $f:ident($($x:ident),*)) => {
         pair!($c, $m, $name, $f($($x),*), $f)
@@ -85,6 +103,36 @@ macro_rules! pair {
             b.iter(|| {
                 let qp = black_box(&qp);
                 for c in 0..STATES / 4 {
+                    black_box(g::$packed(&qp[c], $(&pick!($x, inputs_p)[c]),*));
+                }
+            })
+        });
+        // The same configurations in f32: one at a time, by the batch function, by packs of 8.
+        let q = narrow(&q);
+        let inputs = (narrow(&inputs.0), narrow(&inputs.1));
+        let _ = &inputs;
+        group.bench_function(BenchmarkId::new($name, "scalar_f32"), |b| {
+            b.iter(|| {
+                let q = black_box(&q);
+                for c in 0..STATES {
+                    black_box(g::$f(&q[c], $(&pick!($x, inputs)[c]),*));
+                }
+            })
+        });
+        let mut out = vec![g::$f(&q[0], $(&pick!($x, inputs)[0]),*); STATES];
+        group.bench_function(BenchmarkId::new($name, "batch_f32x8"), |b| {
+            b.iter(|| {
+                g::batch::$f(black_box(&q), $(black_box(&pick!($x, inputs)),)* &mut out)
+                    .unwrap();
+                black_box(&out);
+            })
+        });
+        let (qp, inputs_p) = (packs8(&q), (packs8(&inputs.0), packs8(&inputs.1)));
+        let _ = &inputs_p;
+        group.bench_function(BenchmarkId::new($name, "packs_f32x8"), |b| {
+            b.iter(|| {
+                let qp = black_box(&qp);
+                for c in 0..STATES / 8 {
                     black_box(g::$packed(&qp[c], $(&pick!($x, inputs_p)[c]),*));
                 }
             })
@@ -138,6 +186,25 @@ fn batch(c: &mut Criterion) {
         b.iter(|| {
             for &x in black_box(&angles) {
                 black_box(libm::sincos(x));
+            }
+        })
+    });
+    let angles32: Vec<f32> = angles.iter().map(|&a| a as f32).collect();
+    let angle_packs8: Vec<dhgen::batch::WideF32x8> = angles32
+        .chunks(8)
+        .map(|a| dhgen::batch::WideF32x8(std::array::from_fn::<f32, 8, _>(|l| a[l]).into()))
+        .collect();
+    group.bench_function("dhgen_f32x8", |b| {
+        b.iter(|| {
+            for &x in black_box(&angle_packs8) {
+                black_box(dhgen::Real::sincos(x));
+            }
+        })
+    });
+    group.bench_function("libm_f32", |b| {
+        b.iter(|| {
+            for &x in black_box(&angles32) {
+                black_box(libm::sincosf(x));
             }
         })
     });

@@ -12,7 +12,9 @@
 //! Instructions per call = (count − count of the quantity `none`) / 1000. `batch` evaluates the same 1,000
 //! configurations through the module's `batch` functions (SIMD packs of four `f64`): its
 //! count per configuration is the same formula. `packs` calls the generated functions on the
-//! packs themselves (what `batch` does before unpacking each lane's value).
+//! packs themselves (what `batch` does before unpacking each lane's value). `f32` and
+//! `packs_f32` run the same configurations in `f32`, one at a time and as packs of eight
+//! (`WideF32x8`), for a few quantities.
 
 use std::hint::black_box;
 
@@ -100,6 +102,52 @@ macro_rules! run {
                         std::process::exit(2);
                     }
                 };
+            }
+            println!("{acc}");
+            return;
+        }
+        if $path == "f32" || $path == "packs_f32" {
+            // The same configurations in `f32`: one at a time, or as packs of eight
+            // (`WideF32x8`) with the generated functions called on the packs directly.
+            use dhgen::batch::WideF32x8;
+            let narrow = |v: &[[f64; N]]| -> Vec<[f32; N]> {
+                v.iter().map(|x| x.map(|e| e as f32)).collect()
+            };
+            let (qs, qds) = (narrow(&qs), narrow(&qds));
+            let pack = |v: &[[f32; N]], i: usize| -> [WideF32x8; N] {
+                core::array::from_fn(|j| {
+                    WideF32x8(core::array::from_fn::<f32, 8, _>(|l| v[i + l][j]).into())
+                })
+            };
+            macro_rules! quantity {
+                ($q:expr, $qd:expr, $lane:expr) => {{
+                    let (q, qd, lane) = ($q, $qd, $lane);
+                    match $quantity {
+                        "none" => 0.0,
+                        "sincos" => lane(dhgen::Real::sincos(q[0]).0),
+                        "fk" => lane($m::fk(&q).translation.x),
+                        "fk_matrix" => lane($m::fk_matrix(&q)[(0, 3)]),
+                        "jacobian" => lane($m::jacobian(&q)[(0, 1)]),
+                        "mass_matrix" => lane($m::mass_matrix(&q)[(1, 1)]),
+                        "gravity" => lane($m::gravity(&q)[1]),
+                        "inverse_dynamics" => lane($m::inverse_dynamics(&q, &qd, &qd)[1]),
+                        other => {
+                            eprintln!("no f32 form of {other}");
+                            std::process::exit(2);
+                        }
+                    }
+                }};
+            }
+            if $path == "f32" {
+                for i in 0..CALLS {
+                    let (q, qd) = (black_box(qs[i]), black_box(qds[i]));
+                    acc += f64::from(quantity!(q, qd, |x: f32| x));
+                }
+            } else {
+                for i in (0..CALLS).step_by(8) {
+                    let (q, qd) = (black_box(pack(&qs, i)), black_box(pack(&qds, i)));
+                    acc += f64::from(quantity!(q, qd, |x: WideF32x8| x.0.to_array()[1]));
+                }
             }
             println!("{acc}");
             return;
@@ -222,7 +270,7 @@ fn main() {
     let args: Vec<String> = std::env::args().collect();
     if args.len() != 4 {
         eprintln!(
-            "usage: instructions ROBOT QUANTITY generated|runtime|batch|packs  \
+            "usage: instructions ROBOT QUANTITY generated|runtime|batch|packs|f32|packs_f32  \
              (ROBOT: puma560, panda, general_8 or general_12)"
         );
         std::process::exit(2);

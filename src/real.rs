@@ -9,7 +9,7 @@ use simba::simd::{WideF32x8, WideF64x4};
 /// Generated functions take any `T: Real`. `f64` and `f32` compute `sincos` with one shared
 /// argument reduction (the `libm` crate's port of musl, accurate to within 1 ulp), about a
 /// quarter fewer instructions than separate `sin` and `cos`; a generated `State` takes all its
-/// joints' at once ([`sincos_array`](Real::sincos_array)), which `f64` evaluates four at a time
+/// joints' at once ([`sincos_array`](Real::sincos_array)), which `f64` and `f32` evaluate four at a time
 /// on a pack where the target has AVX. Any `RealField` type (a dual number, say) implements
 /// `SimdRealField` with one lane and can implement this trait with the defaults.
 ///
@@ -18,7 +18,10 @@ use simba::simd::{WideF32x8, WideF64x4};
 /// the scalar path computes it (branches of generated code are lane-wise selects), bit for
 /// bit; the one exception is `f64` on targets without AVX, where a lane's sine and cosine are
 /// the branch-free polynomials of [`crate::sincos`] and the scalar's `libm`'s (both within one
-/// ulp). [`crate::batch`] runs slices of configurations through them.
+/// ulp). Where the target has AVX, `f32` packs and scalar `f32` generated code take their
+/// sines and cosines from [`sincos::sincosf_lanes`](crate::sincos::sincosf_lanes) four at a
+/// time; elsewhere both call `libm::sincosf`. [`crate::batch`] runs slices of configurations
+/// through them.
 ///
 /// ```
 /// use dhgen::Real;
@@ -96,6 +99,36 @@ fn sincos_each<T: Real, const N: usize>(x: [T; N]) -> ([T; N], [T; N]) {
     (s, c)
 }
 
+/// `f` (a sine and cosine of four values at once) on every entry of `x`: full packs with
+/// constant-length copies, then one pack padded with zeros. (One loop over padded packs,
+/// tried, compiled differently for x86-64-v3: 16 % more instructions in one build's Panda
+/// fk_matrix, and an encoding valgrind 3.19 cannot decode.)
+#[inline(always)]
+fn in_packs_of_four<E: Copy + Default, const N: usize>(
+    x: [E; N],
+    f: impl Fn([E; 4]) -> ([E; 4], [E; 4]),
+) -> ([E; N], [E; N]) {
+    let mut s = [E::default(); N];
+    let mut c = [E::default(); N];
+    let mut start = 0;
+    while start + 4 <= N {
+        let (ps, pc) = f([x[start], x[start + 1], x[start + 2], x[start + 3]]);
+        s[start..start + 4].copy_from_slice(&ps);
+        c[start..start + 4].copy_from_slice(&pc);
+        start += 4;
+    }
+    if start < N {
+        let at = |l: usize| start + l;
+        let (ps, pc) = f(core::array::from_fn(|l| {
+            if at(l) < N { x[at(l)] } else { E::default() }
+        }));
+        for l in 0..N - start {
+            (s[at(l)], c[at(l)]) = (ps[l], pc[l]);
+        }
+    }
+    (s, c)
+}
+
 impl Real for f64 {
     #[inline]
     fn sincos(self) -> (f64, f64) {
@@ -107,29 +140,10 @@ impl Real for f64 {
         if !crate::sincos::PACKED {
             return sincos_each(x);
         }
-        let mut s = [0.0; N];
-        let mut c = [0.0; N];
-        // Full packs with constant-length copies, then one pack padded with zeros. (One loop
-        // over padded packs, tried, compiled differently for x86-64-v3: 16 % more instructions
-        // in one build's Panda fk_matrix, and an encoding valgrind 3.19 cannot decode.)
-        let mut start = 0;
-        while start + 4 <= N {
-            let lanes = [x[start], x[start + 1], x[start + 2], x[start + 3]];
-            let (ps, pc) = crate::sincos::sincos(WideF64x4::from(lanes));
-            s[start..start + 4].copy_from_slice(&ps.0.to_array());
-            c[start..start + 4].copy_from_slice(&pc.0.to_array());
-            start += 4;
-        }
-        if start < N {
-            let at = |l: usize| start + l;
-            let lanes = core::array::from_fn(|l| if at(l) < N { x[at(l)] } else { 0.0 });
-            let (ps, pc) = crate::sincos::sincos(WideF64x4::from(lanes));
-            let (ps, pc) = (ps.0.to_array(), pc.0.to_array());
-            for l in 0..N - start {
-                (s[at(l)], c[at(l)]) = (ps[l], pc[l]);
-            }
-        }
-        (s, c)
+        in_packs_of_four(x, |lanes| {
+            let (s, c) = crate::sincos::sincos(WideF64x4::from(lanes));
+            (s.0.to_array(), c.0.to_array())
+        })
     }
 
     #[inline]
@@ -142,6 +156,24 @@ impl Real for f32 {
     #[inline]
     fn sincos(self) -> (f32, f32) {
         libm::sincosf(self)
+    }
+
+    /// Where the target has AVX ([`sincos::PACKED`](crate::sincos::PACKED)), four at a time
+    /// in packs of `f64` ([`sincos::sincosf_lanes`](crate::sincos::sincosf_lanes)), each
+    /// entry bit for bit what a [`WideF32x8`]'s lane computes; `libm::sincosf` one by one
+    /// elsewhere.
+    #[inline]
+    fn sincos_array<const N: usize>(x: [f32; N]) -> ([f32; N], [f32; N]) {
+        if !crate::sincos::PACKED {
+            return sincos_each(x);
+        }
+        in_packs_of_four(x, |lanes| {
+            let (s, c) = crate::sincos::sincosf_lanes(WideF64x4::from(lanes.map(f64::from)));
+            (
+                s.0.to_array().map(|v| v as f32),
+                c.0.to_array().map(|v| v as f32),
+            )
+        })
     }
 
     #[inline]
@@ -163,18 +195,13 @@ impl Real for WideF64x4 {
     }
 }
 
-/// Eight `f32` lanes, each as `f32` computes it (`libm`'s `sincosf` lane by lane; computing
-/// `f32` sines and cosines in `f64` packs, tried for scalars and packs alike, made scalar `f32`
-/// fk and J 1.4–1.8× slower with AVX2).
+/// Eight `f32` lanes, each as scalar `f32` generated code computes it, bit for bit: the sine
+/// and cosine are [`sincos::sincosf_pack`](crate::sincos::sincosf_pack)'s (branch-free on
+/// packs of `f64` where the target has AVX, `libm::sincosf` lane by lane elsewhere).
 impl Real for WideF32x8 {
     #[inline]
     fn sincos(self) -> (Self, Self) {
-        let mut s = [0.0; 8];
-        let mut c = [0.0; 8];
-        for (i, x) in self.0.to_array().into_iter().enumerate() {
-            (s[i], c[i]) = libm::sincosf(x);
-        }
-        (WideF32x8(s.into()), WideF32x8(c.into()))
+        crate::sincos::sincosf_pack(self)
     }
 }
 

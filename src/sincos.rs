@@ -1,4 +1,4 @@
-//! Sine and cosine together, without branches, for `f64` and packs of `f64` lanes.
+//! Sine and cosine together, without branches, for `f64`, `f32` and packs of them.
 //!
 //! Joint angles live in a small range, so the argument reduction needs neither the
 //! Payne–Hanek path nor branches on cancellation: for |x| ≤ [`LIMIT`],
@@ -24,8 +24,16 @@
 //! it has no branch to mispredict but a longer dependency chain, which only a pack amortises.
 //! A scalar-only variant (the quadrant from the integer bits, no pack selects) was tried: 116
 //! instructions per call against `libm`'s 99 for angles in [−π, π], and twice its time.
+//!
+//! `f32` arguments get fdlibm's `f32` reduction and kernels evaluated in `f64` lanes
+//! ([`sincosf_lanes`]: what `libm`'s `sincosf` computes, less its branches), for packs of
+//! eight `f32` and, where the target has AVX, for scalar `f32` generated code's joints four at
+//! a time: 0.501 ulp at worst over 10⁷ arguments (this module's second test). With AVX2 a pack
+//! of eight takes 10.4 ns against 21.7 for `libm::sincosf` lane by lane (2026-12-02); without
+//! AVX `f32` keeps `libm::sincosf`, which is then as fast.
 
-use nalgebra::{SimdBool, SimdRealField};
+use nalgebra::{SimdBool, SimdComplexField, SimdPartialOrd, SimdRealField, SimdValue};
+use simba::simd::{WideF32x8, WideF64x4};
 
 /// The largest |x| the branch-free path takes; beyond it, `libm::sincos`.
 pub const LIMIT: f64 = 1e5;
@@ -148,18 +156,7 @@ where
     let wc = one - hz;
     let cos = wc + (((one - wc) - hz) + mul_add(z, rc, -(y0 * y1)));
 
-    // The quadrant: m = n − 4·round(n/4) ∈ {−2, −1, 0, 1, 2}, exactly.
-    let m = mul_add(k(-4.0), mul_add(f_n, k(0.25), to_int) - to_int, f_n);
-    let is = |c: f64| m.simd_eq(k(c));
-    let odd = is(1.0) | is(-1.0);
-    let neg_sin = is(2.0) | is(-2.0) | is(-1.0);
-    let neg_cos = is(1.0) | is(2.0) | is(-2.0);
-    let s = cos.select(odd, sin);
-    let c = sin.select(odd, cos);
-    let s = (-s).select(neg_sin, s);
-    // sin(±0) = ±0 (the reduction's sum gives +0 for both).
-    let mut s = x.select(x.simd_eq(T::zero()), s);
-    let mut c = (-c).select(neg_cos, c);
+    let (mut s, mut c) = by_quadrant::<T, FUSED>(x, f_n, sin, cos);
 
     // Beyond the range, or not finite: libm, lane by lane.
     let outside = !x.simd_abs().simd_le(k(LIMIT));
@@ -175,6 +172,153 @@ where
     (s, c)
 }
 
+/// `(sin x, cos x)` from the sine and cosine of `y = x − n·π/2` (`f_n` = n, an integer
+/// below 2⁵⁰ in magnitude): the quadrant `n mod 4` swaps and negates them by selects, and
+/// sin(±0) is ±0 (the reductions give +0 for both).
+#[inline(always)]
+fn by_quadrant<T, const FUSED: bool>(x: T, f_n: T, sin: T, cos: T) -> (T, T)
+where
+    T: SimdRealField<Element = f64> + Copy,
+{
+    let k = T::splat;
+    let to_int = k(TO_INT);
+    let mul_add = mul_add::<T, FUSED>;
+    // m = n − 4·round(n/4) ∈ {−2, −1, 0, 1, 2}, exactly.
+    let m = mul_add(k(-4.0), mul_add(f_n, k(0.25), to_int) - to_int, f_n);
+    let is = |c: f64| m.simd_eq(k(c));
+    let odd = is(1.0) | is(-1.0);
+    let neg_sin = is(2.0) | is(-2.0) | is(-1.0);
+    let neg_cos = is(1.0) | is(2.0) | is(-2.0);
+    let s = cos.select(odd, sin);
+    let c = sin.select(odd, cos);
+    let s = (-s).select(neg_sin, s);
+    (x.select(x.simd_eq(T::zero()), s), (-c).select(neg_cos, c))
+}
+
+/// π/2 in two pieces for `f32` arguments (fdlibm's `__rem_pio2f`): the first of 25
+/// significant bits, so that its product with n is exact for |n| < 2²⁸, and the rest.
+const PIO2_1_F: f64 = f64::from_bits(0x3FF9_21FB_5000_0000);
+const PIO2_1T_F: f64 = f64::from_bits(0x3E51_10B4_611A_6263);
+
+/// fdlibm's `f32` kernels (`__kernel_sindf`, `__kernel_cosdf`), evaluated in `f64` for
+/// |y| ≤ π/4: |sin(y)/y − s(y)| < 2⁻³⁷·⁵ and |cos(y) − c(y)| < 2⁻³⁴·⁴, far below half an
+/// `f32` ulp.
+const SF: [f64; 4] = [
+    f64::from_bits(0xBFC5_5555_54CB_AC77),
+    f64::from_bits(0x3F81_1110_896E_FBB2),
+    f64::from_bits(0xBF2A_00F9_E2CA_E774),
+    f64::from_bits(0x3EC6_CD87_8C3B_46A7),
+];
+const CF: [f64; 4] = [
+    f64::from_bits(0xBFDF_FFFF_FD0C_5E81),
+    f64::from_bits(0x3FA5_5553_E105_3A42),
+    f64::from_bits(0xBF56_C087_E80F_1E27),
+    f64::from_bits(0x3EF9_9342_E0EE_5069),
+];
+
+/// fdlibm's `sinf`/`cosf` reduction and kernels on `f32` arguments held exactly in `f64`
+/// lanes, for |x| ≤ [`LIMIT`]: `(n, sin y, cos y)` with `y = x − n·π/2`, |y| ≤ π/4, to `f64`
+/// precision (within about 2⁻³⁴ relative, so within one `f32` ulp once rounded to `f32`).
+/// π/2 in 25 + 53 bits is ample for the 24 bits of an `f32`; `libm`'s `sincosf` evaluates the
+/// same polynomials in `f64`, with a shorter reduction of its own for |x| ≤ 9π/4.
+#[inline(always)]
+fn sincosf_reduced<T, const FUSED: bool>(x: T) -> (T, T, T)
+where
+    T: SimdRealField<Element = f64> + Copy,
+{
+    let mul_add = mul_add::<T, FUSED>;
+    let k = T::splat;
+    let to_int = k(TO_INT);
+    let f_n = mul_add(x, k(INV_PIO2), to_int) - to_int;
+    // Exact (the product is, and the difference has at most 24 significant bits), then one
+    // rounding.
+    let y = mul_add(-f_n, k(PIO2_1T_F), mul_add(-f_n, k(PIO2_1_F), x));
+    let z = y * y;
+    let w = z * z;
+    let sz = z * y;
+    let sin = mul_add(
+        sz * w,
+        mul_add(z, k(SF[3]), k(SF[2])),
+        mul_add(sz, mul_add(z, k(SF[1]), k(SF[0])), y),
+    );
+    let cos = mul_add(
+        w * z,
+        mul_add(z, k(CF[3]), k(CF[2])),
+        mul_add(w, k(CF[1]), mul_add(z, k(CF[0]), k(1.0))),
+    );
+    (f_n, sin, cos)
+}
+
+/// `(sin x, cos x)` of four `f32` values held exactly in `f64` lanes, lane by lane, before
+/// their rounding to `f32`: without branches for |x| ≤ [`LIMIT`] (fdlibm's `f32` reduction
+/// and kernels, the quadrant by selects), `libm::sincosf` beyond (and for ±∞ and NaN; exact
+/// in `f64`). Once rounded, within one `f32` ulp (0.501 measured); `libm`'s `sincosf`, whose
+/// shorter reductions for |x| ≤ 9π/4 round differently, gives the same `f32` results but in
+/// 64 of 10⁷ arguments (by one ulp).
+///
+/// Used where the target has AVX ([`PACKED`]): by [`WideF32x8`]'s sine and cosine, and by
+/// `f32`'s [`Real::sincos_array`](crate::Real::sincos_array), so that a scalar `f32`
+/// generated function's sines and cosines are a pack's lanes bit for bit. With AVX2, about 20
+/// instructions per value (a pack of eight `f32`: 160, as two packs of four) against
+/// `libm::sincosf`'s 50 (angles in [−3, 3], callgrind). With two `f64` per register (SSE2)
+/// the selects and both kernels cost more than `libm`'s branches, so there `f32` keeps
+/// `libm::sincosf`, one value at a time and lane by lane.
+#[inline(always)]
+pub fn sincosf_lanes(x: WideF64x4) -> (WideF64x4, WideF64x4) {
+    let (f_n, sin, cos) = sincosf_reduced::<WideF64x4, FUSED>(x);
+    let (mut s, mut c) = by_quadrant::<WideF64x4, FUSED>(x, f_n, sin, cos);
+    let outside = !x.simd_abs().simd_le(WideF64x4::splat(LIMIT));
+    if outside.any() {
+        for i in 0..4 {
+            if (outside.bitmask() >> i) & 1 == 1 {
+                let (si, ci) = libm::sincosf(x.extract(i) as f32);
+                s.replace(i, f64::from(si));
+                c.replace(i, f64::from(ci));
+            }
+        }
+    }
+    (s, c)
+}
+
+/// `(sin x, cos x)` of eight `f32` lanes, each within one ulp: [`sincosf_lanes`] on two
+/// packs of four `f64` where the target has AVX ([`PACKED`]), `libm::sincosf` lane by lane
+/// elsewhere; in both cases each lane is what scalar `f32` generated code computes.
+///
+/// ```
+/// use dhgen::batch::WideF32x8;
+/// let x = [0.5f32, -2.0, 3.0, 1e-9, 7.0, 100.0, 2e5, -0.0];
+/// let (s, c) = dhgen::sincos::sincosf_pack(WideF32x8(x.into()));
+/// let (s, c) = (s.0.to_array(), c.0.to_array());
+/// for i in 0..8 {
+///     assert!((s[i] - x[i].sin()).abs() <= f32::EPSILON);
+///     assert!((c[i] - x[i].cos()).abs() <= f32::EPSILON);
+/// }
+/// ```
+#[inline]
+pub fn sincosf_pack(x: WideF32x8) -> (WideF32x8, WideF32x8) {
+    let lanes = x.0.to_array();
+    let mut s = [0.0f32; 8];
+    let mut c = [0.0f32; 8];
+    if PACKED {
+        for half in 0..2 {
+            let at = |l: usize| 4 * half + l;
+            let wide = WideF64x4::from(core::array::from_fn::<f64, 4, _>(|l| {
+                f64::from(lanes[at(l)])
+            }));
+            let (ws, wc) = sincosf_lanes(wide);
+            let (ws, wc) = (ws.0.to_array(), wc.0.to_array());
+            for l in 0..4 {
+                (s[at(l)], c[at(l)]) = (ws[l] as f32, wc[l] as f32);
+            }
+        }
+    } else {
+        for (i, &xi) in lanes.iter().enumerate() {
+            (s[i], c[i]) = libm::sincosf(xi);
+        }
+    }
+    (WideF32x8(s.into()), WideF32x8(c.into()))
+}
+
 /// The one-ulp bound, against sine and cosine evaluated in double-double arithmetic
 /// (≈ 106 bits: the reduction by a four-double π/2 with exact products, then Taylor series),
 /// over 10⁷ arguments: the whole range uniformly, the joint range densely, the neighbours of
@@ -182,7 +326,18 @@ where
 /// rounding of n switches), the range's edges, tiny, subnormal and signed-zero arguments.
 #[cfg(all(test, feature = "std"))]
 mod tests {
-    use super::{FUSED, LIMIT, sincos, sincos_with};
+    use super::{
+        FUSED, LIMIT, by_quadrant, sincos, sincos_with, sincosf_lanes, sincosf_pack,
+        sincosf_reduced,
+    };
+    use nalgebra::SimdValue;
+
+    /// The `f32` reduction and kernels with the quadrant by selects (a pack's path), fused or
+    /// not, before the rounding to `f32`.
+    fn sincosf_wide<const FUSED: bool>(x: f64) -> (f64, f64) {
+        let (f_n, s, c) = sincosf_reduced::<f64, FUSED>(x);
+        by_quadrant::<f64, FUSED>(x, f_n, s, c)
+    }
 
     /// An unevaluated sum `hi + lo`, |lo| ≤ ulp(hi)/2.
     #[derive(Clone, Copy)]
@@ -266,6 +421,32 @@ mod tests {
         f64::from_bits((x.to_bits() as i64 + ulps) as u64)
     }
 
+    /// The worst errors in ulps of sine and cosine over `points` (`errors` at a point and its
+    /// reference sine and cosine; `None` leaves the point out), printed and held under one.
+    fn assert_under_one_ulp<X: Copy + core::fmt::LowerExp>(
+        label: &str,
+        points: &[X],
+        references: &[(Dd, Dd)],
+        errors: impl Fn(X, Dd, Dd) -> Option<(f64, f64)>,
+    ) {
+        let (mut worst_s, mut worst_c) = ((0.0, points[0]), (0.0, points[0]));
+        for (&x, &(rs, rc)) in points.iter().zip(references) {
+            let Some((es, ec)) = errors(x, rs, rc) else {
+                continue;
+            };
+            if es > worst_s.0 {
+                worst_s = (es, x);
+            }
+            if ec > worst_c.0 {
+                worst_c = (ec, x);
+            }
+        }
+        for (what, (worst, at)) in [("sin", worst_s), ("cos", worst_c)] {
+            std::println!("{label}: {what} worst {worst:.4} ulp at {at:e}");
+            assert!(worst < 1.0, "{label}: {what} {worst:.4} ulp at {at:e}");
+        }
+    }
+
     #[test]
     fn sincos_within_one_ulp() {
         let mut rng = dhgen_model::random::Stream(0x51C0);
@@ -306,38 +487,14 @@ mod tests {
             (false, sincos_with::<f64, false> as fn(f64) -> (f64, f64)),
             (true, sincos_with::<f64, true>),
         ] {
-            let (mut worst_s, mut worst_c) = ((0.0, 0.0), (0.0, 0.0));
-            for (&x, &(rs, rc)) in points.iter().zip(&references) {
-                let (s, c) = f(x);
-                let (es, ec) = (ulps(s, rs), ulps(c, rc));
-                if es > worst_s.0 {
-                    worst_s = (es, x);
-                }
-                if ec > worst_c.0 {
-                    worst_c = (ec, x);
-                }
-            }
-            std::println!(
-                "fused {fused}: sin worst {:.3} ulp at {:e}",
-                worst_s.0,
-                worst_s.1
-            );
-            std::println!(
-                "fused {fused}: cos worst {:.3} ulp at {:e}",
-                worst_c.0,
-                worst_c.1
-            );
-            assert!(
-                worst_s.0 < 1.0,
-                "fused {fused}: sin {:.3} ulp at {:e}",
-                worst_s.0,
-                worst_s.1
-            );
-            assert!(
-                worst_c.0 < 1.0,
-                "fused {fused}: cos {:.3} ulp at {:e}",
-                worst_c.0,
-                worst_c.1
+            assert_under_one_ulp(
+                &format!("fused {fused}"),
+                &points,
+                &references,
+                |x, rs, rc| {
+                    let (s, c) = f(x);
+                    Some((ulps(s, rs), ulps(c, rc)))
+                },
             );
         }
         assert_eq!(
@@ -384,6 +541,160 @@ mod tests {
                 s.to_bits() == ls.to_bits() && c.to_bits() == lc.to_bits(),
                 "{x}"
             );
+        }
+    }
+
+    /// |y − exact| in units of the last place of an `f32` at the exact value.
+    fn ulps_f32(y: f32, exact: Dd) -> f64 {
+        let err = ((f64::from(y) - exact.0) - exact.1).abs();
+        let near = (exact.0 as f32).abs();
+        let mut ulp = f64::from(f32::from_bits(near.to_bits() + 1)) - f64::from(near);
+        // Just below a power of two the spacing is half.
+        if near.to_bits() & 0x7F_FFFF == 0 && near.to_bits() != 0 && exact.0.abs() < f64::from(near)
+        {
+            ulp /= 2.0;
+        }
+        err / ulp
+    }
+
+    fn step_f32(x: f32, ulps: i32) -> f32 {
+        f32::from_bits((x.to_bits() as i32 + ulps) as u32)
+    }
+
+    /// The one-ulp bound of the `f32` sine and cosine, against the same double-double
+    /// reference, over 10⁷ `f32` arguments chosen as for `f64`; and packs of eight equal to
+    /// scalars bit for bit, `libm`'s `sincosf` beyond the range.
+    #[test]
+    fn sincosf_within_one_ulp() {
+        let mut rng = dhgen_model::random::Stream(0x51C1);
+        let mut points: Vec<f32> = Vec::with_capacity(10_100_000);
+        let limit = LIMIT as f32;
+        for _ in 0..4_000_000 {
+            points.push(((rng.uniform(0.0, 1.0) * 2.0 - 1.0) * LIMIT) as f32);
+        }
+        for _ in 0..3_000_000 {
+            points.push(((rng.uniform(0.0, 1.0) * 2.0 - 1.0) * 4.0 * core::f64::consts::PI) as f32);
+        }
+        let kmax = (LIMIT / core::f64::consts::FRAC_PI_4) as u64;
+        for _ in 0..200_000 {
+            let k = (rng.uniform(0.0, 1.0) * kmax as f64) as u64;
+            let centre = (k as f64 * core::f64::consts::FRAC_PI_4) as f32;
+            for d in -3..=3 {
+                points.push(step_f32(centre, d));
+                points.push(-step_f32(centre, d));
+            }
+        }
+        // Every f32 next to the first 2,000 multiples of π/4 (the joint range and beyond).
+        for k in 0..2_000u32 {
+            let centre = (f64::from(k) * core::f64::consts::FRAC_PI_4) as f32;
+            for d in -40..=40 {
+                points.push(step_f32(centre, d));
+            }
+        }
+        for d in 0..50_000 {
+            points.push(step_f32(limit, -d));
+            points.push(step_f32(limit, d));
+            points.push(-step_f32(limit, d));
+            points.push(f32::from_bits(d as u32)); // subnormals and +0
+            points.push(-f32::from_bits(d as u32 * 0x100)); // subnormals, tiny
+        }
+        for e in -149..=16 {
+            points.push(2f32.powi(e));
+            points.push(-(2f32.powi(e)));
+        }
+        assert!(points.len() >= 10_000_000, "{} points", points.len());
+        let references: Vec<_> = points.iter().map(|&x| reference(f64::from(x))).collect();
+        for (fused, f) in [
+            (false, sincosf_wide::<false> as fn(f64) -> (f64, f64)),
+            (true, sincosf_wide::<true>),
+        ] {
+            let label = format!("f32, fused {fused}");
+            assert_under_one_ulp(&label, &points, &references, |x, rs, rc| {
+                // Beyond the range (and not finite): libm's.
+                (x.abs() <= limit).then(|| {
+                    let (s, c) = f(f64::from(x));
+                    (ulps_f32(s as f32, rs), ulps_f32(c as f32, rc))
+                })
+            });
+        }
+        // A value through a pack of four (lane 0): the target's variant within the range,
+        // libm's beyond it.
+        let packed = |x: f32| -> (f32, f32) {
+            let (s, c) = sincosf_lanes(simba::simd::WideF64x4::splat(f64::from(x)));
+            (s.0.to_array()[0] as f32, c.0.to_array()[0] as f32)
+        };
+        let (mut differ, mut beyond) = (0usize, 0usize);
+        for &x in &points {
+            let (s, c) = packed(x);
+            if x.abs() <= limit {
+                let (ws, wc) = sincosf_wide::<FUSED>(f64::from(x));
+                assert_eq!(
+                    (s.to_bits(), c.to_bits()),
+                    ((ws as f32).to_bits(), (wc as f32).to_bits())
+                );
+            } else {
+                beyond += 1;
+            }
+            differ += usize::from((s, c) != libm::sincosf(x));
+        }
+        std::println!(
+            "f32: {differ} of {} differ from libm's sincosf ({beyond} beyond the range)",
+            points.len()
+        );
+        assert_eq!(packed(-0.0).0.to_bits(), (-0.0f32).to_bits());
+        for x in [
+            f32::NAN,
+            f32::INFINITY,
+            f32::NEG_INFINITY,
+            1e6,
+            -3e9,
+            f32::MAX,
+            -1.00001e5,
+        ] {
+            let (s, c) = packed(x);
+            let (ls, lc) = libm::sincosf(x);
+            assert!(
+                s.to_bits() == ls.to_bits() && c.to_bits() == lc.to_bits(),
+                "{x}"
+            );
+        }
+        // What f32 generated code computes, one value at a time and in packs of eight: the
+        // packed variant where the target has AVX, libm's elsewhere, bit for bit either way.
+        let target = |x: f32| {
+            if super::PACKED {
+                packed(x)
+            } else {
+                libm::sincosf(x)
+            }
+        };
+        for chunk in points.chunks(8).step_by(499).chain([&[
+            1e6,
+            -0.0,
+            0.5,
+            f32::NAN,
+            f32::INFINITY,
+            3.0,
+            -1e5,
+            2e5,
+        ][..]])
+        {
+            let x: [f32; 8] = core::array::from_fn(|i| chunk[i]);
+            let (s, c) = sincosf_pack(simba::simd::WideF32x8(x.into()));
+            let (s, c) = (s.0.to_array(), c.0.to_array());
+            let (sa, ca) = <f32 as crate::Real>::sincos_array(x);
+            for (i, &xi) in x.iter().enumerate() {
+                let (si, ci) = target(xi);
+                assert_eq!(
+                    (s[i].to_bits(), c[i].to_bits()),
+                    (si.to_bits(), ci.to_bits()),
+                    "{xi}"
+                );
+                assert_eq!(
+                    (sa[i].to_bits(), ca[i].to_bits()),
+                    (si.to_bits(), ci.to_bits()),
+                    "{xi}"
+                );
+            }
         }
     }
 }
