@@ -2,9 +2,9 @@
 //! robot × quantity → median ns of generated f64, generated f32 and runtime, the speed-up,
 //! and the operation count of the generated function.
 //!
-//! Then, when `cargo bench --bench batch` has run, a second table: the time per configuration
+//! Then, when `cargo bench --bench batch` has run, two more tables: the time per configuration
 //! of the scalar functions, of the `batch` slice functions and of the generated functions on
-//! SIMD packs (`f64x4`).
+//! SIMD packs, in `f64` (`f64x4`) and in `f32` (`f32x8`).
 //!
 //! `cargo bench --bench generated && cargo run --release --example bench_report`
 
@@ -132,28 +132,33 @@ fn batch_table(criterion: &Path) {
         eprintln!("(no batch figures: run `cargo bench --bench batch` for them)");
         return;
     }
-    println!();
-    println!(
-        "| robot | quantity | scalar f64 (ns/config) | batch f64x4 (ns/config) | packs f64x4 (ns/config) | scalar / batch | scalar / packs |"
-    );
-    println!("|---|---|---:|---:|---:|---:|---:|");
-    for robot in ["puma560", "panda"] {
-        for q in BATCH {
-            let dir = criterion.join(robot).join(q);
-            let per = |v: &str| median_ns(&dir.join(v)).map(|t| t / 64.0);
-            let (s, b, p) = (per("scalar_f64"), per("batch_f64x4"), per("packs_f64x4"));
-            let ratio = |x: Option<f64>| match (s, x) {
-                (Some(s), Some(x)) => format!("{:.1}×", s / x),
-                _ => "–".into(),
-            };
-            println!(
-                "| {robot} | {q} | {} | {} | {} | {} | {} |",
-                fmt(s),
-                fmt(b),
-                fmt(p),
-                ratio(b),
-                ratio(p)
-            );
+    for (scalar, batch, packs) in [
+        ("scalar_f64", "batch_f64x4", "packs_f64x4"),
+        ("scalar_f32", "batch_f32x8", "packs_f32x8"),
+    ] {
+        println!();
+        println!(
+            "| robot | quantity | {scalar} (ns/config) | {batch} (ns/config) | {packs} (ns/config) | scalar / batch | scalar / packs |"
+        );
+        println!("|---|---|---:|---:|---:|---:|---:|");
+        for robot in ["puma560", "panda"] {
+            for q in BATCH {
+                let dir = criterion.join(robot).join(q);
+                let per = |v: &str| median_ns(&dir.join(v)).map(|t| t / 64.0);
+                let (s, b, p) = (per(scalar), per(batch), per(packs));
+                let ratio = |x: Option<f64>| match (s, x) {
+                    (Some(s), Some(x)) => format!("{:.1}×", s / x),
+                    _ => "–".into(),
+                };
+                println!(
+                    "| {robot} | {q} | {} | {} | {} | {} | {} |",
+                    fmt(s),
+                    fmt(b),
+                    fmt(p),
+                    ratio(b),
+                    ratio(p)
+                );
+            }
         }
     }
 }
