@@ -9,9 +9,9 @@ use simba::simd::{WideF32x8, WideF64x4};
 /// Generated functions take any `T: Real`. `f64` and `f32` compute `sincos` with one shared
 /// argument reduction (the `libm` crate's port of musl, accurate to within 1 ulp), about a
 /// quarter fewer instructions than separate `sin` and `cos`; a generated `State` takes all its
-/// joints' at once ([`sincos_array`](Real::sincos_array)), which `f64` and `f32` evaluate four at a time
-/// on a pack where the target has AVX. Any `RealField` type (a dual number, say) implements
-/// `SimdRealField` with one lane and can implement this trait with the defaults.
+/// joints' at once ([`sincos_array`](Real::sincos_array)), which `f64` and `f32` evaluate four
+/// at a time on a pack where the target has AVX. Any `RealField` type (a dual number, say)
+/// implements `SimdRealField` with one lane and can implement this trait with the defaults.
 ///
 /// The SIMD packs [`WideF64x4`] (four `f64`) and [`WideF32x8`] (eight `f32`) are `Real` too:
 /// every generated function evaluates four (eight) configurations in one call, each lane as

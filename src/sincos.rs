@@ -26,16 +26,19 @@
 //! instructions per call against `libm`'s 99 for angles in [−π, π], and twice its time.
 //!
 //! `f32` arguments get fdlibm's `f32` reduction and kernels evaluated in `f64` lanes
-//! ([`sincosf_lanes`]: what `libm`'s `sincosf` computes, less its branches), for packs of
-//! eight `f32` and, where the target has AVX, for scalar `f32` generated code's joints four at
-//! a time: 0.501 ulp at worst over 10⁷ arguments (this module's second test). With AVX2 a pack
-//! of eight takes 10.4 ns against 21.7 for `libm::sincosf` lane by lane (2026-12-02); without
-//! AVX `f32` keeps `libm::sincosf`, which is then as fast.
+//! ([`sincosf_lanes`]: what `libm`'s `sincosf` computes, less its branches) where the target
+//! has AVX, for packs of eight `f32` and for scalar `f32` generated code's joints four at a
+//! time: 0.501 ulp at worst over 10⁷ arguments (this module's second test). With AVX2, 64
+//! angles in packs of eight take 91 ns against 161 for `libm::sincosf` one by one
+//! (`cargo bench --bench batch`, 2026-12-02); without AVX `f32` keeps `libm::sincosf`, which
+//! is then as fast. (An earlier attempt took `f32` angles through the `f64` polynomials
+//! above, whose double-double reduction and longer kernels made scalar `f32` fk and J 1.4–1.8×
+//! slower with AVX2; fdlibm's `f32` reduction and kernels need about half their operations.)
 
 use nalgebra::{SimdBool, SimdComplexField, SimdPartialOrd, SimdRealField, SimdValue};
 use simba::simd::{WideF32x8, WideF64x4};
 
-/// The largest |x| the branch-free path takes; beyond it, `libm::sincos`.
+/// The largest |x| the branch-free paths take; beyond it, `libm::sincos` (`sincosf` for `f32`).
 pub const LIMIT: f64 = 1e5;
 
 /// 2/π.
