@@ -79,65 +79,47 @@ macro_rules! pair {
         const N: usize = g::DOF;
         let q = states::<N>(1);
         let inputs = (states::<N>(2), states::<N>(3));
-        let _ = &inputs;
         let mut group = $c.benchmark_group(stringify!($m));
-        group.bench_function(BenchmarkId::new($name, "scalar_f64"), |b| {
-            b.iter(|| {
-                let q = black_box(&q);
-                for c in 0..STATES {
-                    black_box(g::$f(&q[c], $(&pick!($x, inputs)[c]),*));
-                }
-            })
-        });
-        let mut out = vec![g::$f(&q[0], $(&pick!($x, inputs)[0]),*); STATES];
-        group.bench_function(BenchmarkId::new($name, "batch_f64x4"), |b| {
-            b.iter(|| {
-                g::batch::$f(black_box(&q), $(black_box(&pick!($x, inputs)),)* &mut out)
-                    .unwrap();
-                black_box(&out);
-            })
-        });
-        let (qp, inputs_p) = (packs(&q), (packs(&inputs.0), packs(&inputs.1)));
-        let _ = &inputs_p;
-        group.bench_function(BenchmarkId::new($name, "packs_f64x4"), |b| {
-            b.iter(|| {
-                let qp = black_box(&qp);
-                for c in 0..STATES / 4 {
-                    black_box(g::$packed(&qp[c], $(&pick!($x, inputs_p)[c]),*));
-                }
-            })
-        });
+        rows!(group, g, $name, $f($($x),*), $packed, q, inputs, packs, 4, ["scalar_f64", "batch_f64x4", "packs_f64x4"]);
         // The same configurations in f32: one at a time, by the batch function, by packs of 8.
-        let q = narrow(&q);
-        let inputs = (narrow(&inputs.0), narrow(&inputs.1));
-        let _ = &inputs;
-        group.bench_function(BenchmarkId::new($name, "scalar_f32"), |b| {
+        let (q, inputs) = (narrow(&q), (narrow(&inputs.0), narrow(&inputs.1)));
+        rows!(group, g, $name, $f($($x),*), $packed, q, inputs, packs8, 8, ["scalar_f32", "batch_f32x8", "packs_f32x8"]);
+        group.finish();
+    }};
+}
+
+/// The three ways of one scalar type: a loop of the scalar function, the batch function, the
+/// function on packs of `$width` (made by `$pack`).
+macro_rules! rows {
+    ($group:ident, $g:ident, $name:literal, $f:ident($($x:ident),*), $packed:ident, $q:ident, $inputs:ident, $pack:ident, $width:literal, [$scalar:literal, $batch:literal, $packs:literal]) => {{
+        let (q, inputs) = (&$q, &$inputs);
+        let _ = inputs;
+        $group.bench_function(BenchmarkId::new($name, $scalar), |b| {
             b.iter(|| {
-                let q = black_box(&q);
+                let q = black_box(q);
                 for c in 0..STATES {
-                    black_box(g::$f(&q[c], $(&pick!($x, inputs)[c]),*));
+                    black_box($g::$f(&q[c], $(&pick!($x, inputs)[c]),*));
                 }
             })
         });
-        let mut out = vec![g::$f(&q[0], $(&pick!($x, inputs)[0]),*); STATES];
-        group.bench_function(BenchmarkId::new($name, "batch_f32x8"), |b| {
+        let mut out = vec![$g::$f(&q[0], $(&pick!($x, inputs)[0]),*); STATES];
+        $group.bench_function(BenchmarkId::new($name, $batch), |b| {
             b.iter(|| {
-                g::batch::$f(black_box(&q), $(black_box(&pick!($x, inputs)),)* &mut out)
+                $g::batch::$f(black_box(q), $(black_box(&pick!($x, inputs)),)* &mut out)
                     .unwrap();
                 black_box(&out);
             })
         });
-        let (qp, inputs_p) = (packs8(&q), (packs8(&inputs.0), packs8(&inputs.1)));
+        let (qp, inputs_p) = ($pack(q), ($pack(&inputs.0), $pack(&inputs.1)));
         let _ = &inputs_p;
-        group.bench_function(BenchmarkId::new($name, "packs_f32x8"), |b| {
+        $group.bench_function(BenchmarkId::new($name, $packs), |b| {
             b.iter(|| {
                 let qp = black_box(&qp);
-                for c in 0..STATES / 8 {
-                    black_box(g::$packed(&qp[c], $(&pick!($x, inputs_p)[c]),*));
+                for c in 0..STATES / $width {
+                    black_box($g::$packed(&qp[c], $(&pick!($x, inputs_p)[c]),*));
                 }
             })
         });
-        group.finish();
     }};
 }
 
