@@ -374,13 +374,23 @@ macro_rules! generated_terms {
                 let want = merged
                     .forward_dynamics(&qv, &qdv, &DVector::from_row_slice(&tau))
                     .unwrap();
-                // q̈ solves the merged arm's equations of motion to rounding, and so agrees
-                // with its q̈ to rounding times D's condition number (above 3·10⁴ for the
-                // 17-joint snake here, 10² to 10⁴ for the Panda and PUMA 560).
-                let residual =
-                    merged.inverse_dynamics(&qv, &qdv, &DVector::from_row_slice(qdd.as_slice()));
-                close("D q̈ + h", residual.as_slice(), &tau);
-                let eigen = merged.mass_matrix(&qv).symmetric_eigenvalues();
+                // q̈ solves the merged arm's equations of motion to rounding: the residual
+                // is rounding times the size of the terms summed, |D| |q̈| + |h| (which is
+                // what a backward-stable solve bounds, and can be well above |τ|), and so q̈
+                // agrees with the merged arm's to rounding times D's condition number (above
+                // 3·10⁴ for the 17-joint snake here, 10² to 10⁴ for the Panda and PUMA 560).
+                let qddv = DVector::from_row_slice(qdd.as_slice());
+                let residual = merged.inverse_dynamics(&qv, &qdv, &qddv);
+                let dm = merged.mass_matrix(&qv);
+                let terms = dm.abs() * qddv.abs() + merged.bias(&qv, &qdv).abs();
+                let size = terms.iter().fold(1.0f64, |m, x| m.max(*x));
+                for (r, t) in residual.iter().zip(&tau) {
+                    assert!(
+                        (r - t).abs() <= 1e-12 * size,
+                        "D q̈ + h: {residual:?} vs {tau:?} (terms up to {size:e})"
+                    );
+                }
+                let eigen = dm.symmetric_eigenvalues();
                 let condition = eigen.max() / eigen.min();
                 close_to(
                     "q̈",
