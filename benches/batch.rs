@@ -33,13 +33,13 @@ fn states<const N: usize>(seed: u64) -> Vec<[f64; N]> {
         .collect()
 }
 
-/// The input a name stands for, from `(q̇, q̈)`.
-macro_rules! pick {
-    (qd, $s:ident) => {
-        $s.0
+/// The seed of the states an input name stands for (q uses 1).
+macro_rules! seed {
+    (qd) => {
+        2
     };
-    (qdd, $s:ident) => {
-        $s.1
+    (qdd) => {
+        3
     };
 }
 
@@ -77,46 +77,45 @@ macro_rules! pair {
     ($c:expr, $m:ident, $name:literal, $f:ident($($x:ident),*), $packed:ident) => {{
         use $m as g;
         const N: usize = g::DOF;
+        // q and each input the function takes (q̇, q̈), under their own names.
         let q = states::<N>(1);
-        let inputs = (states::<N>(2), states::<N>(3));
+        $(let $x = states::<N>(seed!($x));)*
         let mut group = $c.benchmark_group(stringify!($m));
-        rows!(group, g, $name, $f($($x),*), $packed, q, inputs, packs, 4, ["scalar_f64", "batch_f64x4", "packs_f64x4"]);
+        rows!(group, g, $name, $f($($x),*), $packed, q, packs, 4, ["scalar_f64", "batch_f64x4", "packs_f64x4"]);
         // The same configurations in f32: one at a time, by the batch function, by packs of 8.
-        let (q, inputs) = (narrow(&q), (narrow(&inputs.0), narrow(&inputs.1)));
-        rows!(group, g, $name, $f($($x),*), $packed, q, inputs, packs8, 8, ["scalar_f32", "batch_f32x8", "packs_f32x8"]);
+        let q = narrow(&q);
+        $(let $x = narrow(&$x);)*
+        rows!(group, g, $name, $f($($x),*), $packed, q, packs8, 8, ["scalar_f32", "batch_f32x8", "packs_f32x8"]);
         group.finish();
     }};
 }
 
 /// The three ways of one scalar type: a loop of the scalar function, the batch function, the
-/// function on packs of `$width` (made by `$pack`).
+/// function on packs of `$width` (made by `$pack`), on `$q` and the inputs named `$x`.
 macro_rules! rows {
-    ($group:ident, $g:ident, $name:literal, $f:ident($($x:ident),*), $packed:ident, $q:ident, $inputs:ident, $pack:ident, $width:literal, [$scalar:literal, $batch:literal, $packs:literal]) => {{
-        let (q, inputs) = (&$q, &$inputs);
-        let _ = inputs;
+    ($group:ident, $g:ident, $name:literal, $f:ident($($x:ident),*), $packed:ident, $q:ident, $pack:ident, $width:literal, [$scalar:literal, $batch:literal, $packs:literal]) => {{
         $group.bench_function(BenchmarkId::new($name, $scalar), |b| {
             b.iter(|| {
-                let q = black_box(q);
+                let q = black_box(&$q);
                 for c in 0..STATES {
-                    black_box($g::$f(&q[c], $(&pick!($x, inputs)[c]),*));
+                    black_box($g::$f(&q[c], $(&$x[c]),*));
                 }
             })
         });
-        let mut out = vec![$g::$f(&q[0], $(&pick!($x, inputs)[0]),*); STATES];
+        let mut out = vec![$g::$f(&$q[0], $(&$x[0]),*); STATES];
         $group.bench_function(BenchmarkId::new($name, $batch), |b| {
             b.iter(|| {
-                $g::batch::$f(black_box(q), $(black_box(&pick!($x, inputs)),)* &mut out)
-                    .unwrap();
+                $g::batch::$f(black_box(&$q), $(black_box(&$x),)* &mut out).unwrap();
                 black_box(&out);
             })
         });
-        let (qp, inputs_p) = ($pack(q), ($pack(&inputs.0), $pack(&inputs.1)));
-        let _ = &inputs_p;
+        let q = $pack(&$q);
+        $(let $x = $pack(&$x);)*
         $group.bench_function(BenchmarkId::new($name, $packs), |b| {
             b.iter(|| {
-                let qp = black_box(&qp);
+                let q = black_box(&q);
                 for c in 0..STATES / $width {
-                    black_box($g::$packed(&qp[c], $(&pick!($x, inputs_p)[c]),*));
+                    black_box($g::$packed(&q[c], $(&$x[c]),*));
                 }
             })
         });

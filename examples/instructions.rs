@@ -124,7 +124,6 @@ macro_rules! run {
                     let (q, qd, lane) = ($q, $qd, $lane);
                     match $quantity {
                         "none" => 0.0,
-                        "sincos" => lane(dhgen::Real::sincos(q[0]).0),
                         "fk" => lane($m::fk(&q).translation.x),
                         "fk_matrix" => lane($m::fk_matrix(&q)[(0, 3)]),
                         "jacobian" => lane($m::jacobian(&q)[(0, 1)]),

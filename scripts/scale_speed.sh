@@ -29,8 +29,14 @@ mods=""
 calls=""
 options=""
 extra=""
+setup=""
 if $more; then
   options=", derivatives"
+  # The payload the `--more` rows hold: its parameters, and the runtime robot holding it.
+  setup='
+        let pl = dhgen::payload::Payload::new(1.5, [0.01, -0.02, 0.05], [[0.01, 0.0, 0.0], [0.0, 0.012, 0.0], [0.0, 0.0, 0.008]]).unwrap();
+        let pp = pl.parameters();
+        let held = robot.with_payload(&pl).unwrap();'
   extra='
             ("christoffel", time(|i| $m::christoffel(&black_box(&s[i % 64])[0])), time(|i| robot.christoffel(&black_box(&d[i % 64])[0]))),
             ("mass_matrix_with_payload", time(|i| $m::mass_matrix_with_payload(&black_box(&s[i % 64])[0], &pp)), time(|i| dhgen::payload::mass_matrix(&robot, &pl, &black_box(&d[i % 64])[0]))),
@@ -101,10 +107,7 @@ macro_rules! arm {
             .collect();
         let g = \$m::Robot;
         let (s, d) = (&s, &d);
-        let pl = dhgen::payload::Payload::new(1.5, [0.01, -0.02, 0.05], [[0.01, 0.0, 0.0], [0.0, 0.012, 0.0], [0.0, 0.0, 0.008]]).unwrap();
-        let pp = pl.parameters();
-        let held = robot.with_payload(&pl).unwrap();
-        let _ = (&pl, &pp, &held);
+$setup
         let rows: Vec<(&str, f64, f64)> = vec![
             ("fk", time(|i| g.fk(&black_box(&s[i % 64])[0])), time(|i| robot.fk(&black_box(&d[i % 64])[0]))),
             ("jacobian", time(|i| g.jacobian(&black_box(&s[i % 64])[0])), time(|i| robot.jacobian(&black_box(&d[i % 64])[0]))),

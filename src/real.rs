@@ -167,13 +167,7 @@ impl Real for f32 {
         if !crate::sincos::PACKED {
             return sincos_each(x);
         }
-        in_packs_of_four(x, |lanes| {
-            let (s, c) = crate::sincos::sincosf_lanes(WideF64x4::from(lanes.map(f64::from)));
-            (
-                s.0.to_array().map(|v| v as f32),
-                c.0.to_array().map(|v| v as f32),
-            )
-        })
+        in_packs_of_four(x, crate::sincos::sincosf_four)
     }
 
     #[inline]

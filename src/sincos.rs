@@ -283,6 +283,18 @@ pub fn sincosf_lanes(x: WideF64x4) -> (WideF64x4, WideF64x4) {
     (s, c)
 }
 
+/// [`sincosf_lanes`] on four `f32` values, rounded back to `f32`: what a pack of eight does
+/// per half, and scalar `f32`'s [`Real::sincos_array`](crate::Real::sincos_array) per four
+/// joints, where the target has AVX.
+#[inline(always)]
+pub(crate) fn sincosf_four(x: [f32; 4]) -> ([f32; 4], [f32; 4]) {
+    let (s, c) = sincosf_lanes(WideF64x4::from(x.map(f64::from)));
+    (
+        s.0.to_array().map(|v| v as f32),
+        c.0.to_array().map(|v| v as f32),
+    )
+}
+
 /// `(sin x, cos x)` of eight `f32` lanes, each within one ulp: [`sincosf_lanes`] on two
 /// packs of four `f64` where the target has AVX ([`PACKED`]), `libm::sincosf` lane by lane
 /// elsewhere; in both cases each lane is what scalar `f32` generated code computes.
@@ -304,15 +316,10 @@ pub fn sincosf_pack(x: WideF32x8) -> (WideF32x8, WideF32x8) {
     let mut c = [0.0f32; 8];
     if PACKED {
         for half in 0..2 {
-            let at = |l: usize| 4 * half + l;
-            let wide = WideF64x4::from(core::array::from_fn::<f64, 4, _>(|l| {
-                f64::from(lanes[at(l)])
-            }));
-            let (ws, wc) = sincosf_lanes(wide);
-            let (ws, wc) = (ws.0.to_array(), wc.0.to_array());
-            for l in 0..4 {
-                (s[at(l)], c[at(l)]) = (ws[l] as f32, wc[l] as f32);
-            }
+            let at = 4 * half;
+            let (hs, hc) = sincosf_four(core::array::from_fn(|l| lanes[at + l]));
+            s[at..at + 4].copy_from_slice(&hs);
+            c[at..at + 4].copy_from_slice(&hc);
         }
     } else {
         for (i, &xi) in lanes.iter().enumerate() {
