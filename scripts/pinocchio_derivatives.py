@@ -115,6 +115,9 @@ def main():
                 "tau": "rnea(q, qd, qdd) with the file's gravity; no friction, no motor inertia",
                 "dtau_dq, dtau_dqd": "computeRNEADerivatives(q, qd, qdd)",
                 "ddq_dq, ddq_dqd, minv": "computeABADerivatives(q, qd, tau) at tau = rnea(q, qd, qdd)",
+                "kinetic_energy": "computeKineticEnergy(q, qd): 1/2 qd' D qd",
+                "potential_energy": "computePotentialEnergy(q): -sum_k m_k gravity . c_k, centres "
+                "of mass in the base frame",
             },
             "samples": [],
         }
@@ -127,6 +130,8 @@ def main():
             dq, dv = dq.copy(), dv.copy()
             pin.computeABADerivatives(model, data, q, v, tau)
             minv = np.triu(data.Minv) + np.triu(data.Minv, 1).T
+            kinetic = float(pin.computeKineticEnergy(model, data, q, v))
+            potential = float(pin.computePotentialEnergy(model, data, q))
             out["samples"].append(
                 {
                     "q": q.tolist(),
@@ -138,6 +143,8 @@ def main():
                     "ddq_dq": rows(data.ddq_dq),
                     "ddq_dqd": rows(data.ddq_dv),
                     "minv": rows(minv),
+                    "kinetic_energy": kinetic,
+                    "potential_energy": potential,
                 }
             )
         if worst > 1e-9:

@@ -442,7 +442,7 @@ CONVENTIONS = {
     "friction_included: false, tau has no damping/friction; joint_dynamics: see below; sampling: "
     "how the samples were drawn; generator: the script, the library versions and the worst "
     "relative error of each consistency check; samples: list of {q, qd, qdd, T, J0, D, Cqd, C, g, "
-    "tau, fd_qdd}.",
+    "tau, fd_qdd, K, V}.",
     "robot": "The serial chain of URDF joints from the root link (or `base` when not null) to the "
     "link `tip`. The revolute, continuous and prismatic joints on that path are the robot's joints "
     "q, in path order (root first), named in `joint_names`; fixed joints are merged into their "
@@ -479,6 +479,12 @@ CONVENTIONS = {
     "tau": "n-vector inverse dynamics = rnea(q, qd, qdd) with `gravity`.",
     "qdd": "the input joint acceleration.",
     "fd_qdd": "aba(q, qd, tau): forward dynamics of `tau`, equal to qdd (to 1e-10, checked).",
+    "K": "kinetic energy 1/2 qd' D qd = computeKineticEnergy(q, qd) (checked against each link's "
+    "energy from finite differences of its pose).",
+    "V": "potential energy = computePotentialEnergy(q) = -sum_k m_k gravity . c_k over the bodies the "
+    "joints move (centres of mass c_k in the root link frame; links fixed to the root link, which "
+    "no joint moves, are not counted). Its change between two samples is checked against every "
+    "link's weight times its height.",
     "joint_dynamics": "per chain joint, the damping and friction attributes of its URDF "
     "<dynamics> tag (null when absent); NOT included in tau.",
     "units": "SI (m, rad, kg, kg m^2, N, N m).",
@@ -529,6 +535,8 @@ def generate(robot):
         _, dtau_dv, _ = pin.computeRNEADerivatives(model, data, qp, qd, zero)
         c = 0.5 * np.array(dtau_dv)
         fd = pin.aba(model, data, qp, qd, tau).copy()
+        kinetic = float(pin.computeKineticEnergy(model, data, qp, qd))
+        potential = float(pin.computePotentialEnergy(model, data, qp))
 
         # Consistency checks.
         note("T vs numpy FK", close(t, u.link_poses(dict(zip(chain, q)))[tip], 1e-12, "T vs numpy FK"))
@@ -543,8 +551,16 @@ def generate(robot):
             note("J0 vs FD", close(j0[:, k], col, 1e-7, f"J0 column {k} vs finite differences"))
         note("g vs rnea(q,0,0)", close(g, pin.rnea(model, data, qp, zero, zero), 1e-12, "g vs rnea(q,0,0)"))
         note("g vs FD potential", close(g, independent_gravity(u, chain, q), 1e-6, "g vs dV/dq"))
-        kin = independent_energy(u, chain, q, qd)[1]
+        pot, kin = independent_energy(u, chain, q, qd)
         note("KE", close(0.5 * qd @ d @ qd, kin, 1e-7, "1/2 qd'D qd vs kinetic energy"))
+        note("K", close(kinetic, kin, 1e-7, "computeKineticEnergy vs kinetic energy"))
+        if samples:
+            # Links fixed to the root add the same constant to `pot` at every q.
+            first = samples[0]
+            note("V", close(potential - first["V"], pot - first_pot, 1e-12,
+                            "change of computePotentialEnergy vs of the links' weight x height"))
+        else:
+            first_pot = pot
         note("tau = D qdd + Cqd + g", close(tau, d @ qdd + cqd + g, 1e-12, "tau = D qdd + Cqd + g"))
         note("aba", close(fd, qdd, 1e-10, "aba(q, qd, tau) vs qdd"))
         note("C qd", close(c @ qd, cqd, 1e-12, "C qd vs Cqd"))
@@ -566,7 +582,7 @@ def generate(robot):
         samples.append({
             "q": lists(q), "qd": lists(qd), "qdd": lists(qdd),
             "T": lists(t), "J0": lists(j0), "D": lists(d), "Cqd": lists(cqd), "C": lists(c),
-            "g": lists(g), "tau": lists(tau), "fd_qdd": lists(fd),
+            "g": lists(g), "tau": lists(tau), "fd_qdd": lists(fd), "K": kinetic, "V": potential,
         })
 
     raw = path.read_bytes()

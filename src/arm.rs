@@ -152,6 +152,17 @@ where
         0.5 * qd.dot(&(self.mass_matrix(q) * qd))
     }
 
+    /// Potential energy `P(q) = −Σ m_k gravity · c_k` of the links, centres of mass in the
+    /// world frame: `g(q) = ∂P/∂q`. By default by walking [`chain`](Arm::chain) (the runtime
+    /// path's algorithm); generated modules override it.
+    #[doc(alias = "computePotentialEnergy")]
+    fn potential_energy(&self, q: &OVector<f64, Self::Dof>) -> f64 {
+        let chain = self.chain();
+        crate::recursive::potential_energy(chain, |i| {
+            chain.bodies[i].value(q.get(i).copied().unwrap_or(0.0))
+        })
+    }
+
     /// Inverse dynamics τ(q, q̇, q̈).
     #[doc(alias = "rnea")]
     #[doc(alias = "rne")]
@@ -230,6 +241,10 @@ mod runtime {
 
         fn gravity(&self, q: &DVector<f64>) -> DVector<f64> {
             Robot::gravity(self, q)
+        }
+
+        fn potential_energy(&self, q: &DVector<f64>) -> f64 {
+            Robot::potential_energy(self, q)
         }
 
         fn bias(&self, q: &DVector<f64>, qd: &DVector<f64>) -> DVector<f64> {

@@ -153,6 +153,25 @@ pub(crate) fn body_states<T: Real>(
     })
 }
 
+/// The potential energy `P = −Σ_k m_k gravity · c_k` of `chain`'s links at the joint values
+/// `value(k)` (offsets applied), centres of mass `c_k` in the world frame, by [`walk`]: the
+/// runtime path's, and [`ArmDynamics::potential_energy`](crate::ArmDynamics::potential_energy)'s
+/// default. A kinematics-only chain has none (0).
+pub(crate) fn potential_energy<T: Real>(
+    chain: ChainRef<'_>,
+    value: impl FnMut(usize) -> JointValue<T>,
+) -> T {
+    let gravity = Vector3::from_fn(|a, _| k::<T>(chain.gravity[a]));
+    let mut energy = T::zero();
+    walk(chain, value, |i, r, p| {
+        if let Some(b) = chain.bodies.get(i).and_then(|b| b.inertial.as_ref()) {
+            let com = r * Vector3::from_fn(|a, _| k::<T>(b.com[a])) + p;
+            energy -= gravity.dot(&com) * k::<T>(b.mass);
+        }
+    });
+    energy
+}
+
 /// `put` for a fixed-size array: `out[i] = v` (every index is below N; `get_mut` keeps the
 /// code free of panics).
 #[inline]

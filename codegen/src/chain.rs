@@ -489,6 +489,28 @@ impl<'c, R: Ring> RingChain<'c, R> {
             .collect()
     }
 
+    /// The potential energy `P(q) = −Σ_k m_k gravity · c_k` of the links, centres of mass in
+    /// the world frame (zero at the world origin): the links' total mass and first moment
+    /// about the root frame's origin, carried tip to base, then paired with gravity. The
+    /// placement of the root frame in the world (`P_0`'s translation) adds the constant
+    /// `−M gravity · p_0`. The links are taken as described, not [`grouped`]: grouping moves
+    /// mass onto the base, which changes `P` by a constant (g(q) = ∂P/∂q is unchanged).
+    pub fn potential_energy(&self) -> R {
+        let mut mass = k::<R>(0.0);
+        let mut h: V3<R> = [k(0.0), k(0.0), k(0.0)];
+        for (t, body) in self.t.iter().zip(self.chain.bodies).rev() {
+            // Links j.. in K_j, then seen from K_{j−1} (the root frame for j = 0).
+            if let Some(inertial) = &body.inertial {
+                mass = mass + k(inertial.mass);
+                h = add3(&h, &inertial.com.map(|c| k(inertial.mass * c)));
+            }
+            h = add3(&rot(t, &h), &scale3(&mass, &t.p));
+        }
+        let (g, p0) = (&self.chain.gravity, &self.chain.placements[0].p);
+        let lift = g[0] * p0[0] + g[1] * p0[1] + g[2] * p0[2];
+        -(dot(&self.gravity, &h) + mass * k(lift))
+    }
+
     /// The velocity pass: each joint frame's angular velocity ω and its origin's linear
     /// velocity v, in local coordinates.
     pub fn velocities(&self, qd: &[R]) -> Vec<(V3<R>, V3<R>)> {

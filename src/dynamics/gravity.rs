@@ -1,4 +1,5 @@
-//! The gravity torques from composite mass moments.
+//! The gravity torques from composite mass moments, and the potential energy they are the
+//! gradient of.
 
 use super::joint_axis;
 use crate::Joints;
@@ -36,5 +37,28 @@ impl Robot {
             g[i] = -axis.ang.dot(&moment.cross(&self.gravity)) - axis.lin.dot(&self.gravity) * mass;
         }
         g
+    }
+
+    /// The potential energy `P(q) = −Σ m_i gravity · c_i` of the links in the description's
+    /// gravity, centres of mass `c_i` in the world frame (so zero at the world origin, and the
+    /// base pose counts): the text's `Σ gᵗ r_ci m_i` with its `g` pointing up. The gravity
+    /// torques are its gradient, `g(q) = ∂P/∂q`; with no torque and no friction acting,
+    /// `T + P` is conserved.
+    ///
+    /// ```
+    /// let robot = dhgen::Robot::from_file("robots/planar_elbow.toml").unwrap();
+    /// let (q, h) = ([0.3, -0.5], 1e-6);
+    /// let nudged = [q[0], q[1] + h];
+    /// let slope = (robot.potential_energy(&nudged) - robot.potential_energy(&q)) / h;
+    /// assert!((slope - robot.gravity(&q)[1]).abs() < 1e-4);
+    /// ```
+    ///
+    /// # Panics
+    /// If `q.len() != self.dof()`, or if the robot has no mass properties.
+    #[doc(alias = "computePotentialEnergy")]
+    pub fn potential_energy(&self, q: &(impl Joints<f64> + ?Sized)) -> f64 {
+        let q = self.check_len("potential_energy", "q", q);
+        self.check_dynamics("potential_energy");
+        crate::recursive::potential_energy(self.chain(), |i| self.joint_value(i, q[i]))
     }
 }

@@ -1,7 +1,7 @@
 //! Rigid body dynamics of the runtime [`Robot`], one algorithm per file:
 //! - [`rnea`]: inverse dynamics by recursive Newton–Euler;
 //! - [`crba`]: the joint-space inertia matrix by composite rigid bodies;
-//! - [`gravity`]: the gravity torques from composite mass moments;
+//! - [`gravity`]: the gravity torques from composite mass moments, and the potential energy;
 //! - [`christoffel`]: the Christoffel symbols from analytic derivatives of `D(q)`;
 //! - [`coriolis`]: the Christoffel-consistent Coriolis matrix in O(n²);
 //! - [`forward`]: forward dynamics by CRBA, RNEA and a Cholesky solve;

@@ -202,6 +202,7 @@ macro_rules! dynamics {
                 bias(qd),
                 forward_dynamics(qd, tau),
                 kinetic_energy(qd),
+                potential_energy(),
                 inverse_dynamics_with_payload(qd, qdd, payload),
                 bias_with_payload(qd, payload),
                 mass_matrix_with_payload(payload),

@@ -26,7 +26,8 @@ macro_rules! compare {
             const N: usize = $m::DOF;
             dynamics::<N>(robot, q, qd, qdd, &st.mass_matrix(), &st.christoffel(),
                 &st.coriolis(qd), &st.gravity(), &st.inverse_dynamics(qd, qdd))?;
-            energy_and_bias::<N>(robot, q, qd, st.kinetic_energy(qd), &st.bias(qd))
+            energy_and_bias::<N>(robot, q, qd, [st.kinetic_energy(qd), st.potential_energy()],
+                &st.bias(qd))
         });
     };
     ($test:ident, $m:ident, $robot:expr, kinematics) => {
@@ -115,13 +116,14 @@ fn dynamics<const N: usize>(
     Ok(())
 }
 
-/// The kinetic energy against the runtime path's `½ q̇ᵀ D q̇` (the trait's default), and the
-/// bias torques against the runtime RNEA at zero acceleration.
+/// The kinetic energy against the runtime path's `½ q̇ᵀ D q̇` (the trait's default), the
+/// potential energy against the runtime walk, and the bias torques against the runtime RNEA
+/// at zero acceleration.
 fn energy_and_bias<const N: usize>(
     robot: &Robot,
     q: &[f64; N],
     qd: &[f64; N],
-    energy: f64,
+    [kinetic, potential]: [f64; 2],
     bias: &dhgen::nalgebra::SVector<f64, N>,
 ) -> Result<(), TestCaseError> {
     let (qv, qdv) = (
@@ -129,7 +131,9 @@ fn energy_and_bias<const N: usize>(
         DVector::from_column_slice(qd),
     );
     let want = dhgen::ArmDynamics::kinetic_energy(robot, &qv, &qdv);
-    close("kinetic energy", energy, want, want.abs())?;
+    close("kinetic energy", kinetic, want, want.abs())?;
+    let want = robot.potential_energy(q);
+    close("potential energy", potential, want, want.abs())?;
     let br = robot.bias(q, qd);
     let s = max_abs(br.iter().copied());
     for i in 0..N {

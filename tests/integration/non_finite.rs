@@ -141,6 +141,7 @@ where
         ("gravity", values(arm.gravity(q).as_slice())),
         ("bias", values(arm.bias(q, qd).as_slice())),
         ("kinetic_energy", Some(vec![arm.kinetic_energy(q, qd)])),
+        ("potential_energy", Some(vec![arm.potential_energy(q)])),
         (
             "inverse_dynamics",
             values(arm.inverse_dynamics(q, qd, x).as_slice()),

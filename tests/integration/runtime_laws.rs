@@ -234,8 +234,9 @@ fn mass_matrix_rate_minus_twice_coriolis_is_skew_symmetric() {
     });
 }
 
-/// The potential energy `P = −Σ m_i gravity · c_i` (world frame).
-fn potential_energy(robot: &Robot, q: &[f64]) -> f64 {
+/// The potential energy `P = −Σ m_i gravity · c_i` (world frame), from the description's
+/// link frames and centres of mass (not the joint frames the runtime path walks).
+fn potential_energy_of_the_links(robot: &Robot, q: &[f64]) -> f64 {
     let gravity = Vector3::from(robot.model().gravity);
     robot
         .frames(q)
@@ -250,16 +251,56 @@ fn potential_energy(robot: &Robot, q: &[f64]) -> f64 {
 }
 
 #[test]
+fn potential_energy_is_the_weight_times_the_height_of_each_centre_of_mass() {
+    for_all_states(|robot, q, _, _| {
+        ensure_close(
+            "P",
+            &[robot.potential_energy(q)],
+            &[potential_energy_of_the_links(robot, q)],
+            1e-12,
+        )
+    });
+}
+
+#[test]
 fn gravity_is_the_gradient_of_the_potential_energy() {
     for_all_states(|robot, q, _, _| {
         let expected: Vec<f64> = (0..robot.dof())
             .map(|i| {
-                (potential_energy(robot, &nudged(q, i, H))
-                    - potential_energy(robot, &nudged(q, i, -H)))
+                (robot.potential_energy(&nudged(q, i, H))
+                    - robot.potential_energy(&nudged(q, i, -H)))
                     / (2.0 * H)
             })
             .collect();
         ensure_close("g", robot.gravity(q).as_slice(), &expected, FD_TOL)
+    });
+}
+
+/// Along the motion through (q, q̇) with acceleration q̈, the energy `T + P` changes at the
+/// power the joint torques put in, friction's share taken out: `d(T + P)/dt = q̇ᵀ (τ − f)`
+/// with `τ = τ(q, q̇, q̈)` (what makes `Ḋ − 2C` skew-symmetric physical).
+#[test]
+fn energy_changes_by_the_power_of_the_torques() {
+    for_all_states(|robot, q, qd, qdd| {
+        let energy = |t: f64| {
+            let q_t: Vec<f64> = q
+                .iter()
+                .zip(qd)
+                .zip(qdd)
+                .map(|((x, v), a)| x + t * v + 0.5 * t * t * a)
+                .collect();
+            let qd_t = along(qd, qdd, t);
+            let kinetic = dhgen::ArmDynamics::kinetic_energy(
+                robot,
+                &DVector::from_vec(q_t.clone()),
+                &DVector::from_vec(qd_t),
+            );
+            kinetic + robot.potential_energy(&q_t)
+        };
+        let rate = (energy(H) - energy(-H)) / (2.0 * H);
+        let work = robot.inverse_dynamics(q, qd, qdd) - friction(robot, qd);
+        let power = DVector::from_column_slice(qd).dot(&work);
+        ensure_close("d(T + P)/dt", &[rate], &[power], FD_TOL)
     });
 }
 

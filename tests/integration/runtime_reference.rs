@@ -43,6 +43,22 @@ impl Errors {
     }
 }
 
+impl Errors {
+    /// Prints the worst error per quantity and fails with the first failures, if any.
+    fn finish(&self, what: &str) {
+        println!("{what}: worst |a - b| / max(1, |b|)");
+        for (quantity, worst) in &self.worst {
+            println!("  {quantity:<12} {worst:.1e}");
+        }
+        assert!(
+            self.failures.is_empty(),
+            "{what}: {} values off by more than {TOLERANCE:e}:\n{}",
+            self.failures.len(),
+            self.failures[..self.failures.len().min(20)].join("\n")
+        );
+    }
+}
+
 /// Row-major entries of a matrix.
 fn row_major<R: nalgebra::Dim, C: nalgebra::Dim>(m: &nalgebra::OMatrix<f64, R, C>) -> Vec<f64>
 where
@@ -105,19 +121,7 @@ fn check_robot(name: &str) {
             .expect("D is positive definite");
         errors.check("forward qdd", s, forward.as_slice(), &qdd);
     }
-    println!(
-        "{name}: worst |a - b| / max(1, |b|) over {} samples",
-        samples.len()
-    );
-    for (quantity, worst) in &errors.worst {
-        println!("  {quantity:<12} {worst:.1e}");
-    }
-    assert!(
-        errors.failures.is_empty(),
-        "{name}: {} values off by more than {TOLERANCE:e}:\n{}",
-        errors.failures.len(),
-        errors.failures[..errors.failures.len().min(20)].join("\n")
-    );
+    errors.finish(&format!("{name} over {} samples", samples.len()));
 }
 
 #[test]
@@ -138,4 +142,57 @@ fn stanford() {
 #[test]
 fn panda() {
     check_robot("panda");
+}
+
+/// The kinetic and potential energy of the PUMA 560 and the Panda against Pinocchio's
+/// `computeKineticEnergy` and `computePotentialEnergy` (tests/data/derivatives_*.json, made by
+/// scripts/pinocchio_derivatives.py from the same tables), on the runtime path and the
+/// generated one.
+#[test]
+fn energies_match_pinocchio() {
+    use crate::catalogue::{panda, puma560};
+    use dhgen::ArmDynamics;
+    use dhgen::nalgebra::DVector;
+    let mut errors = Errors::default();
+    for name in ["puma560", "panda"] {
+        let path = format!(
+            "{}/tests/data/derivatives_{name}.json",
+            env!("CARGO_MANIFEST_DIR")
+        );
+        let data: Value = serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
+        let robot = runtime(name);
+        let samples = data["samples"].as_array().unwrap();
+        assert_eq!(samples.len(), 10);
+        for (k, s) in samples.iter().enumerate() {
+            let (q, qd) = (numbers(&s["q"]), numbers(&s["qd"]));
+            let expected = [
+                s["kinetic_energy"].as_f64().unwrap(),
+                s["potential_energy"].as_f64().unwrap(),
+            ];
+            let kinetic = ArmDynamics::kinetic_energy(
+                &robot,
+                &DVector::from_column_slice(&q),
+                &DVector::from_column_slice(&qd),
+            );
+            errors.check(
+                "energies (runtime)",
+                k,
+                &[kinetic, robot.potential_energy(&q)],
+                &expected,
+            );
+            macro_rules! generated {
+                ($m:ident) => {{
+                    let a = |v: &[f64]| -> [f64; $m::DOF] { v.try_into().unwrap() };
+                    let st = $m::State::new(&a(&q));
+                    [st.kinetic_energy(&a(&qd)), st.potential_energy()]
+                }};
+            }
+            let generated = match name {
+                "puma560" => generated!(puma560),
+                _ => generated!(panda),
+            };
+            errors.check("energies (generated)", k, &generated, &expected);
+        }
+    }
+    errors.finish("PUMA 560 and Panda against Pinocchio");
 }

@@ -1,13 +1,14 @@
 //! URDF robots against Pinocchio 4.1.0 loading the same files (tests/data/urdf_*.json, made
-//! by scripts/pinocchio_urdf.py): T, J, D, C, g, τ and forward dynamics at 20 random states
-//! per robot, on the runtime path here and on the generated path in [`generated`].
+//! by scripts/pinocchio_urdf.py): T, J, D, C, g, τ, forward dynamics and the kinetic and
+//! potential energy at 20 random states per robot, on the runtime path here and on the
+//! generated path in [`generated`].
 //!
 //! Pinocchio's τ has no joint friction; where a URDF gives `<dynamics damping friction>`,
 //! dhgen's τ includes it, and the comparison takes it out.
 
-use dhgen::Robot;
 use dhgen::model::urdf::{UrdfOptions, read_file};
-use nalgebra::DMatrix;
+use dhgen::{ArmDynamics, Robot};
+use nalgebra::{DMatrix, DVector};
 use serde_json::Value;
 use std::collections::BTreeMap;
 
@@ -91,6 +92,13 @@ impl Worst {
     }
 }
 
+/// The kinetic and potential energy against Pinocchio's `computeKineticEnergy` and
+/// `computePotentialEnergy` (`K`, `V`).
+pub(crate) fn energies_match(worst: &mut Worst, [kinetic, potential]: [f64; 2], s: &Value) {
+    worst.check("K", kinetic, s["K"].as_f64().unwrap());
+    worst.check("V", potential, s["V"].as_f64().unwrap());
+}
+
 /// The friction torque dhgen adds to τ (viscous·q̇ + Coulomb·sign q̇).
 pub(crate) fn friction(robot: &Robot, qd: &[f64]) -> Vec<f64> {
     robot
@@ -157,6 +165,12 @@ fn check_runtime(name: &str, snap: f64) {
             .forward_dynamics(&q[..], &qd[..], &applied[..])
             .expect("D is positive definite");
         qdd_matches(&mut worst, snap, acc.as_slice(), s);
+        let kinetic = ArmDynamics::kinetic_energy(
+            &robot,
+            &DVector::from_column_slice(&q),
+            &DVector::from_column_slice(&qd),
+        );
+        energies_match(&mut worst, [kinetic, robot.potential_energy(&q[..])], s);
     }
     for (k, w) in &worst.0 {
         println!("{name} runtime (snap {snap:e}) {k}: worst relative error {w:.2e}");
@@ -338,7 +352,7 @@ fn unphysical_inertials_are_errors_only_where_a_joint_moves_them() {
 /// The generated modules of the same files (`robot!(pub mod m = "x.urdf", tip = "...")`),
 /// against the same references, and against the runtime path.
 mod generated {
-    use super::{Worst, data, friction, qdd_matches, robot, vector};
+    use super::{Worst, data, energies_match, friction, qdd_matches, robot, vector};
     use crate::catalogue::{
         baxter_left, centauro_arm, double_pendulum_urdf, g1_arm, hextilt_arm, human_arm,
         kinova_urdf, panda_urdf, random_urdf_2, random_urdf_3, tiago_arm, ur5_urdf, xarm7_urdf,
@@ -383,6 +397,11 @@ mod generated {
                         .forward_dynamics(&qd, &applied)
                         .expect("D is positive definite");
                     qdd_matches(&mut worst, UrdfOptions::DEFAULT_SNAP, acc.as_slice(), s);
+                    energies_match(
+                        &mut worst,
+                        [st.kinetic_energy(&qd), st.potential_energy()],
+                        s,
+                    );
                     // The two paths of dhgen agree more closely still.
                     let rt = runtime.inverse_dynamics(&q[..], &qd[..], &qdd[..]);
                     for a in 0..N {
@@ -511,6 +530,12 @@ fn urdf_robots_converted_to_dh_match_pinocchio() {
                 let tau = dh.inverse_dynamics(&q[..], &qd[..], &qdd[..]);
                 let tau: Vec<f64> = tau.iter().zip(&f).map(|(t, f)| t - f).collect();
                 worst.matrix("tau", &DMatrix::from_column_slice(n, 1, &tau), &s["tau"]);
+                let kinetic = ArmDynamics::kinetic_energy(
+                    &dh,
+                    &DVector::from_column_slice(&q),
+                    &DVector::from_column_slice(&qd),
+                );
+                energies_match(&mut worst, [kinetic, dh.potential_energy(&q[..])], s);
             }
             for (k, w) in &worst.0 {
                 println!("{name} as {convention:?} DH {k}: worst relative error {w:.2e}");

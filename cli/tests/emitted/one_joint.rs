@@ -465,6 +465,14 @@ pub mod one_joint {
             out = t4;
             out
         }
+        ///Potential energy P(q) = −Σ m_k gravity · c_k of the links in the description's gravity, centres of mass c_k in the world frame (zero at the world origin): g(q) = ∂P/∂q, and T + P is conserved when no torque acts.
+        #[doc(alias = "computePotentialEnergy")]
+        #[must_use]
+        pub fn potential_energy(&self) -> T {
+            let out: T;
+            out = ::dhgen::nalgebra::convert::<f64, T>(0f64);
+            out
+        }
         ///The derivatives of inverse dynamics, `(∂τ/∂q, ∂τ/∂q̇)` at (q, q̇, q̈), entry `(k, m)` = ∂τ_k/∂x_m (∂τ/∂q̈ is D(q)); what MPC and trajectory optimisation linearise. Coulomb friction, constant away from q̇ = 0, contributes 0 (its subgradient at 0 too).
         #[doc(alias = "computeRNEADerivatives")]
         #[doc(alias = "rnea_derivatives")]
@@ -1203,6 +1211,14 @@ pub mod one_joint {
             State { c, s, d }
         }
         #[inline]
+        fn for_potential_energy(q: &impl ::dhgen::JointArray<T, DOF>) -> Self {
+            let _ = q;
+            let c = [T::zero(); DOF];
+            let s = [T::zero(); DOF];
+            let d = [T::zero(); DOF];
+            State { c, s, d }
+        }
+        #[inline]
         fn for_inverse_dynamics_derivatives(
             q: &impl ::dhgen::JointArray<T, DOF>,
         ) -> Self {
@@ -1531,6 +1547,14 @@ pub mod one_joint {
         qd: &impl ::dhgen::JointArray<T, DOF>,
     ) -> T {
         State::for_kinetic_energy(q).kinetic_energy(qd)
+    }
+    ///Potential energy P(q) = −Σ m_k gravity · c_k of the links in the description's gravity, centres of mass c_k in the world frame (zero at the world origin): g(q) = ∂P/∂q, and T + P is conserved when no torque acts.
+    #[doc(alias = "computePotentialEnergy")]
+    #[must_use]
+    pub fn potential_energy<T: ::dhgen::Real>(
+        q: &impl ::dhgen::JointArray<T, DOF>,
+    ) -> T {
+        State::for_potential_energy(q).potential_energy()
     }
     ///The derivatives of inverse dynamics, `(∂τ/∂q, ∂τ/∂q̇)` at (q, q̇, q̈), entry `(k, m)` = ∂τ_k/∂x_m (∂τ/∂q̈ is D(q)); what MPC and trajectory optimisation linearise. Coulomb friction, constant away from q̇ = 0, contributes 0 (its subgradient at 0 too).
     #[doc(alias = "computeRNEADerivatives")]
@@ -1953,6 +1977,16 @@ pub mod one_joint {
         ) -> Result<(), ::dhgen::batch::LengthMismatch> {
             ::dhgen::batch::run([q, qd], out, |[q, qd]| super::kinetic_energy(q, qd))
         }
+        /// [`potential_energy`](super::potential_energy) for each configuration: `out[c]` from `q[c]`, four `f64` or eight `f32` configurations per call (`dhgen::batch`).
+        ///
+        /// # Errors
+        /// `LengthMismatch` (nothing written) unless every slice has `out.len()` entries.
+        pub fn potential_energy<T: ::dhgen::batch::Lanes>(
+            q: &[[T; DOF]],
+            out: &mut [T],
+        ) -> Result<(), ::dhgen::batch::LengthMismatch> {
+            ::dhgen::batch::run([q], out, |[q]| super::potential_energy(q))
+        }
         /// [`inverse_dynamics_derivatives`](super::inverse_dynamics_derivatives) for each configuration: `out[c]` from `q[c]`, `qd[c]`, `qdd[c]`, four `f64` or eight `f32` configurations per call (`dhgen::batch`).
         ///
         /// # Errors
@@ -2246,6 +2280,9 @@ pub mod one_joint {
             qd: &na::SVector<f64, DOF>,
         ) -> f64 {
             State::for_kinetic_energy(q).kinetic_energy(qd)
+        }
+        fn potential_energy(&self, q: &na::SVector<f64, DOF>) -> f64 {
+            State::for_potential_energy(q).potential_energy()
         }
     }
     fn isometry<T: ::dhgen::Real>(m: &na::Matrix4<T>) -> na::Isometry3<T> {

@@ -3265,6 +3265,40 @@ pub mod puma560 {
             out = t270;
             out
         }
+        ///Potential energy P(q) = −Σ m_k gravity · c_k of the links in the description's gravity, centres of mass c_k in the world frame (zero at the world origin): g(q) = ∂P/∂q, and T + P is conserved when no torque acts.
+        #[doc(alias = "computePotentialEnergy")]
+        #[must_use]
+        pub fn potential_energy(&self) -> T {
+            let out: T;
+            let c2: T = self.c[1];
+            let s2: T = self.s[1];
+            let c3: T = self.c[2];
+            let s3: T = self.s[2];
+            let c5: T = self.c[4];
+            let k9: T = ::dhgen::nalgebra::convert::<f64, T>(0.028252799999999998f64);
+            let k11: T = ::dhgen::nalgebra::convert::<f64, T>(8.743947300000002f64);
+            let c4: T = self.c[3];
+            let s5: T = self.s[4];
+            let k22: T = ::dhgen::nalgebra::convert::<f64, T>(0.24892875f64);
+            let k24: T = ::dhgen::nalgebra::convert::<f64, T>(37.2347379f64);
+            let k26: T = ::dhgen::nalgebra::convert::<f64, T>(154.550796435f64);
+            let k28: T = ::dhgen::nalgebra::convert::<f64, T>(1.024164f64);
+            let t27: T = ::dhgen::Real::mul_add_fast(s2, k24, k26);
+            let t29: T = c2 * k28;
+            let t30: T = t27 + t29;
+            let t13: T = s2 * c3;
+            let t15: T = ::dhgen::Real::mul_add_fast(c2, s3, t13);
+            let t18: T = c4 * s5;
+            let t23: T = ::dhgen::Real::mul_add_fast(-k9, t18, k22);
+            let t32: T = ::dhgen::Real::mul_add_fast(t15, t23, t30);
+            let t4: T = c2 * c3;
+            let t6: T = ::dhgen::Real::mul_add_fast(-s2, s3, t4);
+            let t12: T = ::dhgen::Real::mul_add_fast(c5, k9, k11);
+            let t33: T = t6 * t12;
+            let t34: T = t32 + t33;
+            out = t34;
+            out
+        }
         ///D, C, g and J at once, as a controller needs them, sharing one state's sines and cosines.
         #[doc(alias = "computeAllTerms")]
         #[must_use]
@@ -6813,6 +6847,23 @@ pub mod puma560 {
             State { c, s, d }
         }
         #[inline]
+        fn for_potential_energy(q: &impl ::dhgen::JointArray<T, DOF>) -> Self {
+            let q = q.to_array();
+            let mut c = [T::zero(); DOF];
+            let mut s = [T::zero(); DOF];
+            let d = [T::zero(); DOF];
+            let (sa, ca) = ::dhgen::Real::sincos_array([q[1], q[2], q[3], q[4]]);
+            s[1] = sa[0];
+            c[1] = ca[0];
+            s[2] = sa[1];
+            c[2] = ca[1];
+            s[3] = sa[2];
+            c[3] = ca[2];
+            s[4] = sa[3];
+            c[4] = ca[3];
+            State { c, s, d }
+        }
+        #[inline]
         fn for_terms(q: &impl ::dhgen::JointArray<T, DOF>) -> Self {
             let q = q.to_array();
             let mut c = [T::zero(); DOF];
@@ -7048,6 +7099,14 @@ pub mod puma560 {
         qd: &impl ::dhgen::JointArray<T, DOF>,
     ) -> T {
         State::for_kinetic_energy(q).kinetic_energy(qd)
+    }
+    ///Potential energy P(q) = −Σ m_k gravity · c_k of the links in the description's gravity, centres of mass c_k in the world frame (zero at the world origin): g(q) = ∂P/∂q, and T + P is conserved when no torque acts.
+    #[doc(alias = "computePotentialEnergy")]
+    #[must_use]
+    pub fn potential_energy<T: ::dhgen::Real>(
+        q: &impl ::dhgen::JointArray<T, DOF>,
+    ) -> T {
+        State::for_potential_energy(q).potential_energy()
     }
     ///D, C, g and J at once, as a controller needs them, sharing one state's sines and cosines.
     #[doc(alias = "computeAllTerms")]
@@ -7348,6 +7407,16 @@ pub mod puma560 {
         ) -> Result<(), ::dhgen::batch::LengthMismatch> {
             ::dhgen::batch::run([q, qd], out, |[q, qd]| super::kinetic_energy(q, qd))
         }
+        /// [`potential_energy`](super::potential_energy) for each configuration: `out[c]` from `q[c]`, four `f64` or eight `f32` configurations per call (`dhgen::batch`).
+        ///
+        /// # Errors
+        /// `LengthMismatch` (nothing written) unless every slice has `out.len()` entries.
+        pub fn potential_energy<T: ::dhgen::batch::Lanes>(
+            q: &[[T; DOF]],
+            out: &mut [T],
+        ) -> Result<(), ::dhgen::batch::LengthMismatch> {
+            ::dhgen::batch::run([q], out, |[q]| super::potential_energy(q))
+        }
     }
     /// D, C, g and J at one configuration, as a controller needs them.
     #[derive(Clone, Copy, Debug, PartialEq)]
@@ -7580,6 +7649,9 @@ pub mod puma560 {
             qd: &na::SVector<f64, DOF>,
         ) -> f64 {
             State::for_kinetic_energy(q).kinetic_energy(qd)
+        }
+        fn potential_energy(&self, q: &na::SVector<f64, DOF>) -> f64 {
+            State::for_potential_energy(q).potential_energy()
         }
     }
     fn isometry<T: ::dhgen::Real>(m: &na::Matrix4<T>) -> na::Isometry3<T> {

@@ -1,9 +1,10 @@
 //! The kinetic energy `T(q, q̇) = ½ q̇ᵀ D(q) q̇` (armature included): the quadratic form over
 //! the cheapest D(q), or the links' energies summed along the velocity recursion, whichever is
-//! cheaper.
+//! cheaper; and the potential energy `P(q)`.
 
 use super::Derivation;
 use crate::graph::{E, SharedGraph, Sym};
+use dhgen_model::JointKind;
 
 /// `[T]`, in a new graph.
 pub fn kinetic_energy(dv: &Derivation<'_>) -> (SharedGraph, Vec<E>) {
@@ -39,4 +40,37 @@ pub fn kinetic_energy(dv: &Derivation<'_>) -> (SharedGraph, Vec<E>) {
         (graph, vec![links + rotors])
     };
     super::cheapest_dynamics(dv.chain, vec![quadratic, recursive])
+}
+
+/// `[P]`, the potential energy `−Σ m_k gravity · c_k` (world frame), in a new graph: the
+/// recursion over the chain or its normal form, whichever is cheaper. Of the joints the
+/// dynamics ignore ([`ChainRef::dynamics_ignore`](dhgen_model::ChainRef::dynamics_ignore)),
+/// only the revolute ones leave `P` unchanged (a first prismatic joint along gravity lifts
+/// the whole arm: `g(q)` does not depend on it, `P` does), so only those are dropped.
+pub fn potential_energy(dv: &Derivation<'_>) -> (SharedGraph, Vec<E>) {
+    let chain = dv.chain;
+    let expanded = super::within_budget(chain, super::GRAVITY_WORK, |budget| {
+        super::poly_chain(chain, budget).potential_energy().poly
+    })
+    .map(|poly| {
+        let graph = SharedGraph::default();
+        let e = super::polys_to_exprs(&[poly], &graph, chain);
+        (graph, e)
+    });
+    let recursive = {
+        let graph = SharedGraph::default();
+        let p = super::graph_chain(chain, &graph).potential_energy();
+        (graph, vec![p])
+    };
+    let candidates = expanded
+        .into_iter()
+        .chain([recursive])
+        .map(|(graph, e)| {
+            let e = super::without_joints(chain, &graph, &e, |j| {
+                chain.bodies[j].joint == JointKind::Revolute && chain.dynamics_ignore(j)
+            });
+            (graph, e)
+        })
+        .collect();
+    super::cheapest(candidates)
 }

@@ -232,7 +232,17 @@ pub fn along_joint<T>(chain: ChainRef<'_>, m: usize, zero: T, derivative: impl F
 /// value does not depend on them, and the folding drops what a recursion computes for them
 /// (PUMA 560's ∂τ: 1,951 → 1,846 operations, and no sine of q6).
 pub fn without_ignored_joints(chain: ChainRef<'_>, graph: &SharedGraph, exprs: &[E]) -> Vec<E> {
-    let ignored: Vec<bool> = (0..chain.dof()).map(|j| chain.dynamics_ignore(j)).collect();
+    without_joints(chain, graph, exprs, |j| chain.dynamics_ignore(j))
+}
+
+/// `exprs` with joint j held at its zero wherever `ignored(j)` (cosine 1, sine 0, length 0).
+pub fn without_joints(
+    chain: ChainRef<'_>,
+    graph: &SharedGraph,
+    exprs: &[E],
+    ignored: impl Fn(usize) -> bool,
+) -> Vec<E> {
+    let ignored: Vec<bool> = (0..chain.dof()).map(ignored).collect();
     if !ignored.contains(&true) {
         return exprs.to_vec();
     }

@@ -1025,6 +1025,22 @@ pub const QUANTITIES: &[Quantity] = &[
         arm: Some(ArmMethod::Dynamics),
     },
     Quantity {
+        name: "potential_energy",
+        doc: "Potential energy P(q) = −Σ m_k gravity · c_k of the links in the description's \
+              gravity, centres of mass c_k in the world frame (zero at the world origin): \
+              g(q) = ∂P/∂q, and T + P is conserved when no torque acts.",
+        aliases: &["computePotentialEnergy"],
+        inputs: &[],
+        shape: Shape::Scalar,
+        available: Availability::Dynamics,
+        public: true,
+        make: |cx| {
+            let (graph, p) = energy::potential_energy(&cx.derivation);
+            derived(graph, p)
+        },
+        arm: Some(ArmMethod::Dynamics),
+    },
+    Quantity {
         name: "inverse_dynamics_derivatives",
         doc: "The derivatives of inverse dynamics, `(∂τ/∂q, ∂τ/∂q̇)` at (q, q̇, q̈), entry \
               `(k, m)` = ∂τ_k/∂x_m (∂τ/∂q̈ is D(q)); what MPC and trajectory optimisation \
