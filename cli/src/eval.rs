@@ -1,9 +1,9 @@
-//! `dhgen eval`: T, J, D, C, g and τ at one configuration, on the runtime path, and with
-//! `--derivatives` those of inverse and forward dynamics.
+//! `dhgen eval`: T, J, D, C, g, τ and the kinetic and potential energy at one configuration,
+//! on the runtime path, and with `--derivatives` those of inverse and forward dynamics.
 
 use crate::table::{degrees, trimmed};
-use dhgen::Robot;
 use dhgen::nalgebra::{DMatrix, DVector, Matrix4};
+use dhgen::{ArmDynamics, Robot};
 use dhgen_model::{Angle, JointKind, validate};
 use serde_json::{Value, json};
 use std::fmt::Write as _;
@@ -19,12 +19,14 @@ pub struct Evaluation {
     dynamics: Option<Dynamics>,
 }
 
-/// D(q), C(q, q̇), g(q) and τ(q, q̇, q̈).
+/// D(q), C(q, q̇), g(q), τ(q, q̇, q̈) and the energies.
 struct Dynamics {
     d: DMatrix<f64>,
     c: DMatrix<f64>,
     g: DVector<f64>,
     tau: DVector<f64>,
+    /// The kinetic energy T(q, q̇) and the potential energy P(q), J.
+    energy: [f64; 2],
     /// Present when asked for (`--derivatives`).
     derivatives: Option<Derivatives>,
 }
@@ -48,6 +50,16 @@ impl Dynamics {
             ("C(q, q̇)", "C", self.c.clone()),
             ("g(q)", "g", row(&self.g)),
             ("τ", "tau", row(&self.tau)),
+            (
+                "T(q, q̇)",
+                "kinetic_energy",
+                DMatrix::from_element(1, 1, self.energy[0]),
+            ),
+            (
+                "P(q)",
+                "potential_energy",
+                DMatrix::from_element(1, 1, self.energy[1]),
+            ),
         ];
         if let Some(d) = &self.derivatives {
             all.push(("∂τ/∂q", "dtau_dq", d.dtau_dq.clone()));
@@ -252,11 +264,17 @@ fn compute(
                 forward: robot.forward_dynamics_derivatives(&q, &qd, tau.as_slice()),
             }
         });
+        let kinetic = ArmDynamics::kinetic_energy(
+            robot,
+            &DVector::from_column_slice(&q),
+            &DVector::from_column_slice(&qd),
+        );
         Dynamics {
             d: robot.mass_matrix(&q),
             c: robot.coriolis(&q, &qd),
             g: robot.gravity(&q),
             tau,
+            energy: [kinetic, robot.potential_energy(&q)],
             derivatives,
         }
     });
@@ -271,8 +289,9 @@ fn compute(
 }
 
 impl Evaluation {
-    /// The evaluation as JSON: vectors as arrays, matrices as arrays of rows; `D`, `C`, `g`
-    /// and `tau` only when the robot has dynamics; with `--derivatives` also `dtau_dq`,
+    /// The evaluation as JSON: vectors as arrays, matrices as arrays of rows; `D`, `C`, `g`,
+    /// `tau`, `kinetic_energy` and `potential_energy` (numbers) only when the robot has
+    /// dynamics; with `--derivatives` also `dtau_dq`,
     /// `dtau_dqd` (entry `[k][m]` = ∂τ_k/∂x_m) and, unless D(q) is singular, `dqdd_dq`,
     /// `dqdd_dqd` and `Minv` (forward dynamics' derivatives at the τ above).
     pub fn json(&self, robot: &Robot) -> Value {
@@ -296,8 +315,10 @@ impl Evaluation {
         });
         if let (Some(dynamics), Some(obj)) = (&self.dynamics, v.as_object_mut()) {
             for (_, key, m) in dynamics.named() {
-                // Vectors (one row) as arrays, matrices as arrays of rows.
-                let value = if matches!(key, "g" | "tau") {
+                // Numbers, vectors (one row) as arrays, matrices as arrays of rows.
+                let value = if matches!(key, "kinetic_energy" | "potential_energy") {
+                    Value::from(m[(0, 0)])
+                } else if matches!(key, "g" | "tau") {
                     Value::from(m.as_slice().to_vec())
                 } else {
                     rows(&m)
@@ -335,6 +356,7 @@ impl Evaluation {
                 c,
                 g,
                 tau,
+                energy: [kinetic, potential],
                 derivatives,
             }) => {
                 block(&mut out, "D(q): joint-space inertia matrix", d);
@@ -352,6 +374,13 @@ impl Evaluation {
                     &mut out,
                     "τ = D(q) q̈ + C(q, q̇) q̇ + g(q) (+ friction), transposed",
                     &DMatrix::from_row_slice(1, tau.len(), tau.as_slice()),
+                );
+                let _ = writeln!(
+                    out,
+                    "\nkinetic energy T(q, q̇) = ½ q̇ᵀ D(q) q̇ = {} J; potential energy P(q) = {} J \
+                     (zero at the world origin)",
+                    trimmed(*kinetic, 6),
+                    trimmed(*potential, 6)
                 );
                 if let Some(Derivatives {
                     dtau_dq,

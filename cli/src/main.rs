@@ -2,7 +2,8 @@
 //!
 //! - `dhgen info ROBOT.toml`: the DH table, joints, limits, masses, spherical wrist;
 //! - `dhgen eval ROBOT.toml --q ... [--qd ...] [--qdd ...] [--json] [--derivatives]`: T, J, D, C,
-//!   g, τ (and the derivatives of the dynamics) on the runtime path;
+//!   g, τ, the kinetic and potential energy (and the derivatives of the dynamics) on the runtime
+//!   path;
 //! - `dhgen emit ROBOT.toml [-o FILE] [--name MOD] [--derivatives] [--regressor]`: the module `robot!`
 //!   generates, formatted;
 //! - `dhgen latex ROBOT.toml`: D(q), c_ijk and g(q) as LaTeX equations;
@@ -43,8 +44,8 @@ enum Command {
         #[command(flatten)]
         robot: Source,
     },
-    /// Evaluate the pose T, Jacobian J, and (with mass properties) D, C, g and τ at one
-    /// configuration, on the runtime path (`dhgen::Robot`).
+    /// Evaluate the pose T, Jacobian J, and (with mass properties) D, C, g, τ and the kinetic
+    /// and potential energy at one configuration, on the runtime path (`dhgen::Robot`).
     Eval {
         #[command(flatten)]
         robot: Source,
