@@ -86,6 +86,23 @@ macro_rules! bench_arm {
         run($c, name, "gravity", "runtime", &d, |[q, _, _]| {
             robot.gravity(q)
         });
+        run($c, name, "kinetic_energy", "generated", &s, |[q, qd, _]| {
+            g.kinetic_energy(q, qd)
+        });
+        run($c, name, "kinetic_energy", "runtime", &d, |[q, qd, _]| {
+            robot.kinetic_energy(q, qd)
+        });
+        run(
+            $c,
+            name,
+            "potential_energy",
+            "generated",
+            &s,
+            |[q, _, _]| g.potential_energy(q),
+        );
+        run($c, name, "potential_energy", "runtime", &d, |[q, _, _]| {
+            robot.potential_energy(q)
+        });
         run(
             $c,
             name,

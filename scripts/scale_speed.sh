@@ -2,7 +2,7 @@
 # Generated code against the runtime path on random arms too large for the criterion
 # benchmark (benches/random_arms.rs stops at 12 joints): for each size, a seeded arm
 # (`dhgen random --dof N --style STYLE --seed 1`) is expanded by `robot!` in a release crate,
-# and fk, J, D, C, g, τ and q̈ are timed on 64 fixed states, generated against
+# and fk, J, D, C, g, the kinetic and potential energy, τ and q̈ are timed on 64 fixed states, generated against
 # `dhgen::Robot`, best of seven runs of 20,000 calls (ns per call; the ratio is runtime /
 # generated, above 1 where the generated code is faster).
 #
@@ -114,6 +114,8 @@ $setup
             ("mass_matrix", time(|i| g.mass_matrix(&black_box(&s[i % 64])[0])), time(|i| robot.mass_matrix(&black_box(&d[i % 64])[0]))),
             ("coriolis", time(|i| { let [q, qd, _] = black_box(&s[i % 64]); g.coriolis(q, qd) }), time(|i| { let [q, qd, _] = black_box(&d[i % 64]); robot.coriolis(q, qd) })),
             ("gravity", time(|i| g.gravity(&black_box(&s[i % 64])[0])), time(|i| robot.gravity(&black_box(&d[i % 64])[0]))),
+            ("kinetic_energy", time(|i| { let [q, qd, _] = black_box(&s[i % 64]); g.kinetic_energy(q, qd) }), time(|i| { let [q, qd, _] = black_box(&d[i % 64]); dhgen::ArmDynamics::kinetic_energy(&robot, q, qd) })),
+            ("potential_energy", time(|i| g.potential_energy(&black_box(&s[i % 64])[0])), time(|i| robot.potential_energy(&black_box(&d[i % 64])[0]))),
             ("inverse_dynamics", time(|i| { let [q, qd, qdd] = black_box(&s[i % 64]); g.inverse_dynamics(q, qd, qdd) }), time(|i| { let [q, qd, qdd] = black_box(&d[i % 64]); robot.inverse_dynamics(q, qd, qdd) })),
             ("forward_dynamics", time(|i| { let [q, qd, t] = black_box(&s[i % 64]); g.forward_dynamics(q, qd, t) }), time(|i| { let [q, qd, t] = black_box(&d[i % 64]); robot.forward_dynamics(q, qd, t) })),$extra
         ];
