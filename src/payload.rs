@@ -10,8 +10,9 @@
 //! qd, qdd, &payload.parameters())` runs the Newton–Euler recursion once with the payload's ten
 //! parameters as inputs of the last body (PUMA 560: 513 operations against 457 for τ alone;
 //! Panda 882 against 818), where `inverse_dynamics` here adds `Jᵀ W` from the Jacobian and
-//! `J̇ q̇` (about 3× the cost of τ); likewise `m::bias_with_payload`, `m::mass_matrix_with_payload`
-//! and `m::gravity_with_payload`.
+//! `J̇ q̇` (about 3× the cost of τ); likewise `m::bias_with_payload`, `m::mass_matrix_with_payload`,
+//! `m::gravity_with_payload` and the energies, `m::kinetic_energy_with_payload` and
+//! `m::potential_energy_with_payload`.
 //!
 //! ```
 //! dhgen::robot!(mod puma560 = "robots/puma560.toml");
@@ -28,7 +29,7 @@
 //! ```
 
 use crate::arm::{Arm, ArmAllocator, ArmDynamics};
-use nalgebra::{DefaultAllocator, Matrix3, Matrix6, OMatrix, OVector, Vector3, Vector6};
+use nalgebra::{DefaultAllocator, Isometry3, Matrix3, Matrix6, OMatrix, OVector, Vector3, Vector6};
 
 /// A rigid body fixed in the tool frame: mass, centre of mass and inertia about it, in the
 /// tool frame's axes. Built only through [`Payload::new`], which checks it.
@@ -176,7 +177,12 @@ fn world<A: Arm>(arm: &A, p: &Payload, q: &OVector<f64, A::Dof>) -> World
 where
     DefaultAllocator: ArmAllocator<A::Dof>,
 {
-    let r = arm.fk(q).rotation.to_rotation_matrix().into_inner();
+    world_at(&arm.fk(q), p)
+}
+
+/// [`world`] at the tool pose `tool`.
+fn world_at(tool: &Isometry3<f64>, p: &Payload) -> World {
+    let r = tool.rotation.to_rotation_matrix().into_inner();
     let tool = crate::dynamics::regressor::inertia_of(&p.parameters());
     World {
         mass: tool.mass,
@@ -314,4 +320,33 @@ where
     let rhs = tau - bias(arm, payload, q, qd);
     let qdd = crate::inertia_cholesky(d)?.solve(&rhs);
     qdd.iter().all(|x| x.is_finite()).then_some(qdd)
+}
+
+/// The kinetic energy with the payload: the arm's plus the payload's, `½ vᵀ M v` for the tool
+/// twist `v = J q̇` and `M` the payload's spatial inertia at the tool origin.
+pub fn kinetic_energy<A: ArmDynamics>(
+    arm: &A,
+    payload: &Payload,
+    q: &OVector<f64, A::Dof>,
+    qd: &OVector<f64, A::Dof>,
+) -> f64
+where
+    DefaultAllocator: ArmAllocator<A::Dof>,
+{
+    let v = arm.jacobian(q) * qd;
+    let m = spatial_inertia(&world(arm, payload, q));
+    arm.kinetic_energy(q, qd) + 0.5 * v.dot(&(m * v))
+}
+
+/// The potential energy with the payload: the arm's plus the payload's weight at the height of
+/// its centre of mass, `−gravity · (m p + h)`, `p` the tool origin and `h = m·c` in world
+/// axes (`gravity` above is its gradient).
+pub fn potential_energy<A: ArmDynamics>(arm: &A, payload: &Payload, q: &OVector<f64, A::Dof>) -> f64
+where
+    DefaultAllocator: ArmAllocator<A::Dof>,
+{
+    let tool = arm.fk(q);
+    let w = world_at(&tool, payload);
+    let moment = tool.translation.vector * w.mass + w.h;
+    arm.potential_energy(q) - gravity_vector(arm).dot(&moment)
 }

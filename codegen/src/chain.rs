@@ -343,6 +343,21 @@ impl JointSymbols<f64> for Numbers<'_> {
     }
 }
 
+/// What grouping the links' parameters ([`grouped`]) takes off their potential energy: the
+/// mass it moves onto the base, which no joint lifts. A constant, since grouping leaves g(q) =
+/// ∂P/∂q unchanged; taken at q = 0 (offsets applied) as the links as described less the
+/// grouped bodies.
+pub fn grouping_shift(chain: ChainRef<'_>) -> f64 {
+    let zeros = vec![0.0; chain.dof()];
+    let at_zero = RingChain::<f64>::new(chain, &Numbers(chain, &zeros));
+    let described = chain.bodies.iter().map(|b| {
+        b.inertial
+            .map_or((0.0, [0.0; 3]), |i| (i.mass, i.com.map(|c| i.mass * c)))
+    });
+    let grouped = at_zero.bodies.iter().map(|b| (b.m, b.h));
+    at_zero.potential_of(described) - at_zero.potential_of(grouped)
+}
+
 /// The chain of one robot in one arithmetic, in joint frames (see
 /// [`ChainRef`]): the recursions run in the root frame, the frame
 /// that `P_0` places in the world.
@@ -490,21 +505,28 @@ impl<'c, R: Ring> RingChain<'c, R> {
     }
 
     /// The potential energy `P(q) = −Σ_k m_k gravity · c_k` of the links, centres of mass in
-    /// the world frame (zero at the world origin): the links' total mass and first moment
-    /// about the root frame's origin, carried tip to base, then paired with gravity. The
-    /// placement of the root frame in the world (`P_0`'s translation) adds the constant
-    /// `−M gravity · p_0`. The links are taken as described, not [`grouped`]: grouping moves
-    /// mass onto the base, which changes `P` by a constant (g(q) = ∂P/∂q is unchanged).
+    /// the world frame (zero at the world origin): that of the grouped bodies (with whatever
+    /// was added to them, such as a payload), plus the constant grouping takes off
+    /// ([`grouping_shift`]).
     pub fn potential_energy(&self) -> R {
+        let grouped = self.bodies.iter().map(|b| (b.m.clone(), b.h.clone()));
+        self.potential_of(grouped) + k(grouping_shift(self.chain))
+    }
+
+    /// `−gravity · H` for bodies given as (mass, first moment) in their joint frames: their
+    /// total mass and first moment about the root frame's origin, carried tip to base, then
+    /// paired with gravity; the placement of the root frame in the world (`P_0`'s translation)
+    /// adds `−M gravity · p_0`.
+    fn potential_of(
+        &self,
+        bodies: impl DoubleEndedIterator<Item = (R, V3<R>)> + ExactSizeIterator,
+    ) -> R {
         let mut mass = k::<R>(0.0);
         let mut h: V3<R> = [k(0.0), k(0.0), k(0.0)];
-        for (t, body) in self.t.iter().zip(self.chain.bodies).rev() {
+        for (t, (m, hj)) in self.t.iter().zip(bodies).rev() {
             // Links j.. in K_j, then seen from K_{j−1} (the root frame for j = 0).
-            if let Some(inertial) = &body.inertial {
-                mass = mass + k(inertial.mass);
-                h = add3(&h, &inertial.com.map(|c| k(inertial.mass * c)));
-            }
-            h = add3(&rot(t, &h), &scale3(&mass, &t.p));
+            mass = mass + m;
+            h = add3(&rot(t, &add3(&h, &hj)), &scale3(&mass, &t.p));
         }
         let (g, p0) = (&self.chain.gravity, &self.chain.placements[0].p);
         let lift = g[0] * p0[0] + g[1] * p0[1] + g[2] * p0[2];

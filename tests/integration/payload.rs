@@ -1,7 +1,7 @@
 //! A payload given at run time (`dhgen::payload`) against the same body written into the
-//! description: added to the last link through the description format, τ, D, g, the bias and
-//! q̈ are the same to 1e-12 (q̈ to 1e-12 times D's condition number), on the runtime path and
-//! on generated modules.
+//! description: added to the last link through the description format, τ, D, g, the bias,
+//! q̈ and the kinetic and potential energy are the same to 1e-12 (q̈ to 1e-12 times D's
+//! condition number), on the runtime path and on generated modules.
 
 use crate::catalogue::{odd, panda, puma560, snake17};
 use dhgen::payload::{self, Payload};
@@ -100,6 +100,17 @@ fn check<A: ArmDynamics<Dof = nalgebra::Const<N>>, const N: usize>(
         );
         let acc = payload::forward_dynamics(arm, &p, &q, &qd, &tau).unwrap();
         close(&format!("{name} qdd"), acc.as_slice(), qdd.as_slice());
+        close(
+            &format!("{name} energies"),
+            &[
+                payload::kinetic_energy(arm, &p, &q, &qd),
+                payload::potential_energy(arm, &p, &q),
+            ],
+            &[
+                merged.kinetic_energy(&qv, &qdv),
+                merged.potential_energy(&qv),
+            ],
+        );
         // No payload is the arm itself.
         let none = payload::inverse_dynamics(arm, &Payload::NONE, &q, &qd, &qdd);
         close(
@@ -131,12 +142,29 @@ fn check_runtime(name: &str, robot: &Robot) {
         close(name, d.as_slice(), merged.mass_matrix(&q).as_slice());
         let acc = payload::forward_dynamics(robot, &p, &q, &qd, &tau).unwrap();
         close(name, acc.as_slice(), qdd.as_slice());
+        let energies = [merged.kinetic_energy(&q, &qd), merged.potential_energy(&q)];
+        close(
+            name,
+            &[
+                payload::kinetic_energy(robot, &p, &q, &qd),
+                payload::potential_energy(robot, &p, &q),
+            ],
+            &energies,
+        );
         // The robot holding it, built without the description's text.
         let holding = robot.with_payload(&p).expect("a robot with dynamics");
         close(
             name,
             holding.inverse_dynamics(&q, &qd, &qdd).as_slice(),
             tau.as_slice(),
+        );
+        close(
+            name,
+            &[
+                holding.kinetic_energy(&q, &qd),
+                holding.potential_energy(&q),
+            ],
+            &energies,
         );
         let (dq, dqd) = holding.inverse_dynamics_derivatives(&q, &qd, &qdd);
         let (want_q, want_qd) = merged.inverse_dynamics_derivatives(&q, &qd, &qdd);
@@ -369,6 +397,17 @@ macro_rules! generated_terms {
                 close("bias", b.as_slice(), merged.bias(&qv, &qdv).as_slice());
                 let c = $m::coriolis_with_payload(&q, &qd, &pp);
                 close("C", c.as_slice(), merged.coriolis(&qv, &qdv).as_slice());
+                close(
+                    "energies",
+                    &[
+                        $m::kinetic_energy_with_payload(&q, &qd, &pp),
+                        $m::potential_energy_with_payload(&q, &pp),
+                    ],
+                    &[
+                        merged.kinetic_energy(&qv, &qdv),
+                        merged.potential_energy(&qv),
+                    ],
+                );
                 let tau: [f64; N] = core::array::from_fn(|i| 5.0 * (0.4 * t + i as f64).cos());
                 let qdd = $m::forward_dynamics_with_payload(&q, &qd, &tau, &pp).unwrap();
                 let want = merged

@@ -473,6 +473,41 @@ pub mod one_joint {
             out = ::dhgen::nalgebra::convert::<f64, T>(0f64);
             out
         }
+        ///Kinetic energy with a payload held by the tool (`payload`: its ten parameters, as for `inverse_dynamics_with_payload`): ½ q̇ᵀ D(q) q̇ with `mass_matrix_with_payload`.
+        #[must_use]
+        pub fn kinetic_energy_with_payload(
+            &self,
+            qd: &impl ::dhgen::JointArray<T, DOF>,
+            payload: &[T; 10],
+        ) -> T {
+            let qd = &qd.to_array();
+            let out: T;
+            let k19: T = ::dhgen::nalgebra::convert::<f64, T>(2f64);
+            let k29: T = ::dhgen::nalgebra::convert::<f64, T>(0.35f64);
+            let k39: T = ::dhgen::nalgebra::convert::<f64, T>(0.5f64);
+            let pl9: T = payload[9];
+            let pl1: T = payload[1];
+            let t27: T = ::dhgen::Real::mul_add_fast(pl1, k19, pl9);
+            let pl0: T = payload[0];
+            let t28: T = pl0 + t27;
+            let t30: T = t28 + k29;
+            let qd1: T = qd[0];
+            let t34: T = t30 * qd1;
+            let t38: T = qd1 * t34;
+            let t40: T = t38 * k39;
+            out = t40;
+            out
+        }
+        ///Potential energy with a payload held by the tool (`payload`: its ten parameters, as for `inverse_dynamics_with_payload`): `potential_energy` and the payload's weight at the height of its centre of mass; `gravity_with_payload` is its gradient.
+        #[must_use]
+        pub fn potential_energy_with_payload(&self, payload: &[T; 10]) -> T {
+            let out: T;
+            let k39: T = ::dhgen::nalgebra::convert::<f64, T>(9.81f64);
+            let pl3: T = payload[3];
+            let t40: T = pl3 * k39;
+            out = t40;
+            out
+        }
         ///The derivatives of inverse dynamics, `(∂τ/∂q, ∂τ/∂q̇)` at (q, q̇, q̈), entry `(k, m)` = ∂τ_k/∂x_m (∂τ/∂q̈ is D(q)); what MPC and trajectory optimisation linearise. Coulomb friction, constant away from q̇ = 0, contributes 0 (its subgradient at 0 too).
         #[doc(alias = "computeRNEADerivatives")]
         #[doc(alias = "rnea_derivatives")]
@@ -1219,6 +1254,26 @@ pub mod one_joint {
             State { c, s, d }
         }
         #[inline]
+        fn for_kinetic_energy_with_payload(
+            q: &impl ::dhgen::JointArray<T, DOF>,
+        ) -> Self {
+            let _ = q;
+            let c = [T::zero(); DOF];
+            let s = [T::zero(); DOF];
+            let d = [T::zero(); DOF];
+            State { c, s, d }
+        }
+        #[inline]
+        fn for_potential_energy_with_payload(
+            q: &impl ::dhgen::JointArray<T, DOF>,
+        ) -> Self {
+            let _ = q;
+            let c = [T::zero(); DOF];
+            let s = [T::zero(); DOF];
+            let d = [T::zero(); DOF];
+            State { c, s, d }
+        }
+        #[inline]
         fn for_inverse_dynamics_derivatives(
             q: &impl ::dhgen::JointArray<T, DOF>,
         ) -> Self {
@@ -1555,6 +1610,25 @@ pub mod one_joint {
         q: &impl ::dhgen::JointArray<T, DOF>,
     ) -> T {
         State::for_potential_energy(q).potential_energy()
+    }
+    ///Kinetic energy with a payload held by the tool (`payload`: its ten parameters, as for `inverse_dynamics_with_payload`): ½ q̇ᵀ D(q) q̇ with `mass_matrix_with_payload`.
+    #[must_use]
+    pub fn kinetic_energy_with_payload<T: ::dhgen::Real>(
+        q: &impl ::dhgen::JointArray<T, DOF>,
+        qd: &impl ::dhgen::JointArray<T, DOF>,
+        payload: &[T; 10],
+    ) -> T {
+        State::for_kinetic_energy_with_payload(q)
+            .kinetic_energy_with_payload(qd, payload)
+    }
+    ///Potential energy with a payload held by the tool (`payload`: its ten parameters, as for `inverse_dynamics_with_payload`): `potential_energy` and the payload's weight at the height of its centre of mass; `gravity_with_payload` is its gradient.
+    #[must_use]
+    pub fn potential_energy_with_payload<T: ::dhgen::Real>(
+        q: &impl ::dhgen::JointArray<T, DOF>,
+        payload: &[T; 10],
+    ) -> T {
+        State::for_potential_energy_with_payload(q)
+            .potential_energy_with_payload(payload)
     }
     ///The derivatives of inverse dynamics, `(∂τ/∂q, ∂τ/∂q̇)` at (q, q̇, q̈), entry `(k, m)` = ∂τ_k/∂x_m (∂τ/∂q̈ is D(q)); what MPC and trajectory optimisation linearise. Coulomb friction, constant away from q̇ = 0, contributes 0 (its subgradient at 0 too).
     #[doc(alias = "computeRNEADerivatives")]
@@ -1986,6 +2060,39 @@ pub mod one_joint {
             out: &mut [T],
         ) -> Result<(), ::dhgen::batch::LengthMismatch> {
             ::dhgen::batch::run([q], out, |[q]| super::potential_energy(q))
+        }
+        /// [`kinetic_energy_with_payload`](super::kinetic_energy_with_payload) for each configuration: `out[c]` from `q[c]`, `qd[c]` and `payload` (the same for every configuration), four `f64` or eight `f32` configurations per call (`dhgen::batch`).
+        ///
+        /// # Errors
+        /// `LengthMismatch` (nothing written) unless every slice has `out.len()` entries.
+        pub fn kinetic_energy_with_payload<T: ::dhgen::batch::Lanes>(
+            q: &[[T; DOF]],
+            qd: &[[T; DOF]],
+            payload: &[T; 10],
+            out: &mut [T],
+        ) -> Result<(), ::dhgen::batch::LengthMismatch> {
+            let payload = &::dhgen::batch::splat(payload);
+            ::dhgen::batch::run(
+                [q, qd],
+                out,
+                |[q, qd]| super::kinetic_energy_with_payload(q, qd, payload),
+            )
+        }
+        /// [`potential_energy_with_payload`](super::potential_energy_with_payload) for each configuration: `out[c]` from `q[c]` and `payload` (the same for every configuration), four `f64` or eight `f32` configurations per call (`dhgen::batch`).
+        ///
+        /// # Errors
+        /// `LengthMismatch` (nothing written) unless every slice has `out.len()` entries.
+        pub fn potential_energy_with_payload<T: ::dhgen::batch::Lanes>(
+            q: &[[T; DOF]],
+            payload: &[T; 10],
+            out: &mut [T],
+        ) -> Result<(), ::dhgen::batch::LengthMismatch> {
+            let payload = &::dhgen::batch::splat(payload);
+            ::dhgen::batch::run(
+                [q],
+                out,
+                |[q]| super::potential_energy_with_payload(q, payload),
+            )
         }
         /// [`inverse_dynamics_derivatives`](super::inverse_dynamics_derivatives) for each configuration: `out[c]` from `q[c]`, `qd[c]`, `qdd[c]`, four `f64` or eight `f32` configurations per call (`dhgen::batch`).
         ///

@@ -3166,9 +3166,9 @@ pub mod puma560 {
             let t123: T = qd1 * t122;
             let qd2: T = qd[1];
             let t157: T = qd2 * k156;
-            let t29: T = qd1 * s2;
+            let t29: T = s2 * qd1;
             let t148: T = t29 * k135;
-            let t30: T = qd1 * c2;
+            let t30: T = c2 * qd1;
             let t154: T = ::dhgen::Real::mul_add_fast(t30, k151, t148);
             let t158: T = t157 - t154;
             let t173: T = qd2 * t158;
@@ -3274,29 +3274,288 @@ pub mod puma560 {
             let s2: T = self.s[1];
             let c3: T = self.c[2];
             let s3: T = self.s[2];
-            let c5: T = self.c[4];
-            let k9: T = ::dhgen::nalgebra::convert::<f64, T>(0.028252799999999998f64);
-            let k11: T = ::dhgen::nalgebra::convert::<f64, T>(8.743947300000002f64);
             let c4: T = self.c[3];
+            let c5: T = self.c[4];
             let s5: T = self.s[4];
-            let k22: T = ::dhgen::nalgebra::convert::<f64, T>(0.24892875f64);
-            let k24: T = ::dhgen::nalgebra::convert::<f64, T>(37.2347379f64);
-            let k26: T = ::dhgen::nalgebra::convert::<f64, T>(154.550796435f64);
-            let k28: T = ::dhgen::nalgebra::convert::<f64, T>(1.024164f64);
-            let t27: T = ::dhgen::Real::mul_add_fast(s2, k24, k26);
-            let t29: T = c2 * k28;
-            let t30: T = t27 + t29;
-            let t13: T = s2 * c3;
-            let t15: T = ::dhgen::Real::mul_add_fast(c2, s3, t13);
-            let t18: T = c4 * s5;
-            let t23: T = ::dhgen::Real::mul_add_fast(-k9, t18, k22);
-            let t32: T = ::dhgen::Real::mul_add_fast(t15, t23, t30);
-            let t4: T = c2 * c3;
-            let t6: T = ::dhgen::Real::mul_add_fast(-s2, s3, t4);
-            let t12: T = ::dhgen::Real::mul_add_fast(c5, k9, k11);
-            let t33: T = t6 * t12;
-            let t34: T = t32 + t33;
-            out = t34;
+            let k23: T = ::dhgen::nalgebra::convert::<f64, T>(0.0028799999999999997f64);
+            let k30: T = ::dhgen::nalgebra::convert::<f64, T>(0.025374999999999998f64);
+            let k32: T = ::dhgen::nalgebra::convert::<f64, T>(0.8913300000000002f64);
+            let k41: T = ::dhgen::nalgebra::convert::<f64, T>(3.79559f64);
+            let k43: T = ::dhgen::nalgebra::convert::<f64, T>(0.10439999999999999f64);
+            let k61: T = ::dhgen::nalgebra::convert::<f64, T>(9.81f64);
+            let k64: T = ::dhgen::nalgebra::convert::<f64, T>(154.550796435f64);
+            let t24: T = s5 * k23;
+            let t31: T = ::dhgen::Real::mul_add_fast(-c4, t24, k30);
+            let t34: T = c3 * t31;
+            let t33: T = ::dhgen::Real::mul_add_fast(c5, k23, k32);
+            let t37: T = ::dhgen::Real::mul_add_fast(-s3, t33, t34);
+            let t42: T = t37 + k41;
+            let t50: T = s2 * t42;
+            let t38: T = s3 * t31;
+            let t40: T = ::dhgen::Real::mul_add_fast(c3, t33, t38);
+            let t44: T = t40 + k43;
+            let t52: T = ::dhgen::Real::mul_add_fast(c2, t44, t50);
+            let t65: T = ::dhgen::Real::mul_add_fast(t52, k61, k64);
+            out = t65;
+            out
+        }
+        ///Kinetic energy with a payload held by the tool (`payload`: its ten parameters, as for `inverse_dynamics_with_payload`): ½ q̇ᵀ D(q) q̇ with `mass_matrix_with_payload`.
+        #[must_use]
+        pub fn kinetic_energy_with_payload(
+            &self,
+            qd: &impl ::dhgen::JointArray<T, DOF>,
+            payload: &[T; 10],
+        ) -> T {
+            let qd = &qd.to_array();
+            let out: T;
+            let c2: T = self.c[1];
+            let s2: T = self.s[1];
+            let c3: T = self.c[2];
+            let s3: T = self.s[2];
+            let c4: T = self.c[3];
+            let s4: T = self.s[3];
+            let c5: T = self.c[4];
+            let s5: T = self.s[4];
+            let c6: T = self.c[5];
+            let s6: T = self.s[5];
+            let k33: T = ::dhgen::nalgebra::convert::<f64, T>(0.00004f64);
+            let k43: T = ::dhgen::nalgebra::convert::<f64, T>(0.15005f64);
+            let k45: T = ::dhgen::nalgebra::convert::<f64, T>(0.4318f64);
+            let k68: T = ::dhgen::nalgebra::convert::<f64, T>(0.0203f64);
+            let k133: T = ::dhgen::nalgebra::convert::<f64, T>(3.1535422856250004f64);
+            let k137: T = ::dhgen::nalgebra::convert::<f64, T>(1.6018612020000005f64);
+            let k141: T = ::dhgen::nalgebra::convert::<f64, T>(0.0070992f64);
+            let k147: T = ::dhgen::nalgebra::convert::<f64, T>(0.6903913435f64);
+            let k155: T = ::dhgen::nalgebra::convert::<f64, T>(0.023750999999999998f64);
+            let k163: T = ::dhgen::nalgebra::convert::<f64, T>(0.023751f64);
+            let k168: T = ::dhgen::nalgebra::convert::<f64, T>(1.748114002f64);
+            let k188: T = ::dhgen::nalgebra::convert::<f64, T>(0.32511984550000006f64);
+            let k191: T = ::dhgen::nalgebra::convert::<f64, T>(0.011273199f64);
+            let k198: T = ::dhgen::nalgebra::convert::<f64, T>(0.0047376f64);
+            let k205: T = ::dhgen::nalgebra::convert::<f64, T>(0.35865007050000003f64);
+            let k213: T = ::dhgen::nalgebra::convert::<f64, T>(0.8913300000000002f64);
+            let k216: T = ::dhgen::nalgebra::convert::<f64, T>(0.025374999999999998f64);
+            let k228: T = ::dhgen::nalgebra::convert::<f64, T>(2f64);
+            let k238: T = ::dhgen::nalgebra::convert::<f64, T>(0.0002999999999999999f64);
+            let k240: T = ::dhgen::nalgebra::convert::<f64, T>(0.0015999999999999999f64);
+            let k251: T = ::dhgen::nalgebra::convert::<f64, T>(0.00024216f64);
+            let k253: T = ::dhgen::nalgebra::convert::<f64, T>(0.00064216f64);
+            let k259: T = ::dhgen::nalgebra::convert::<f64, T>(0.0028799999999999997f64);
+            let k326: T = ::dhgen::nalgebra::convert::<f64, T>(0.5f64);
+            let qd1: T = qd[0];
+            let t134: T = qd1 * k133;
+            let t135: T = qd1 * t134;
+            let qd2: T = qd[1];
+            let t169: T = qd2 * k168;
+            let t41: T = s2 * qd1;
+            let t160: T = t41 * k147;
+            let t42: T = c2 * qd1;
+            let t166: T = ::dhgen::Real::mul_add_fast(t42, k163, t160);
+            let t170: T = t169 - t166;
+            let t185: T = qd2 * t170;
+            let t138: T = t41 * k137;
+            let t144: T = ::dhgen::Real::mul_add_fast(t42, k141, t138);
+            let t148: T = qd2 * k147;
+            let t150: T = t144 + t148;
+            let t179: T = t41 * t150;
+            let t152: T = t41 * k141;
+            let t158: T = ::dhgen::Real::mul_add_fast(qd2, k155, t152);
+            let t183: T = ::dhgen::Real::mul_add_fast(t42, t158, t179);
+            let t186: T = t185 - t183;
+            let t187: T = t135 + t186;
+            let t46: T = qd2 * k45;
+            let t48: T = ::dhgen::Real::mul_add_fast(-t41, k43, t46);
+            let t56: T = c3 * t48;
+            let t44: T = t42 * k43;
+            let t57: T = ::dhgen::Real::mul_add_fast(-s3, t44, t56);
+            let qd3: T = qd[2];
+            let t65: T = qd2 + qd3;
+            let t217: T = t65 * k216;
+            let t223: T = t57 * t217;
+            let t51: T = c3 * t44;
+            let t53: T = ::dhgen::Real::mul_add_fast(s3, t48, t51);
+            let t214: T = t65 * k213;
+            let t224: T = ::dhgen::Real::mul_add_fast(-t53, t214, t223);
+            let t49: T = t42 * k45;
+            let t58: T = c3 * t41;
+            let t60: T = ::dhgen::Real::mul_add_fast(s3, t42, t58);
+            let t218: T = t60 * k213;
+            let t63: T = c3 * t42;
+            let t64: T = ::dhgen::Real::mul_add_fast(-s3, t41, t63);
+            let t220: T = ::dhgen::Real::mul_add_fast(-t64, k216, t218);
+            let t225: T = t49 * t220;
+            let t227: T = t224 - t225;
+            let t230: T = ::dhgen::Real::mul_add_fast(t227, k228, t187);
+            let t189: T = t60 * k188;
+            let t194: T = ::dhgen::Real::mul_add_fast(-t64, k191, t189);
+            let t231: T = t60 * t194;
+            let t195: T = t60 * k191;
+            let t201: T = ::dhgen::Real::mul_add_fast(t65, k198, t195);
+            let t234: T = ::dhgen::Real::mul_add_fast(-t64, t201, t231);
+            let t206: T = t65 * k205;
+            let t207: T = ::dhgen::Real::mul_add_fast(-t64, k198, t206);
+            let t235: T = t65 * t207;
+            let t236: T = t234 + t235;
+            let t237: T = t230 + t236;
+            let t86: T = c4 * t60;
+            let t89: T = ::dhgen::Real::mul_add_fast(-s4, t65, t86);
+            let t239: T = t89 * k238;
+            let t247: T = t89 * t239;
+            let qd4: T = qd[3];
+            let t96: T = qd4 + t64;
+            let t241: T = t96 * k240;
+            let t249: T = ::dhgen::Real::mul_add_fast(t96, t241, t247);
+            let t250: T = t237 + t249;
+            let t66: T = k45 * t65;
+            let t73: T = t53 - t66;
+            let t80: T = s4 * t73;
+            let t70: T = k45 * t60;
+            let t72: T = ::dhgen::Real::mul_add_fast(-t64, k68, t70);
+            let t75: T = t72 - t49;
+            let t84: T = ::dhgen::Real::mul_add_fast(c4, t75, t80);
+            let t104: T = c5 * t89;
+            let t106: T = ::dhgen::Real::mul_add_fast(s5, t96, t104);
+            let t262: T = t106 * k259;
+            let t265: T = t84 * t262;
+            let t76: T = c4 * t73;
+            let t79: T = ::dhgen::Real::mul_add_fast(-s4, t75, t76);
+            let t97: T = c5 * t79;
+            let t69: T = t65 * k68;
+            let t74: T = t57 + t69;
+            let t99: T = ::dhgen::Real::mul_add_fast(s5, t74, t97);
+            let t90: T = s4 * t60;
+            let t94: T = ::dhgen::Real::mul_add_fast(c4, t65, t90);
+            let qd5: T = qd[4];
+            let t111: T = qd5 + t94;
+            let t260: T = t111 * k259;
+            let t266: T = ::dhgen::Real::mul_add_fast(-t99, t260, t265);
+            let t268: T = ::dhgen::Real::mul_add_fast(k228, t266, t250);
+            let t252: T = t106 * k251;
+            let t269: T = t106 * t252;
+            let t254: T = t111 * k253;
+            let t271: T = ::dhgen::Real::mul_add_fast(t111, t254, t269);
+            let t272: T = t268 + t271;
+            let t102: T = c5 * t74;
+            let t103: T = ::dhgen::Real::mul_add_fast(-s5, t79, t102);
+            let t256: T = t103 * t103;
+            let t112: T = c6 * t99;
+            let t115: T = ::dhgen::Real::mul_add_fast(-s6, t84, t112);
+            let t291: T = t115 * t115;
+            let t116: T = s6 * t99;
+            let t120: T = ::dhgen::Real::mul_add_fast(c6, t84, t116);
+            let t293: T = ::dhgen::Real::mul_add_fast(t120, t120, t291);
+            let t294: T = t256 + t293;
+            let pl0: T = payload[0];
+            let t296: T = ::dhgen::Real::mul_add_fast(pl0, t294, t272);
+            let t122: T = c6 * t106;
+            let t125: T = ::dhgen::Real::mul_add_fast(-s6, t111, t122);
+            let pl2: T = payload[2];
+            let t305: T = pl2 * t125;
+            let t126: T = s6 * t106;
+            let t130: T = ::dhgen::Real::mul_add_fast(c6, t111, t126);
+            let pl1: T = payload[1];
+            let t308: T = ::dhgen::Real::mul_add_fast(pl1, t130, t305);
+            let t315: T = t103 * t308;
+            let pl3: T = payload[3];
+            let t297: T = pl3 * t130;
+            let t109: T = c5 * t96;
+            let t110: T = ::dhgen::Real::mul_add_fast(-s5, t89, t109);
+            let qd6: T = qd[5];
+            let t132: T = qd6 + t110;
+            let t300: T = ::dhgen::Real::mul_add_fast(pl2, t132, t297);
+            let t309: T = t115 * t300;
+            let t302: T = pl1 * t132;
+            let t304: T = ::dhgen::Real::mul_add_fast(-pl3, t125, t302);
+            let t313: T = ::dhgen::Real::mul_add_fast(t120, t304, t309);
+            let t316: T = t315 - t313;
+            let t317: T = k228 * t316;
+            let t318: T = t296 + t317;
+            let pl4: T = payload[4];
+            let t273: T = pl4 * t125;
+            let pl5: T = payload[5];
+            let t276: T = ::dhgen::Real::mul_add_fast(-pl5, t130, t273);
+            let pl7: T = payload[7];
+            let t277: T = pl7 * t132;
+            let t278: T = t276 + t277;
+            let t319: T = t125 * t278;
+            let t279: T = pl5 * t125;
+            let pl6: T = payload[6];
+            let t282: T = ::dhgen::Real::mul_add_fast(-pl6, t130, t279);
+            let pl8: T = payload[8];
+            let t283: T = pl8 * t132;
+            let t284: T = t282 + t283;
+            let t322: T = ::dhgen::Real::mul_add_fast(-t130, t284, t319);
+            let t285: T = pl7 * t125;
+            let t288: T = ::dhgen::Real::mul_add_fast(-pl8, t130, t285);
+            let pl9: T = payload[9];
+            let t34: T = pl9 + k33;
+            let t289: T = t34 * t132;
+            let t290: T = t288 + t289;
+            let t323: T = t132 * t290;
+            let t324: T = t322 + t323;
+            let t325: T = t318 + t324;
+            let t327: T = t325 * k326;
+            out = t327;
+            out
+        }
+        ///Potential energy with a payload held by the tool (`payload`: its ten parameters, as for `inverse_dynamics_with_payload`): `potential_energy` and the payload's weight at the height of its centre of mass; `gravity_with_payload` is its gradient.
+        #[must_use]
+        pub fn potential_energy_with_payload(&self, payload: &[T; 10]) -> T {
+            let out: T;
+            let c2: T = self.c[1];
+            let s2: T = self.s[1];
+            let c3: T = self.c[2];
+            let s3: T = self.s[2];
+            let c4: T = self.c[3];
+            let s4: T = self.s[3];
+            let c5: T = self.c[4];
+            let s5: T = self.s[4];
+            let c6: T = self.c[5];
+            let s6: T = self.s[5];
+            let k45: T = ::dhgen::nalgebra::convert::<f64, T>(0.0028799999999999997f64);
+            let k64: T = ::dhgen::nalgebra::convert::<f64, T>(0.0203f64);
+            let k66: T = ::dhgen::nalgebra::convert::<f64, T>(0.4318f64);
+            let k70: T = ::dhgen::nalgebra::convert::<f64, T>(0.025374999999999998f64);
+            let k72: T = ::dhgen::nalgebra::convert::<f64, T>(0.8913300000000002f64);
+            let k85: T = ::dhgen::nalgebra::convert::<f64, T>(3.79559f64);
+            let k87: T = ::dhgen::nalgebra::convert::<f64, T>(0.10439999999999999f64);
+            let k105: T = ::dhgen::nalgebra::convert::<f64, T>(9.81f64);
+            let k109: T = ::dhgen::nalgebra::convert::<f64, T>(6.5906522999999995f64);
+            let k114: T = ::dhgen::nalgebra::convert::<f64, T>(154.550796435f64);
+            let pl0: T = payload[0];
+            let t67: T = pl0 * k66;
+            let pl1: T = payload[1];
+            let t35: T = c6 * pl1;
+            let pl2: T = payload[2];
+            let t38: T = ::dhgen::Real::mul_add_fast(-s6, pl2, t35);
+            let t47: T = c5 * t38;
+            let pl3: T = payload[3];
+            let t46: T = pl3 + k45;
+            let t50: T = ::dhgen::Real::mul_add_fast(-s5, t46, t47);
+            let t54: T = c4 * t50;
+            let t39: T = s6 * pl1;
+            let t43: T = ::dhgen::Real::mul_add_fast(c6, pl2, t39);
+            let t57: T = ::dhgen::Real::mul_add_fast(-s4, t43, t54);
+            let t65: T = pl0 * k64;
+            let t68: T = t57 + t65;
+            let t71: T = t68 + k70;
+            let t74: T = c3 * t71;
+            let t51: T = s5 * t38;
+            let t53: T = ::dhgen::Real::mul_add_fast(c5, t46, t51);
+            let t69: T = t53 + t67;
+            let t73: T = t69 + k72;
+            let t77: T = ::dhgen::Real::mul_add_fast(-s3, t73, t74);
+            let t83: T = t67 + t77;
+            let t86: T = t83 + k85;
+            let t94: T = s2 * t86;
+            let t78: T = s3 * t71;
+            let t80: T = ::dhgen::Real::mul_add_fast(c3, t73, t78);
+            let t88: T = t80 + k87;
+            let t96: T = ::dhgen::Real::mul_add_fast(c2, t88, t94);
+            let t106: T = t96 * k105;
+            let t112: T = ::dhgen::Real::mul_add_fast(pl0, k109, t106);
+            let t115: T = t112 + k114;
+            out = t115;
             out
         }
         ///D, C, g and J at once, as a controller needs them, sharing one state's sines and cosines.
@@ -6864,6 +7123,48 @@ pub mod puma560 {
             State { c, s, d }
         }
         #[inline]
+        fn for_kinetic_energy_with_payload(
+            q: &impl ::dhgen::JointArray<T, DOF>,
+        ) -> Self {
+            let q = q.to_array();
+            let mut c = [T::zero(); DOF];
+            let mut s = [T::zero(); DOF];
+            let d = [T::zero(); DOF];
+            let (sa, ca) = ::dhgen::Real::sincos_array([q[1], q[2], q[3], q[4], q[5]]);
+            s[1] = sa[0];
+            c[1] = ca[0];
+            s[2] = sa[1];
+            c[2] = ca[1];
+            s[3] = sa[2];
+            c[3] = ca[2];
+            s[4] = sa[3];
+            c[4] = ca[3];
+            s[5] = sa[4];
+            c[5] = ca[4];
+            State { c, s, d }
+        }
+        #[inline]
+        fn for_potential_energy_with_payload(
+            q: &impl ::dhgen::JointArray<T, DOF>,
+        ) -> Self {
+            let q = q.to_array();
+            let mut c = [T::zero(); DOF];
+            let mut s = [T::zero(); DOF];
+            let d = [T::zero(); DOF];
+            let (sa, ca) = ::dhgen::Real::sincos_array([q[1], q[2], q[3], q[4], q[5]]);
+            s[1] = sa[0];
+            c[1] = ca[0];
+            s[2] = sa[1];
+            c[2] = ca[1];
+            s[3] = sa[2];
+            c[3] = ca[2];
+            s[4] = sa[3];
+            c[4] = ca[3];
+            s[5] = sa[4];
+            c[5] = ca[4];
+            State { c, s, d }
+        }
+        #[inline]
         fn for_terms(q: &impl ::dhgen::JointArray<T, DOF>) -> Self {
             let q = q.to_array();
             let mut c = [T::zero(); DOF];
@@ -7107,6 +7408,25 @@ pub mod puma560 {
         q: &impl ::dhgen::JointArray<T, DOF>,
     ) -> T {
         State::for_potential_energy(q).potential_energy()
+    }
+    ///Kinetic energy with a payload held by the tool (`payload`: its ten parameters, as for `inverse_dynamics_with_payload`): ½ q̇ᵀ D(q) q̇ with `mass_matrix_with_payload`.
+    #[must_use]
+    pub fn kinetic_energy_with_payload<T: ::dhgen::Real>(
+        q: &impl ::dhgen::JointArray<T, DOF>,
+        qd: &impl ::dhgen::JointArray<T, DOF>,
+        payload: &[T; 10],
+    ) -> T {
+        State::for_kinetic_energy_with_payload(q)
+            .kinetic_energy_with_payload(qd, payload)
+    }
+    ///Potential energy with a payload held by the tool (`payload`: its ten parameters, as for `inverse_dynamics_with_payload`): `potential_energy` and the payload's weight at the height of its centre of mass; `gravity_with_payload` is its gradient.
+    #[must_use]
+    pub fn potential_energy_with_payload<T: ::dhgen::Real>(
+        q: &impl ::dhgen::JointArray<T, DOF>,
+        payload: &[T; 10],
+    ) -> T {
+        State::for_potential_energy_with_payload(q)
+            .potential_energy_with_payload(payload)
     }
     ///D, C, g and J at once, as a controller needs them, sharing one state's sines and cosines.
     #[doc(alias = "computeAllTerms")]
@@ -7416,6 +7736,39 @@ pub mod puma560 {
             out: &mut [T],
         ) -> Result<(), ::dhgen::batch::LengthMismatch> {
             ::dhgen::batch::run([q], out, |[q]| super::potential_energy(q))
+        }
+        /// [`kinetic_energy_with_payload`](super::kinetic_energy_with_payload) for each configuration: `out[c]` from `q[c]`, `qd[c]` and `payload` (the same for every configuration), four `f64` or eight `f32` configurations per call (`dhgen::batch`).
+        ///
+        /// # Errors
+        /// `LengthMismatch` (nothing written) unless every slice has `out.len()` entries.
+        pub fn kinetic_energy_with_payload<T: ::dhgen::batch::Lanes>(
+            q: &[[T; DOF]],
+            qd: &[[T; DOF]],
+            payload: &[T; 10],
+            out: &mut [T],
+        ) -> Result<(), ::dhgen::batch::LengthMismatch> {
+            let payload = &::dhgen::batch::splat(payload);
+            ::dhgen::batch::run(
+                [q, qd],
+                out,
+                |[q, qd]| super::kinetic_energy_with_payload(q, qd, payload),
+            )
+        }
+        /// [`potential_energy_with_payload`](super::potential_energy_with_payload) for each configuration: `out[c]` from `q[c]` and `payload` (the same for every configuration), four `f64` or eight `f32` configurations per call (`dhgen::batch`).
+        ///
+        /// # Errors
+        /// `LengthMismatch` (nothing written) unless every slice has `out.len()` entries.
+        pub fn potential_energy_with_payload<T: ::dhgen::batch::Lanes>(
+            q: &[[T; DOF]],
+            payload: &[T; 10],
+            out: &mut [T],
+        ) -> Result<(), ::dhgen::batch::LengthMismatch> {
+            let payload = &::dhgen::batch::splat(payload);
+            ::dhgen::batch::run(
+                [q],
+                out,
+                |[q]| super::potential_energy_with_payload(q, payload),
+            )
         }
     }
     /// D, C, g and J at one configuration, as a controller needs them.

@@ -3,6 +3,7 @@
 //! cheaper; and the potential energy `P(q)`.
 
 use super::Derivation;
+use crate::chain::RingChain;
 use crate::graph::{E, SharedGraph, Sym};
 use dhgen_model::JointKind;
 
@@ -32,14 +33,26 @@ pub fn kinetic_energy(dv: &Derivation<'_>) -> (SharedGraph, Vec<E>) {
     };
     let recursive = {
         let graph = SharedGraph::default();
-        let qd: Vec<E> = (0..n).map(|i| E::sym(&graph, Sym::Qd(i))).collect();
-        let links = super::graph_chain(chain, &graph).kinetic_energy(&qd);
-        let rotors = chain.bodies.iter().zip(&qd).fold(E::K(0.0), |acc, (b, w)| {
-            acc + E::K(0.5 * b.armature) * (w.clone() * w.clone())
-        });
-        (graph, vec![links + rotors])
+        let t = kinetic_energy_along(&super::graph_chain(chain, &graph), &graph);
+        (graph, vec![t])
     };
     super::cheapest_dynamics(dv.chain, vec![quadratic, recursive])
+}
+
+/// The kinetic energy of the links of `rc` (in `graph`) summed along the velocity recursion,
+/// and of the rotors.
+pub fn kinetic_energy_along(rc: &RingChain<'_, E>, graph: &SharedGraph) -> E {
+    let qd: Vec<E> = (0..rc.dof()).map(|i| E::sym(graph, Sym::Qd(i))).collect();
+    let links = rc.kinetic_energy(&qd);
+    let rotors = rc
+        .chain
+        .bodies
+        .iter()
+        .zip(&qd)
+        .fold(E::K(0.0), |acc, (b, w)| {
+            acc + E::K(0.5 * b.armature) * (w.clone() * w.clone())
+        });
+    links + rotors
 }
 
 /// `[P]`, the potential energy `−Σ m_k gravity · c_k` (world frame), in a new graph: the

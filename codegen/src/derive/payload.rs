@@ -114,3 +114,18 @@ pub fn mass_matrix(chain: ChainRef<'_>) -> (SharedGraph, Vec<E>) {
 pub fn gravity(chain: ChainRef<'_>, graph: &SharedGraph) -> Vec<E> {
     chain_with_payload(chain, graph).gravity_torques()
 }
+
+/// The kinetic energy with the payload: the links' (the payload in the last) along the
+/// velocity recursion, and the rotors'.
+pub fn kinetic_energy(chain: ChainRef<'_>) -> (SharedGraph, Vec<E>) {
+    let graph = SharedGraph::default();
+    let t = super::energy::kinetic_energy_along(&chain_with_payload(chain, &graph), &graph);
+    (graph, vec![t])
+}
+
+/// The potential energy with the payload, by the plain one's recursion.
+pub fn potential_energy(chain: ChainRef<'_>) -> (SharedGraph, Vec<E>) {
+    let graph = SharedGraph::default();
+    let p = chain_with_payload(chain, &graph).potential_energy();
+    (graph, vec![p])
+}

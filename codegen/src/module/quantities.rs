@@ -1041,6 +1041,39 @@ pub const QUANTITIES: &[Quantity] = &[
         arm: Some(ArmMethod::Dynamics),
     },
     Quantity {
+        name: "kinetic_energy_with_payload",
+        doc: "Kinetic energy with a payload held by the tool (`payload`: its ten parameters, as \
+              for `inverse_dynamics_with_payload`): ½ q̇ᵀ D(q) q̇ with \
+              `mass_matrix_with_payload`.",
+        aliases: &[],
+        inputs: &[Input::Qd, Input::Payload],
+        shape: Shape::Scalar,
+        available: Availability::Dynamics,
+        public: true,
+        make: |cx| {
+            let (graph, t) = payload::kinetic_energy(cx.chain);
+            derived(graph, t)
+        },
+        arm: None,
+    },
+    Quantity {
+        name: "potential_energy_with_payload",
+        doc: "Potential energy with a payload held by the tool (`payload`: its ten parameters, \
+              as for `inverse_dynamics_with_payload`): `potential_energy` and the payload's \
+              weight at the height of its centre of mass; `gravity_with_payload` is its \
+              gradient.",
+        aliases: &[],
+        inputs: &[Input::Payload],
+        shape: Shape::Scalar,
+        available: Availability::Dynamics,
+        public: true,
+        make: |cx| {
+            let (graph, p) = payload::potential_energy(cx.chain);
+            derived(graph, p)
+        },
+        arm: None,
+    },
+    Quantity {
         name: "inverse_dynamics_derivatives",
         doc: "The derivatives of inverse dynamics, `(∂τ/∂q, ∂τ/∂q̇)` at (q, q̇, q̈), entry \
               `(k, m)` = ∂τ_k/∂x_m (∂τ/∂q̈ is D(q)); what MPC and trajectory optimisation \
