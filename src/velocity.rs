@@ -1,5 +1,5 @@
 //! Velocity kinematics (chapter 5) for any [`Arm`]: the analytic Jacobian for ZYZ Euler
-//! angles, `J̇(q, q̇)`, manipulability and condition number, singularity tests by SVD, the
+//! angles, the Jacobian of any point on any link, `J̇(q, q̇)`, manipulability and condition number, singularity tests by SVD, the
 //! decoupled singularity conditions of spherical-wrist arms, and inverse velocity and
 //! acceleration with a damped pseudo-inverse near singularities.
 //!
@@ -35,8 +35,8 @@ use crate::{Arm, ArmAllocator};
 use nalgebra::ComplexField as _;
 use nalgebra::allocator::Allocator;
 use nalgebra::{
-    ArrayStorage, DefaultAllocator, Dim, Matrix3, Matrix6, OMatrix, OVector, U1, U6, Vector3,
-    Vector6,
+    ArrayStorage, DefaultAllocator, Dim, Matrix3, Matrix6, OMatrix, OVector, Point3, U1, U6,
+    Vector3, Vector6,
 };
 
 /// The singular value decomposition `J = U Σ Vᵀ` of a 6×n Jacobian, by one-sided Jacobi
@@ -462,6 +462,57 @@ where
         }
     }
     out
+}
+
+/// The geometric Jacobian of a point `p` (world coordinates) that moves with link `link`
+/// (1 to n: the link joint `link` moves, whose frame is `frames()[link − 1]`; 0: the base),
+/// rows `[v; ω]` as [`Arm::jacobian`]'s: column j ≤ `link` is `[z_j × (p − o_j); z_j]` for a
+/// revolute joint and `[z_j; 0]` for a prismatic one, the columns of the joints after the
+/// link are zero. What Pinocchio's `getFrameJacobian` (`LOCAL_WORLD_ALIGNED`) gives for a frame
+/// on any body and Robotics Toolbox's `jacob0(q, end=...)`: for control points along the arm
+/// (collision avoidance, whole-arm contact). Taken from the tool's Jacobian and pose, since
+/// column j of any point differs from the tool's by `z_j × (p − p_tool)`; allocation-free for
+/// generated robots. `None` if `link` is above n.
+///
+/// ```
+/// use dhgen::nalgebra::{Point3, SVector};
+/// use dhgen::velocity::point_jacobian;
+/// use dhgen::Arm;
+/// dhgen::robot!(mod puma = "robots/puma560.toml");
+///
+/// // A point 10 cm along link 3's x axis, and how it moves.
+/// let q = SVector::<f64, 6>::new(0.2, -0.3, 0.4, 0.5, 0.6, 0.7);
+/// let point = |q: &SVector<f64, 6>| puma::State::new(q).frames()[2] * Point3::new(0.1, 0.0, 0.0);
+/// let j = point_jacobian(&puma::Robot, &q, 3, &point(&q)).unwrap();
+/// let (dq, h) = (SVector::<f64, 6>::new(0.3, -0.2, 0.5, 1.0, 1.0, 1.0), 1e-6);
+/// let v = (point(&(q + dq * h)) - point(&(q - dq * h))) / (2.0 * h);
+/// assert!(((j * dq).fixed_rows::<3>(0) - v).norm() < 1e-8);
+/// assert!(j.columns(3, 3).iter().all(|&x| x == 0.0)); // joints 4 to 6 do not move it
+/// ```
+pub fn point_jacobian<A: Arm>(
+    arm: &A,
+    q: &OVector<f64, A::Dof>,
+    link: usize,
+    p: &Point3<f64>,
+) -> Option<OMatrix<f64, U6, A::Dof>>
+where
+    DefaultAllocator: ArmAllocator<A::Dof>,
+{
+    if link > arm.dof() {
+        return None;
+    }
+    let mut j = arm.jacobian(q);
+    let offset = p.coords - arm.fk(q).translation.vector;
+    for c in 0..arm.dof() {
+        if c < link {
+            let shift = j.fixed_view::<3, 1>(3, c).cross(&offset);
+            let mut v = j.fixed_view_mut::<3, 1>(0, c);
+            v += shift;
+        } else {
+            j.column_mut(c).fill(0.0);
+        }
+    }
+    Some(j)
 }
 
 /// `J̇(q, q̇) q̇` from the Jacobian `j` at q: the tool acceleration `[a; α]` at zero joint

@@ -1,7 +1,7 @@
 //! Velocity kinematics: the analytic Jacobian against finite differences of Euler angles,
 //! J̇ q̇ against finite differences, the SVD and pseudo-inverse identities, singularity
-//! detection at known singular configurations, the decoupled determinants, and inverse
-//! velocity and acceleration.
+//! detection at known singular configurations, the decoupled determinants, inverse velocity
+//! and acceleration, and the Jacobians of points on every link.
 
 use crate::catalogue::{cylindrical, elbow, odd, panda, planar_elbow as planar, puma560, stanford};
 use crate::support::runtime;
@@ -14,7 +14,7 @@ use dhgen::rotation::{EulerZyz, wrap_angle};
 use dhgen::velocity::{
     Damping, JacobianSvd, analytic_jacobian, condition_number, decoupled_determinants,
     euler_rate_matrix, inverse_acceleration, inverse_velocity, is_singular, jacobian_dot,
-    manipulability,
+    manipulability, point_jacobian,
 };
 use dhgen::{Arm, ArmAllocator};
 use rand::rngs::StdRng;
@@ -83,6 +83,73 @@ fn jacobian_dot_matches_finite_differences() {
     check_jacobian_dot(&odd::Robot, "modified DH, prismatic, base and tool", 200);
     check_jacobian_dot(&runtime("puma560"), "puma560 (runtime)", 50);
     check_jacobian_dot(&runtime("ur5"), "ur5 (runtime)", 50);
+}
+
+/// The Jacobian of a point fixed in each link's frame (and one fixed to the base) against
+/// central differences of that point and of the link's orientation; the columns of the joints
+/// after the link are exactly zero, and at the last link and the tool origin it is the tool's
+/// Jacobian.
+fn check_point_jacobian<A: Arm>(arm: &A, name: &str)
+where
+    DefaultAllocator: ArmAllocator<A::Dof>,
+{
+    let mut rng = StdRng::seed_from_u64(23);
+    let (n, h) = (arm.dof(), 1e-6);
+    let local = dhgen::nalgebra::Point3::new(0.13, -0.07, 0.21);
+    let frames = |q: &OVector<f64, A::Dof>| {
+        let mut out = vec![dhgen::nalgebra::Isometry3::identity(); n];
+        arm.frames_into(q, &mut out);
+        out
+    };
+    // Link k's frame (k = 1..n), the base's for k = 0 (fixed).
+    let frame = |q: &OVector<f64, A::Dof>, k: usize| {
+        if k == 0 {
+            dhgen::nalgebra::Isometry3::translation(0.3, -0.2, 0.1)
+        } else {
+            frames(q)[k - 1]
+        }
+    };
+    let mut worst: f64 = 0.0;
+    for _ in 0..20 {
+        let q = random_q(arm, &mut rng);
+        for k in 0..=n {
+            let j = point_jacobian(arm, &q, k, &(frame(&q, k) * local)).unwrap();
+            for c in 0..n {
+                let mut dq = OVector::<f64, A::Dof>::zeros_generic(arm.dim(), dhgen::nalgebra::U1);
+                dq[c] = h;
+                let (fp, fm) = (frame(&(&q + &dq), k), frame(&(&q - &dq), k));
+                let v = ((fp * local) - (fm * local)) / (2.0 * h);
+                let w = (fp.rotation * fm.rotation.inverse()).scaled_axis() / (2.0 * h);
+                let column = j.column(c);
+                if c >= k {
+                    assert!(
+                        column.iter().all(|&x| x == 0.0),
+                        "{name}: link {k} column {c}"
+                    );
+                }
+                let err = (column.fixed_rows::<3>(0) - v)
+                    .norm()
+                    .max((column.fixed_rows::<3>(3) - w).norm());
+                worst = worst.max(err);
+                assert!(err < 1e-8, "{name}: link {k}, column {c}: {err:e}");
+            }
+        }
+        let tool = arm.fk(&q) * dhgen::nalgebra::Point3::origin();
+        let at_tool = point_jacobian(arm, &q, n, &tool).unwrap();
+        assert!((at_tool - arm.jacobian(&q)).abs().max() < 1e-14, "{name}");
+        assert!(point_jacobian(arm, &q, n + 1, &tool).is_none());
+    }
+    eprintln!("{name}: point Jacobians vs central differences, worst column error {worst:.1e}");
+}
+
+#[test]
+fn point_jacobians_match_finite_differences_on_every_link() {
+    check_point_jacobian(&puma560::Robot, "puma560");
+    check_point_jacobian(&panda::Robot, "panda");
+    check_point_jacobian(&stanford::Robot, "stanford");
+    check_point_jacobian(&odd::Robot, "modified DH, prismatic, base and tool");
+    check_point_jacobian(&runtime("panda"), "panda (runtime)");
+    check_point_jacobian(&runtime("ur5"), "ur5 (runtime)");
 }
 
 #[test]
