@@ -114,7 +114,7 @@ $setup
             ("mass_matrix", time(|i| g.mass_matrix(&black_box(&s[i % 64])[0])), time(|i| robot.mass_matrix(&black_box(&d[i % 64])[0]))),
             ("coriolis", time(|i| { let [q, qd, _] = black_box(&s[i % 64]); g.coriolis(q, qd) }), time(|i| { let [q, qd, _] = black_box(&d[i % 64]); robot.coriolis(q, qd) })),
             ("gravity", time(|i| g.gravity(&black_box(&s[i % 64])[0])), time(|i| robot.gravity(&black_box(&d[i % 64])[0]))),
-            ("kinetic_energy", time(|i| { let [q, qd, _] = black_box(&s[i % 64]); g.kinetic_energy(q, qd) }), time(|i| { let [q, qd, _] = black_box(&d[i % 64]); dhgen::ArmDynamics::kinetic_energy(&robot, q, qd) })),
+            ("kinetic_energy", time(|i| { let [q, qd, _] = black_box(&s[i % 64]); g.kinetic_energy(q, qd) }), time(|i| { let [q, qd, _] = black_box(&d[i % 64]); robot.kinetic_energy(q, qd) })),
             ("potential_energy", time(|i| g.potential_energy(&black_box(&s[i % 64])[0])), time(|i| robot.potential_energy(&black_box(&d[i % 64])[0]))),
             ("inverse_dynamics", time(|i| { let [q, qd, qdd] = black_box(&s[i % 64]); g.inverse_dynamics(q, qd, qdd) }), time(|i| { let [q, qd, qdd] = black_box(&d[i % 64]); robot.inverse_dynamics(q, qd, qdd) })),
             ("forward_dynamics", time(|i| { let [q, qd, t] = black_box(&s[i % 64]); g.forward_dynamics(q, qd, t) }), time(|i| { let [q, qd, t] = black_box(&d[i % 64]); robot.forward_dynamics(q, qd, t) })),$extra

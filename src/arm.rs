@@ -243,6 +243,10 @@ mod runtime {
             Robot::gravity(self, q)
         }
 
+        fn kinetic_energy(&self, q: &DVector<f64>, qd: &DVector<f64>) -> f64 {
+            Robot::kinetic_energy(self, q, qd)
+        }
+
         fn potential_energy(&self, q: &DVector<f64>) -> f64 {
             Robot::potential_energy(self, q)
         }

@@ -2,8 +2,8 @@
 //! on the runtime path, and with `--derivatives` those of inverse and forward dynamics.
 
 use crate::table::{degrees, trimmed};
+use dhgen::Robot;
 use dhgen::nalgebra::{DMatrix, DVector, Matrix4};
-use dhgen::{ArmDynamics, Robot};
 use dhgen_model::{Angle, JointKind, validate};
 use serde_json::{Value, json};
 use std::fmt::Write as _;
@@ -264,17 +264,12 @@ fn compute(
                 forward: robot.forward_dynamics_derivatives(&q, &qd, tau.as_slice()),
             }
         });
-        let kinetic = ArmDynamics::kinetic_energy(
-            robot,
-            &DVector::from_column_slice(&q),
-            &DVector::from_column_slice(&qd),
-        );
         Dynamics {
             d: robot.mass_matrix(&q),
             c: robot.coriolis(&q, &qd),
             g: robot.gravity(&q),
             tau,
-            energy: [kinetic, robot.potential_energy(&q)],
+            energy: [robot.kinetic_energy(&q, &qd), robot.potential_energy(&q)],
             derivatives,
         }
     });

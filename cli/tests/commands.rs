@@ -242,11 +242,7 @@ fn eval_json_matches_the_runtime() {
         assert_eq!(vector("q")[i], q[i]);
         assert_eq!(vector("qd")[i], qd[i]);
     }
-    let kinetic = dhgen::ArmDynamics::kinetic_energy(
-        &robot,
-        &dhgen::nalgebra::DVector::from_column_slice(&q),
-        &dhgen::nalgebra::DVector::from_column_slice(&qd),
-    );
+    let kinetic = robot.kinetic_energy(&q, &qd);
     assert!(close(v["kinetic_energy"].as_f64().unwrap(), kinetic));
     let potential = robot.potential_energy(&q);
     assert!(close(v["potential_energy"].as_f64().unwrap(), potential));

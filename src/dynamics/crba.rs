@@ -1,9 +1,10 @@
-//! The joint-space inertia matrix by the composite rigid body algorithm.
+//! The joint-space inertia matrix by the composite rigid body algorithm, and the kinetic
+//! energy it is the quadratic form of.
 
 use super::{BodyState, accumulate_composites};
 use crate::Joints;
 use crate::robot::Robot;
-use nalgebra::DMatrix;
+use nalgebra::{DMatrix, DVector};
 
 impl Robot {
     /// The joint-space inertia matrix `D(q)` (n×n, symmetric), by the composite rigid body
@@ -17,6 +18,29 @@ impl Robot {
         let mut states = self.body_states(q);
         accumulate_composites(&mut states);
         self.crba(&states)
+    }
+
+    /// The kinetic energy `T(q, q̇) = ½ q̇ᵀ D(q) q̇` of the links and rotors.
+    ///
+    /// ```
+    /// let robot = dhgen::Robot::from_file("robots/planar_elbow.toml").unwrap();
+    /// let (q, qd) = ([0.3, -0.5], [1.0, 0.0]);
+    /// // The shoulder alone turning at 1 rad/s: T = ½ D₁₁.
+    /// let t = robot.kinetic_energy(&q, &qd);
+    /// assert!((t - 0.5 * robot.mass_matrix(&q)[(0, 0)]).abs() < 1e-12);
+    /// ```
+    ///
+    /// # Panics
+    /// If `q` or `qd` does not have one entry per joint, or if the robot has no mass
+    /// properties.
+    #[doc(alias = "computeKineticEnergy")]
+    pub fn kinetic_energy(
+        &self,
+        q: &(impl Joints<f64> + ?Sized),
+        qd: &(impl Joints<f64> + ?Sized),
+    ) -> f64 {
+        let qd = DVector::from_column_slice(self.check_len("kinetic_energy", "qd", qd));
+        0.5 * qd.dot(&(self.mass_matrix(q) * &qd))
     }
 
     /// `D(q)` from body states whose composites are accumulated ([`crate::recursive`]'s

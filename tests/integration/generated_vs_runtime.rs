@@ -8,7 +8,6 @@ use crate::catalogue::{
 };
 use crate::support::{fixture, max_abs, runtime};
 use dhgen::Robot;
-use dhgen::nalgebra::DVector;
 use proptest::prelude::*;
 
 fn close(what: &str, got: f64, want: f64, scale: f64) -> Result<(), TestCaseError> {
@@ -116,9 +115,8 @@ fn dynamics<const N: usize>(
     Ok(())
 }
 
-/// The kinetic energy against the runtime path's `½ q̇ᵀ D q̇` (the trait's default), the
-/// potential energy against the runtime walk, and the bias torques against the runtime RNEA
-/// at zero acceleration.
+/// The kinetic energy against the runtime path's `½ q̇ᵀ D q̇`, the potential energy against
+/// the runtime walk, and the bias torques against the runtime RNEA at zero acceleration.
 fn energy_and_bias<const N: usize>(
     robot: &Robot,
     q: &[f64; N],
@@ -126,11 +124,7 @@ fn energy_and_bias<const N: usize>(
     [kinetic, potential]: [f64; 2],
     bias: &dhgen::nalgebra::SVector<f64, N>,
 ) -> Result<(), TestCaseError> {
-    let (qv, qdv) = (
-        DVector::from_column_slice(q),
-        DVector::from_column_slice(qd),
-    );
-    let want = dhgen::ArmDynamics::kinetic_energy(robot, &qv, &qdv);
+    let want = robot.kinetic_energy(q, qd);
     close("kinetic energy", kinetic, want, want.abs())?;
     let want = robot.potential_energy(q);
     close("potential energy", potential, want, want.abs())?;

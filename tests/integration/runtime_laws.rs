@@ -290,12 +290,7 @@ fn energy_changes_by_the_power_of_the_torques() {
                 .map(|((x, v), a)| x + t * v + 0.5 * t * t * a)
                 .collect();
             let qd_t = along(qd, qdd, t);
-            let kinetic = dhgen::ArmDynamics::kinetic_energy(
-                robot,
-                &DVector::from_vec(q_t.clone()),
-                &DVector::from_vec(qd_t),
-            );
-            kinetic + robot.potential_energy(&q_t)
+            robot.kinetic_energy(&q_t, &qd_t) + robot.potential_energy(&q_t)
         };
         let rate = (energy(H) - energy(-H)) / (2.0 * H);
         let work = robot.inverse_dynamics(q, qd, qdd) - friction(robot, qd);

@@ -6,9 +6,9 @@
 //! Pinocchio's τ has no joint friction; where a URDF gives `<dynamics damping friction>`,
 //! dhgen's τ includes it, and the comparison takes it out.
 
+use dhgen::Robot;
 use dhgen::model::urdf::{UrdfOptions, read_file};
-use dhgen::{ArmDynamics, Robot};
-use nalgebra::{DMatrix, DVector};
+use nalgebra::DMatrix;
 use serde_json::Value;
 use std::collections::BTreeMap;
 
@@ -165,12 +165,11 @@ fn check_runtime(name: &str, snap: f64) {
             .forward_dynamics(&q[..], &qd[..], &applied[..])
             .expect("D is positive definite");
         qdd_matches(&mut worst, snap, acc.as_slice(), s);
-        let kinetic = ArmDynamics::kinetic_energy(
-            &robot,
-            &DVector::from_column_slice(&q),
-            &DVector::from_column_slice(&qd),
-        );
-        energies_match(&mut worst, [kinetic, robot.potential_energy(&q[..])], s);
+        let energies = [
+            robot.kinetic_energy(&q[..], &qd[..]),
+            robot.potential_energy(&q[..]),
+        ];
+        energies_match(&mut worst, energies, s);
     }
     for (k, w) in &worst.0 {
         println!("{name} runtime (snap {snap:e}) {k}: worst relative error {w:.2e}");
@@ -530,12 +529,11 @@ fn urdf_robots_converted_to_dh_match_pinocchio() {
                 let tau = dh.inverse_dynamics(&q[..], &qd[..], &qdd[..]);
                 let tau: Vec<f64> = tau.iter().zip(&f).map(|(t, f)| t - f).collect();
                 worst.matrix("tau", &DMatrix::from_column_slice(n, 1, &tau), &s["tau"]);
-                let kinetic = ArmDynamics::kinetic_energy(
-                    &dh,
-                    &DVector::from_column_slice(&q),
-                    &DVector::from_column_slice(&qd),
-                );
-                energies_match(&mut worst, [kinetic, dh.potential_energy(&q[..])], s);
+                let energies = [
+                    dh.kinetic_energy(&q[..], &qd[..]),
+                    dh.potential_energy(&q[..]),
+                ];
+                energies_match(&mut worst, energies, s);
             }
             for (k, w) in &worst.0 {
                 println!("{name} as {convention:?} DH {k}: worst relative error {w:.2e}");
