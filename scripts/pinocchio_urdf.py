@@ -442,7 +442,7 @@ CONVENTIONS = {
     "friction_included: false, tau has no damping/friction; joint_dynamics: see below; sampling: "
     "how the samples were drawn; generator: the script, the library versions and the worst "
     "relative error of each consistency check; samples: list of {q, qd, qdd, T, J0, D, Cqd, C, g, "
-    "tau, fd_qdd, K, V}.",
+    "tau, fd_qdd, K, V, com, Jcom}.",
     "robot": "The serial chain of URDF joints from the root link (or `base` when not null) to the "
     "link `tip`. The revolute, continuous and prismatic joints on that path are the robot's joints "
     "q, in path order (root first), named in `joint_names`; fixed joints are merged into their "
@@ -481,6 +481,9 @@ CONVENTIONS = {
     "fd_qdd": "aba(q, qd, tau): forward dynamics of `tau`, equal to qdd (to 1e-10, checked).",
     "K": "kinetic energy 1/2 qd' D qd = computeKineticEnergy(q, qd) (checked against each link's "
     "energy from finite differences of its pose).",
+    "com": "centre of mass of the bodies the joints move, root link frame = centerOfMass(q) "
+    "(checked: V = -M gravity . com, M = computeTotalMass).",
+    "Jcom": "3xn Jacobian of `com` = jacobianCenterOfMass(q) (checked: g = -M Jcom' gravity).",
     "V": "potential energy = computePotentialEnergy(q) = -sum_k m_k gravity . c_k over the bodies the "
     "joints move (centres of mass c_k in the root link frame; links fixed to the root link, which "
     "no joint moves, are not counted). Its change between two samples is checked against every "
@@ -537,6 +540,9 @@ def generate(robot):
         fd = pin.aba(model, data, qp, qd, tau).copy()
         kinetic = float(pin.computeKineticEnergy(model, data, qp, qd))
         potential = float(pin.computePotentialEnergy(model, data, qp))
+        com = pin.centerOfMass(model, data, qp).copy()
+        jcom = pin.jacobianCenterOfMass(model, data, qp).copy()
+        total = pin.computeTotalMass(model)
 
         # Consistency checks.
         note("T vs numpy FK", close(t, u.link_poses(dict(zip(chain, q)))[tip], 1e-12, "T vs numpy FK"))
@@ -554,6 +560,10 @@ def generate(robot):
         pot, kin = independent_energy(u, chain, q, qd)
         note("KE", close(0.5 * qd @ d @ qd, kin, 1e-7, "1/2 qd'D qd vs kinetic energy"))
         note("K", close(kinetic, kin, 1e-7, "computeKineticEnergy vs kinetic energy"))
+        note("V = -M g.com", close(potential, -total * np.array(GRAVITY) @ com, 1e-12,
+                                   "V vs the centre of mass"))
+        note("g = -M Jcom' g", close(g, -total * jcom.T @ np.array(GRAVITY), 1e-12,
+                                     "g vs the Jacobian of the centre of mass"))
         if samples:
             # Links fixed to the root add the same constant to `pot` at every q.
             first = samples[0]
@@ -583,6 +593,7 @@ def generate(robot):
             "q": lists(q), "qd": lists(qd), "qdd": lists(qdd),
             "T": lists(t), "J0": lists(j0), "D": lists(d), "Cqd": lists(cqd), "C": lists(c),
             "g": lists(g), "tau": lists(tau), "fd_qdd": lists(fd), "K": kinetic, "V": potential,
+            "com": lists(com), "Jcom": lists(jcom),
         })
 
     raw = path.read_bytes()

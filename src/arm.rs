@@ -23,13 +23,21 @@
 
 use dhgen_model::ChainRef;
 use nalgebra::allocator::Allocator;
-use nalgebra::{DefaultAllocator, Dim, Isometry3, OMatrix, OVector, U6, Vector6};
+use nalgebra::{
+    DefaultAllocator, Dim, Isometry3, OMatrix, OVector, Point3, U3, U6, Vector3, Vector6,
+};
 
-/// The allocator bounds every [`Arm`] needs: joint vectors, the 6×n Jacobian and n×n
+/// The allocator bounds every [`Arm`] needs: joint vectors, the 6×n and 3×n Jacobians and n×n
 /// matrices. Repeat `DefaultAllocator: ArmAllocator<A::Dof>` in generic code.
-pub trait ArmAllocator<D: Dim>: Allocator<D> + Allocator<U6, D> + Allocator<D, D> {}
+pub trait ArmAllocator<D: Dim>:
+    Allocator<D> + Allocator<U6, D> + Allocator<U3, D> + Allocator<D, D>
+{
+}
 
-impl<D: Dim, A> ArmAllocator<D> for A where A: Allocator<D> + Allocator<U6, D> + Allocator<D, D> {}
+impl<D: Dim, A> ArmAllocator<D> for A where
+    A: Allocator<D> + Allocator<U6, D> + Allocator<U3, D> + Allocator<D, D>
+{
+}
 
 /// A joint vector of an arm.
 pub type JointVector<A> = OVector<f64, <A as Arm>::Dof>;
@@ -161,6 +169,56 @@ where
         crate::recursive::potential_energy(chain, |i| {
             chain.bodies[i].value(q.get(i).copied().unwrap_or(0.0))
         })
+    }
+
+    /// The links' total mass `M` and centre of mass `c` in the world frame (links fixed to the
+    /// base, which no joint moves, are not counted; `c` is the world origin if `M` is 0):
+    /// Pinocchio's `centerOfMass`. The potential energy is `−M gravity · c`.
+    #[doc(alias = "centerOfMass")]
+    fn center_of_mass(&self, q: &OVector<f64, Self::Dof>) -> (f64, Point3<f64>) {
+        let chain = self.chain();
+        let (mut total, mut moment) = (0.0, Vector3::zeros());
+        crate::recursive::masses(
+            chain,
+            |i| chain.bodies[i].value(q.get(i).copied().unwrap_or(0.0)),
+            |_, mass, com| {
+                total += mass;
+                moment += com * mass;
+            },
+        );
+        let c = if total > 0.0 { moment / total } else { moment };
+        (total, Point3::new(c.x, c.y, c.z))
+    }
+
+    /// The Jacobian of the centre of mass, 3×n in world axes: `ċ = J_c q̇`, Pinocchio's
+    /// `jacobianCenterOfMass`; the gravity torques are `g(q) = −M J_cᵀ gravity`. The mass-weighted
+    /// mean of the Jacobians of the links' centres of mass (as
+    /// [`point_jacobian`](crate::velocity::point_jacobian) builds them from the tool's Jacobian
+    /// and pose); zero if the links have no mass.
+    #[doc(alias = "jacobianCenterOfMass")]
+    fn center_of_mass_jacobian(&self, q: &OVector<f64, Self::Dof>) -> OMatrix<f64, U3, Self::Dof> {
+        let chain = self.chain();
+        let j = self.jacobian(q);
+        let tool = self.fk(q).translation.vector;
+        let mut out = OMatrix::<f64, U3, Self::Dof>::zeros_generic(U3, self.dim());
+        let mut total = 0.0;
+        crate::recursive::masses(
+            chain,
+            |i| chain.bodies[i].value(q.get(i).copied().unwrap_or(0.0)),
+            |k, mass, com| {
+                // Body k's centre moves with joints 1..=k: column c gains
+                // m (v_c + ω_c × (com − tool)).
+                total += mass;
+                let offset = (com - tool) * mass;
+                for c in 0..=k.min(self.dof().saturating_sub(1)) {
+                    let column = j.fixed_view::<3, 1>(0, c) * mass
+                        + j.fixed_view::<3, 1>(3, c).cross(&offset);
+                    let mut target = out.column_mut(c);
+                    target += column;
+                }
+            },
+        );
+        if total > 0.0 { out / total } else { out }
     }
 
     /// Inverse dynamics τ(q, q̇, q̈).

@@ -163,13 +163,26 @@ pub(crate) fn potential_energy<T: Real>(
 ) -> T {
     let gravity = Vector3::from_fn(|a, _| k::<T>(chain.gravity[a]));
     let mut energy = T::zero();
+    masses(chain, value, |_, mass, com| {
+        energy -= gravity.dot(&com) * mass
+    });
+    energy
+}
+
+/// Each body's mass and centre of mass in the world frame at the joint values `value(k)`
+/// (offsets applied), by [`walk`], passed base to tip to `visit(k, mass, centre)`; a
+/// kinematics-only body is skipped.
+pub(crate) fn masses<T: Real>(
+    chain: ChainRef<'_>,
+    value: impl FnMut(usize) -> JointValue<T>,
+    mut visit: impl FnMut(usize, T, Vector3<T>),
+) {
     walk(chain, value, |i, r, p| {
         if let Some(b) = chain.bodies.get(i).and_then(|b| b.inertial.as_ref()) {
             let com = r * Vector3::from_fn(|a, _| k::<T>(b.com[a])) + p;
-            energy -= gravity.dot(&com) * k::<T>(b.mass);
+            visit(i, k(b.mass), com);
         }
     });
-    energy
 }
 
 /// `put` for a fixed-size array: `out[i] = v` (every index is below N; `get_mut` keeps the

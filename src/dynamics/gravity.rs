@@ -1,11 +1,12 @@
-//! The gravity torques from composite mass moments, and the potential energy they are the
-//! gradient of.
+//! The gravity torques from composite mass moments, the potential energy they are the
+//! gradient of, and the centre of mass.
 
 use super::joint_axis;
+use crate::ArmDynamics;
 use crate::Joints;
 use crate::robot::Robot;
 use crate::spatial::Motion;
-use nalgebra::{DVector, Vector3};
+use nalgebra::{DVector, Matrix3xX, Point3, Vector3};
 
 impl Robot {
     /// The gravity torques `g(q)`: the joint torques (forces) that hold the arm still
@@ -60,5 +61,29 @@ impl Robot {
         let q = self.check_len("potential_energy", "q", q);
         self.check_dynamics("potential_energy");
         crate::recursive::potential_energy(self.chain(), |i| self.joint_value(i, q[i]))
+    }
+
+    /// The links' total mass and centre of mass in the world frame at `q`
+    /// ([`ArmDynamics::center_of_mass`](crate::ArmDynamics::center_of_mass)).
+    ///
+    /// # Panics
+    /// If `q.len() != self.dof()`, or if the robot has no mass properties.
+    #[doc(alias = "centerOfMass")]
+    pub fn center_of_mass(&self, q: &(impl Joints<f64> + ?Sized)) -> (f64, Point3<f64>) {
+        let q = self.check_len("center_of_mass", "q", q);
+        self.check_dynamics("center_of_mass");
+        ArmDynamics::center_of_mass(self, &DVector::from_column_slice(q))
+    }
+
+    /// The Jacobian of the centre of mass, 3×n in world axes
+    /// ([`ArmDynamics::center_of_mass_jacobian`](crate::ArmDynamics::center_of_mass_jacobian)).
+    ///
+    /// # Panics
+    /// If `q.len() != self.dof()`, or if the robot has no mass properties.
+    #[doc(alias = "jacobianCenterOfMass")]
+    pub fn center_of_mass_jacobian(&self, q: &(impl Joints<f64> + ?Sized)) -> Matrix3xX<f64> {
+        let q = self.check_len("center_of_mass_jacobian", "q", q);
+        self.check_dynamics("center_of_mass_jacobian");
+        ArmDynamics::center_of_mass_jacobian(self, &DVector::from_column_slice(q))
     }
 }

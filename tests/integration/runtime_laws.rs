@@ -276,6 +276,70 @@ fn gravity_is_the_gradient_of_the_potential_energy() {
     });
 }
 
+/// The centre of mass carries the potential energy, `P = −M gravity · c` with `M` the links'
+/// masses summed, and its Jacobian is its derivative and gives gravity, `g = −M J_cᵀ gravity`.
+#[test]
+fn centre_of_mass_carries_the_potential_energy_and_gravity() {
+    for_all_states(|robot, q, qd, _| {
+        let (mass, c) = robot.center_of_mass(q);
+        let links: f64 = robot
+            .model()
+            .links
+            .iter()
+            .map(|l| l.inertial.unwrap().mass)
+            .sum();
+        ensure_close("M", &[mass], &[links], 1e-14)?;
+        let gravity = Vector3::from(robot.model().gravity);
+        ensure_close(
+            "P",
+            &[-mass * gravity.dot(&c.coords)],
+            &[robot.potential_energy(q)],
+            1e-12,
+        )?;
+        let jc = robot.center_of_mass_jacobian(q);
+        let rate = (robot.center_of_mass(&along(q, qd, H)).1
+            - robot.center_of_mass(&along(q, qd, -H)).1)
+            / (2.0 * H);
+        ensure_close(
+            "ċ",
+            (&jc * DVector::from_column_slice(qd)).as_slice(),
+            rate.as_slice(),
+            FD_TOL,
+        )?;
+        let g = -(jc.transpose() * gravity) * mass;
+        ensure_close("g", g.as_slice(), robot.gravity(q).as_slice(), 1e-12)
+    });
+}
+
+/// Generated arms take the trait's centre of mass from their own pose and Jacobian: the
+/// runtime path's numbers.
+#[test]
+fn generated_arms_have_the_runtime_centre_of_mass() {
+    use crate::catalogue::{panda, puma560};
+    use dhgen::ArmDynamics;
+    macro_rules! check {
+        ($m:ident) => {{
+            let name = stringify!($m);
+            let q = dhgen::nalgebra::SVector::<f64, { $m::DOF }>::from_fn(|i, _| {
+                (0.9 * i as f64 + 0.2).sin()
+            });
+            let robot = runtime(name);
+            let (mass, c) = $m::Robot.center_of_mass(&q);
+            let (want_mass, want_c) = robot.center_of_mass(q.as_slice());
+            assert!(close(&[mass], &[want_mass], 1e-14), "{name} M");
+            assert!(
+                close(c.coords.as_slice(), want_c.coords.as_slice(), 1e-14),
+                "{name} c"
+            );
+            let jc = $m::Robot.center_of_mass_jacobian(&q);
+            let want = robot.center_of_mass_jacobian(q.as_slice());
+            assert!(close(jc.as_slice(), want.as_slice(), 1e-13), "{name} J_c");
+        }};
+    }
+    check!(puma560);
+    check!(panda);
+}
+
 /// Along the motion through (q, q̇) with acceleration q̈, the energy `T + P` changes at the
 /// power the joint torques put in, friction's share taken out: `d(T + P)/dt = q̇ᵀ (τ − f)`
 /// with `τ = τ(q, q̇, q̈)` (what makes `Ḋ − 2C` skew-symmetric physical).

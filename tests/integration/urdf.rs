@@ -99,6 +99,19 @@ pub(crate) fn energies_match(worst: &mut Worst, [kinetic, potential]: [f64; 2], 
     worst.check("V", potential, s["V"].as_f64().unwrap());
 }
 
+/// The centre of mass and its Jacobian against Pinocchio's `centerOfMass` and
+/// `jacobianCenterOfMass` (`com`, `Jcom`).
+pub(crate) fn centre_matches(
+    worst: &mut Worst,
+    (centre, jacobian): (&[f64], &DMatrix<f64>),
+    s: &Value,
+) {
+    for (got, want) in centre.iter().zip(vector(&s["com"])) {
+        worst.check("com", *got, want);
+    }
+    worst.matrix("Jcom", jacobian, &s["Jcom"]);
+}
+
 /// The friction torque dhgen adds to τ (viscous·q̇ + Coulomb·sign q̇).
 pub(crate) fn friction(robot: &Robot, qd: &[f64]) -> Vec<f64> {
     robot
@@ -170,6 +183,10 @@ fn check_runtime(name: &str, snap: f64) {
             robot.potential_energy(&q[..]),
         ];
         energies_match(&mut worst, energies, s);
+        let jc = robot.center_of_mass_jacobian(&q[..]);
+        let jc = DMatrix::from_fn(3, n, |r, c| jc[(r, c)]);
+        let centre = robot.center_of_mass(&q[..]).1;
+        centre_matches(&mut worst, (centre.coords.as_slice(), &jc), s);
     }
     for (k, w) in &worst.0 {
         println!("{name} runtime (snap {snap:e}) {k}: worst relative error {w:.2e}");
@@ -351,7 +368,9 @@ fn unphysical_inertials_are_errors_only_where_a_joint_moves_them() {
 /// The generated modules of the same files (`robot!(pub mod m = "x.urdf", tip = "...")`),
 /// against the same references, and against the runtime path.
 mod generated {
-    use super::{Worst, data, energies_match, friction, qdd_matches, robot, vector};
+    use super::{
+        Worst, centre_matches, data, energies_match, friction, qdd_matches, robot, vector,
+    };
     use crate::catalogue::{
         baxter_left, centauro_arm, double_pendulum_urdf, g1_arm, hextilt_arm, human_arm,
         kinova_urdf, panda_urdf, random_urdf_2, random_urdf_3, tiago_arm, ur5_urdf, xarm7_urdf,
@@ -401,6 +420,11 @@ mod generated {
                         [st.kinetic_energy(&qd), st.potential_energy()],
                         s,
                     );
+                    let qv = nalgebra::SVector::<f64, N>::from(q);
+                    let jc = dhgen::ArmDynamics::center_of_mass_jacobian(&r::Robot, &qv);
+                    let jc = DMatrix::from_fn(3, N, |a, b| jc[(a, b)]);
+                    let (_, centre) = dhgen::ArmDynamics::center_of_mass(&r::Robot, &qv);
+                    centre_matches(&mut worst, (centre.coords.as_slice(), &jc), s);
                     // The two paths of dhgen agree more closely still.
                     let rt = runtime.inverse_dynamics(&q[..], &qd[..], &qdd[..]);
                     for a in 0..N {
