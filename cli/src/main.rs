@@ -6,7 +6,7 @@
 //!   path;
 //! - `dhgen emit ROBOT.toml [-o FILE] [--name MOD] [--derivatives] [--regressor]`: the module `robot!`
 //!   generates, formatted;
-//! - `dhgen latex ROBOT.toml`: D(q), c_ijk and g(q) as LaTeX equations;
+//! - `dhgen latex ROBOT.toml`: D(q), c_ijk, g(q) and P(q) as LaTeX equations;
 //! - `dhgen ops ROBOT.toml`: operation counts of the generated functions;
 //! - `dhgen convert ROBOT --to dh|mdh|toml|urdf`: between URDF and the description format;
 //! - `dhgen params ROBOT [--latex]`: the inertial parameters and the base parameters;
@@ -88,8 +88,8 @@ enum Command {
         #[arg(long)]
         regressor: bool,
     },
-    /// Print D(q), the Christoffel symbols c_ijk and g(q) as LaTeX equations, from the
-    /// symbolic engine.
+    /// Print D(q), the Christoffel symbols c_ijk, g(q) and the potential energy P(q) as LaTeX
+    /// equations, from the symbolic engine.
     Latex {
         #[command(flatten)]
         robot: Source,

@@ -475,12 +475,19 @@ fn emit_writes_a_file_and_renames_the_module() {
 fn latex_prints_the_equations() {
     let out = stdout(&["latex", "robots/puma560.toml"]);
     assert!(
-        out.starts_with("% Unimation PUMA 560: D(q), Christoffel symbols and g(q)"),
+        out.starts_with("% Unimation PUMA 560: D(q), Christoffel symbols, g(q) and P(q)"),
         "{out}"
     );
-    // D, c_ijk, g, and (spherical wrist) det J11 / det J22.
-    assert_eq!(out.matches("\\begin{align*}").count(), 4, "{out}");
-    assert_eq!(out.matches("\\end{align*}").count(), 4, "{out}");
+    // D, c_ijk, g, P, and (spherical wrist) det J11 / det J22.
+    assert_eq!(out.matches("\\begin{align*}").count(), 5, "{out}");
+    assert_eq!(out.matches("\\end{align*}").count(), 5, "{out}");
+    // P at q = 0: 154.6 + 1.024 + 8.744 + 0.02825 (the constant, c_2, c_2 c_3, c_2 c_3 c_5
+    // terms) = the runtime's.
+    assert!(
+        out.contains("  P &= 154.6 + 1.024\\,c_2 + 37.23\\,s_2 + 8.744\\,c_2 c_3"),
+        "{out}"
+    );
+    assert!((154.6 + 1.024 + 8.744 + 0.02825 - puma().potential_energy(&[0.0; 6])).abs() < 0.06);
     assert!(out.contains("  \\det J_{22} &= -s_5"), "{out}");
     assert!(out.contains("  d_{11} &= 1.554 + "), "{out}");
     // g_2 at q = 0 is 37.23 + 0.2489 (the c_2 and c_2 c_3 terms) = g(0)[1] of the runtime.

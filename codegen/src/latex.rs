@@ -1,4 +1,4 @@
-//! LaTeX for the normal form: D(q), the Christoffel symbols c_ijk and g(q) written as
+//! LaTeX for the normal form: D(q), the Christoffel symbols c_ijk, g(q) and P(q) written as
 //! equations, straight from the polynomials the generator works with.
 //!
 //! A term is a coefficient and a product of symbols: `c_2` = cos θ₂, `s_2` = sin θ₂ (θ_j
@@ -207,8 +207,8 @@ pub enum Unavailable {
     },
 }
 
-/// D(q) (`d_ij`, i ≤ j), the Christoffel symbols (`c_ijk`, i ≤ j) and g(q) of `model` as
-/// LaTeX `align*` blocks, each non-zero entry one equation, with `%` comments saying what
+/// D(q) (`d_ij`, i ≤ j), the Christoffel symbols (`c_ijk`, i ≤ j), g(q) and the potential
+/// energy P(q) (where its normal form fits g's budget) of `model` as LaTeX `align*` blocks, each non-zero entry one equation, with `%` comments saying what
 /// the symbols mean.
 pub fn dynamics_equations(model: &RobotModel, style: &Style) -> Result<String, Unavailable> {
     if !model.has_dynamics() {
@@ -292,6 +292,17 @@ pub fn dynamics_equations(model: &RobotModel, style: &Style) -> Result<String, U
             g_lines.push(equation(format!("g_{{{}}}", idx(&[i])), gi));
         }
     }
+    // The potential energy, of which g is the gradient.
+    let potential = crate::derive::within_budget(chain, crate::derive::GRAVITY_WORK, |b| {
+        crate::derive::poly_chain(chain, b).potential_energy().poly
+    });
+    let p_lines = potential.map(|p| {
+        if p.is_zero() {
+            Vec::new()
+        } else {
+            vec![equation("P".to_string(), &p)]
+        }
+    });
     // Arms with a spherical wrist: the decoupled singularity conditions (section 5.6.1).
     let wrist_lines: Option<Vec<String>> =
         crate::derive::singularity::decoupled_determinants(chain).map(|(j11, j22)| {
@@ -304,7 +315,7 @@ pub fn dynamics_equations(model: &RobotModel, style: &Style) -> Result<String, U
     let mut out = String::new();
     let _ = writeln!(
         out,
-        "% {}: D(q), Christoffel symbols and g(q) from dhgen's symbolic engine (normal form).",
+        "% {}: D(q), Christoffel symbols, g(q) and P(q) from dhgen's symbolic engine (normal form).",
         model.description.as_deref().unwrap_or(&model.name)
     );
     let _ = writeln!(
@@ -339,6 +350,24 @@ pub fn dynamics_equations(model: &RobotModel, style: &Style) -> Result<String, U
         "\n% Gravity torques g(q); entries not listed are zero."
     );
     out += &block(g_lines);
+    match p_lines {
+        Some(lines) => {
+            let _ = writeln!(
+                out,
+                "\n% Potential energy P(q) = -sum_k m_k gravity . c_k, centres of mass in the world frame\n\
+                 % (zero at the world origin); g_k = dP/dq_k."
+            );
+            out += &block(lines);
+        }
+        None => {
+            let _ = writeln!(
+                out,
+                "\n% Potential energy P(q): its closed form is too large to print (more than {} term\n\
+                 % operations); `dhgen eval` evaluates it.",
+                crate::derive::GRAVITY_WORK
+            );
+        }
+    }
     if let Some(lines) = wrist_lines {
         let _ = writeln!(
             out,
@@ -460,6 +489,17 @@ mod tests {
             assert!(!text.contains(zero), "{zero} in {text}");
         }
         assert!(text.contains("g_{1} &="), "{text}");
+        // The text's P = (m1 lc1 + m2 l1) g s1 + m2 lc2 g s12, gravity along −y:
+        // (2·0.5 + 1.5·1)·9.81 = 24.525 and 1.5·0.4·9.81 = 5.886.
+        let cumulative = Style {
+            cumulative: true,
+            ..Style::default()
+        };
+        let text = dynamics_equations(&model, &cumulative).unwrap();
+        assert!(
+            text.contains("  P &= 24.53\\,s_1 + 5.886\\,s_{12}\n"),
+            "{text}"
+        );
     }
 
     #[test]

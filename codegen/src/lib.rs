@@ -11,7 +11,7 @@
 //! - [`emit`]: tokens, one `let` per node, functions split under a statement limit;
 //! - [`module`]: the generated module, driven by its table of quantities
 //!   ([`module::quantities`]);
-//! - [`latex`]: the normal forms of D(q), c_ijk and g(q) as LaTeX equations (`dhgen latex`).
+//! - [`latex`]: the normal forms of D(q), c_ijk, g(q) and P(q) as LaTeX equations (`dhgen latex`).
 
 pub mod chain;
 pub mod derive;
