@@ -195,6 +195,20 @@ where
     /// mean of the Jacobians of the links' centres of mass (as
     /// [`point_jacobian`](crate::velocity::point_jacobian) builds them from the tool's Jacobian
     /// and pose); zero if the links have no mass.
+    ///
+    /// ```
+    /// use dhgen::nalgebra::{SVector, Vector3};
+    /// use dhgen::ArmDynamics;
+    /// dhgen::robot!(mod puma = "robots/puma560.toml");
+    ///
+    /// let q = SVector::<f64, 6>::new(0.2, -0.3, 0.4, 0.5, 0.6, 0.7);
+    /// let (mass, c) = puma::Robot.center_of_mass(&q);
+    /// let jc = puma::Robot.center_of_mass_jacobian(&q);
+    /// // Gravity acts on the whole arm at its centre of mass.
+    /// let gravity = Vector3::new(0.0, 0.0, -9.81);
+    /// assert!((-(jc.transpose() * gravity) * mass - puma::gravity(&q)).norm() < 1e-10);
+    /// assert!((puma::potential_energy(&q) + mass * gravity.dot(&c.coords)).abs() < 1e-10);
+    /// ```
     #[doc(alias = "jacobianCenterOfMass")]
     fn center_of_mass_jacobian(&self, q: &OVector<f64, Self::Dof>) -> OMatrix<f64, U3, Self::Dof> {
         let chain = self.chain();
