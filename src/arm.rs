@@ -39,6 +39,18 @@ impl<D: Dim, A> ArmAllocator<D> for A where
 {
 }
 
+/// The joint values of `chain` at `q` (offsets applied), as the trait's default methods walk
+/// the chain.
+fn values<'c, D: Dim>(
+    chain: ChainRef<'c>,
+    q: &'c OVector<f64, D>,
+) -> impl FnMut(usize) -> dhgen_model::JointValue<f64> + 'c
+where
+    DefaultAllocator: Allocator<D>,
+{
+    move |i| chain.bodies[i].value(q.get(i).copied().unwrap_or(0.0))
+}
+
 /// A joint vector of an arm.
 pub type JointVector<A> = OVector<f64, <A as Arm>::Dof>;
 
@@ -165,10 +177,7 @@ where
     /// path's algorithm); generated modules override it.
     #[doc(alias = "computePotentialEnergy")]
     fn potential_energy(&self, q: &OVector<f64, Self::Dof>) -> f64 {
-        let chain = self.chain();
-        crate::recursive::potential_energy(chain, |i| {
-            chain.bodies[i].value(q.get(i).copied().unwrap_or(0.0))
-        })
+        crate::recursive::potential_energy(self.chain(), values(self.chain(), q))
     }
 
     /// The links' total mass `M` and centre of mass `c` in the world frame (links fixed to the
@@ -178,14 +187,10 @@ where
     fn center_of_mass(&self, q: &OVector<f64, Self::Dof>) -> (f64, Point3<f64>) {
         let chain = self.chain();
         let (mut total, mut moment) = (0.0, Vector3::zeros());
-        crate::recursive::masses(
-            chain,
-            |i| chain.bodies[i].value(q.get(i).copied().unwrap_or(0.0)),
-            |_, mass, com| {
-                total += mass;
-                moment += com * mass;
-            },
-        );
+        crate::recursive::masses(chain, values(chain, q), |_, mass, com| {
+            total += mass;
+            moment += com * mass;
+        });
         let c = if total > 0.0 { moment / total } else { moment };
         (total, Point3::new(c.x, c.y, c.z))
     }
@@ -216,22 +221,15 @@ where
         let tool = self.fk(q).translation.vector;
         let mut out = OMatrix::<f64, U3, Self::Dof>::zeros_generic(U3, self.dim());
         let mut total = 0.0;
-        crate::recursive::masses(
-            chain,
-            |i| chain.bodies[i].value(q.get(i).copied().unwrap_or(0.0)),
-            |k, mass, com| {
-                // Body k's centre moves with joints 1..=k: column c gains
-                // m (v_c + ω_c × (com − tool)).
-                total += mass;
-                let offset = (com - tool) * mass;
-                for c in 0..=k.min(self.dof().saturating_sub(1)) {
-                    let column = j.fixed_view::<3, 1>(0, c) * mass
-                        + j.fixed_view::<3, 1>(3, c).cross(&offset);
-                    let mut target = out.column_mut(c);
-                    target += column;
-                }
-            },
-        );
+        crate::recursive::masses(chain, values(chain, q), |k, mass, com| {
+            // Body k's centre moves with joints 1..=k: column c gains m (v_c + ω_c × (com − tool)).
+            total += mass;
+            let offset = com - tool;
+            for c in 0..(k + 1).min(out.ncols()) {
+                let mut column = out.column_mut(c);
+                column += crate::velocity::moved_column(&j, c, &offset) * mass;
+            }
+        });
         if total > 0.0 { out / total } else { out }
     }
 

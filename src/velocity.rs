@@ -1,7 +1,8 @@
 //! Velocity kinematics (chapter 5) for any [`Arm`]: the analytic Jacobian for ZYZ Euler
-//! angles, the Jacobian of any point on any link, `J̇(q, q̇)`, manipulability and condition number, singularity tests by SVD, the
-//! decoupled singularity conditions of spherical-wrist arms, and inverse velocity and
-//! acceleration with a damped pseudo-inverse near singularities.
+//! angles, the Jacobian of any point on any link, `J̇(q, q̇)`, manipulability and condition
+//! number, singularity tests by SVD, the decoupled singularity conditions of spherical-wrist
+//! arms, and inverse velocity and acceleration with a damped pseudo-inverse near
+//! singularities.
 //!
 //! Everything works from [`Arm::jacobian`], so it is the same code for generated modules and
 //! the runtime [`Robot`](crate::Robot), and allocates nothing for generated robots
@@ -505,14 +506,36 @@ where
     let offset = p.coords - arm.fk(q).translation.vector;
     for c in 0..arm.dof() {
         if c < link {
-            let shift = j.fixed_view::<3, 1>(3, c).cross(&offset);
-            let mut v = j.fixed_view_mut::<3, 1>(0, c);
-            v += shift;
+            let v = moved_column(&j, c, &offset);
+            j.fixed_view_mut::<3, 1>(0, c).copy_from(&v);
         } else {
             j.column_mut(c).fill(0.0);
         }
     }
     Some(j)
+}
+
+/// Column `c` of the linear rows of the Jacobian of a point at `offset` from the tool origin
+/// (world axes), from the tool's Jacobian `j`: `v_c + ω_c × offset`, where joint c moves the
+/// point (what [`point_jacobian`] and the centre of mass's Jacobian are made of).
+pub(crate) fn moved_column<D: Dim>(
+    j: &OMatrix<f64, U6, D>,
+    c: usize,
+    offset: &Vector3<f64>,
+) -> Vector3<f64>
+where
+    DefaultAllocator: Allocator<U6, D>,
+{
+    // Outside the generic bound (nalgebra's inference would take `Allocator<U6, D>` for the
+    // cross product's).
+    fn moved(v: Vector3<f64>, w: Vector3<f64>, offset: &Vector3<f64>) -> Vector3<f64> {
+        v + w.cross(offset)
+    }
+    moved(
+        j.fixed_view::<3, 1>(0, c).into_owned(),
+        j.fixed_view::<3, 1>(3, c).into_owned(),
+        offset,
+    )
 }
 
 /// `J̇(q, q̇) q̇` from the Jacobian `j` at q: the tool acceleration `[a; α]` at zero joint

@@ -208,8 +208,8 @@ pub enum Unavailable {
 }
 
 /// D(q) (`d_ij`, i ≤ j), the Christoffel symbols (`c_ijk`, i ≤ j), g(q) and the potential
-/// energy P(q) (where its normal form fits g's budget) of `model` as LaTeX `align*` blocks, each non-zero entry one equation, with `%` comments saying what
-/// the symbols mean.
+/// energy P(q) (where its normal form fits g's budget) of `model` as LaTeX `align*` blocks,
+/// each non-zero entry one equation, with `%` comments saying what the symbols mean.
 pub fn dynamics_equations(model: &RobotModel, style: &Style) -> Result<String, Unavailable> {
     if !model.has_dynamics() {
         return Err(Unavailable::NoDynamics);
@@ -293,10 +293,7 @@ pub fn dynamics_equations(model: &RobotModel, style: &Style) -> Result<String, U
         }
     }
     // The potential energy, of which g is the gradient.
-    let potential = crate::derive::within_budget(chain, crate::derive::GRAVITY_WORK, |b| {
-        crate::derive::poly_chain(chain, b).potential_energy().poly
-    });
-    let p_lines = potential.map(|p| {
+    let p_lines = dv.potential_energy_poly().map(|p| {
         if p.is_zero() {
             Vec::new()
         } else {

@@ -62,10 +62,7 @@ pub fn kinetic_energy_along(rc: &RingChain<'_, E>, graph: &SharedGraph) -> E {
 /// the whole arm: `g(q)` does not depend on it, `P` does), so only those are dropped.
 pub fn potential_energy(dv: &Derivation<'_>) -> (SharedGraph, Vec<E>) {
     let chain = dv.chain;
-    let expanded = super::within_budget(chain, super::GRAVITY_WORK, |budget| {
-        super::poly_chain(chain, budget).potential_energy().poly
-    })
-    .map(|poly| {
+    let expanded = dv.potential_energy_poly().map(|poly| {
         let graph = SharedGraph::default();
         let e = super::polys_to_exprs(&[poly], &graph, chain);
         (graph, e)

@@ -104,6 +104,13 @@ impl<'c> Derivation<'c> {
             .as_ref()
     }
 
+    /// P(q) in the normal form, on g's budget; `None` when it is too large to build.
+    pub fn potential_energy_poly(&self) -> Option<Poly> {
+        within_budget(self.chain, GRAVITY_WORK, |b| {
+            poly_chain(self.chain, b).potential_energy().poly
+        })
+    }
+
     /// g(q) in the normal form; `None` when it is too large to build.
     pub fn gravity_polys(&self) -> Option<&Vec<Poly>> {
         self.gravity
