@@ -1,6 +1,7 @@
 //! Generated code against the runtime path, per catalogue robot with dynamics and per
 //! quantity: `{robot}/{quantity}/{generated_f64|generated_f32|runtime}`, plus the
-//! controller's combined "all terms at one q" (D, C, g, J). Every call takes the next of 64
+//! controller's combined "all terms at one q" (D, C, g, J), and the task-space dynamics of
+//! the tool (`task_space/{robot}/...`) for the PUMA 560 and the Panda. Every call takes the next of 64
 //! fixed random states, so the optimiser cannot fold a constant configuration.
 //!
 //! `cargo bench --bench generated`, then `cargo run --release --example bench_report`.
@@ -183,7 +184,54 @@ macro_rules! bench_robot {
     }};
 }
 
+/// Task-space dynamics of the tool (`dhgen::task_space::tool`: Λ, J̄, μ, p) from the generated
+/// arm's D, J, J̇ q̇, bias and g, against the same function on the runtime path:
+/// `task_space/{robot}/{generated_f64|runtime}`.
+macro_rules! bench_task_space {
+    ($c:expr, $m:ident) => {{
+        use dhgen::nalgebra::{DVector, SVector};
+        const N: usize = $m::DOF;
+        let name = stringify!($m);
+        let robot =
+            Robot::from_toml_file(format!("{}/robots/{name}.toml", env!("CARGO_MANIFEST_DIR")))
+                .unwrap();
+        let s = samples::<N>(&robot, 0x5EED_0000 + N as u64);
+        let fixed: Vec<_> = s
+            .iter()
+            .map(|s| (SVector::from(s.q), SVector::from(s.qd)))
+            .collect();
+        let dynamic: Vec<_> = s
+            .iter()
+            .map(|s| {
+                (
+                    DVector::from_column_slice(&s.q),
+                    DVector::from_column_slice(&s.qd),
+                )
+            })
+            .collect();
+        let c: &mut Criterion = &mut *$c;
+        let mut group = c.benchmark_group("task_space");
+        let mut i = 0;
+        group.bench_function(BenchmarkId::new(name, "generated_f64"), |b| {
+            b.iter(|| {
+                let (q, qd) = black_box(&fixed[i % STATES]);
+                i += 1;
+                black_box(dhgen::task_space::tool(&$m::Robot, q, qd).ok())
+            })
+        });
+        group.bench_function(BenchmarkId::new(name, "runtime"), |b| {
+            b.iter(|| {
+                let (q, qd) = black_box(&dynamic[i % STATES]);
+                i += 1;
+                black_box(dhgen::task_space::tool(&robot, q, qd).ok())
+            })
+        });
+    }};
+}
+
 fn generated(c: &mut Criterion) {
+    bench_task_space!(c, puma560);
+    bench_task_space!(c, panda);
     bench_robot!(c, puma560);
     bench_robot!(c, panda);
     bench_robot!(c, planar_elbow);

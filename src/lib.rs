@@ -99,6 +99,9 @@ pub mod ik;
 // Velocity kinematics (chapter 5): analytic Jacobian, J̇, singularities, inverse velocity.
 pub mod velocity;
 
+// Task-space (operational-space) dynamics: Λ, J̄, μ, p and the null-space torques.
+pub mod task_space;
+
 #[cfg(feature = "std")]
 mod dynamics;
 #[cfg(feature = "std")]

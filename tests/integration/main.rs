@@ -50,6 +50,7 @@ mod rtb_models;
 mod runtime_laws;
 mod runtime_reference;
 mod singular_inertia;
+mod task_space;
 mod trajectory_lspb;
 mod trajectory_min_time;
 mod trajectory_multi;

@@ -1,0 +1,321 @@
+//! Task-space (operational-space) dynamics, `dhgen::task_space`:
+//! - against Robotics Toolbox 1.5.0 (tests/data/rtb_task_space.json, made by
+//!   scripts/rtb_task_space.py from the Toolbox's own D, J, J̇, C and g, and checked there
+//!   against its `inertia_x`, `coriolis_x`, `gravload_x` and forward dynamics);
+//! - against the law it states, on seeded states of arms with prismatic joints, a modified
+//!   table with base, tool and tilted gravity, motors and friction: under the torques
+//!   `Jᵀ F + Nᵀ τ₀`, forward dynamics gives the task acceleration `J q̈ + J̇ q̇ = Λ⁻¹ (F − μ − p)`,
+//!   whatever `τ₀`; and `J J̄ = I`;
+//! - generated arms against the runtime path, without allocation;
+//! - its errors: a task the arm cannot hold, a kinematic singularity, a singular `D`, and
+//!   non-finite input.
+
+use crate::catalogue::{panda, planar_elbow, puma560, scara, stanford};
+use crate::support::{allocations_during, fixture, runtime};
+use dhgen::nalgebra::{DMatrix, DVector, DimName, OMatrix, OVector, SVector, U3, U6};
+use dhgen::task_space::{TaskDynamics, TaskSpaceError, tool, tool_position};
+use dhgen::{Arm, ArmDynamics, Robot};
+use serde_json::Value;
+use std::f64::consts::PI;
+
+/// `|a − b|_max / max(1, |b|_max)`.
+fn relative(a: &[f64], b: &[f64]) -> f64 {
+    assert_eq!(a.len(), b.len());
+    let scale = b.iter().fold(1.0f64, |m, x| m.max(x.abs()));
+    a.iter()
+        .zip(b)
+        .map(|(x, y)| (x - y).abs())
+        .fold(0.0, f64::max)
+        / scale
+}
+
+/// A seeded stream of states: `q` within the joint limits (±π where none), `q̇` in ±2.
+fn states(robot: &Robot, count: usize, seed: u64) -> Vec<(DVector<f64>, DVector<f64>)> {
+    let mut x = seed | 1;
+    let mut uniform = move || {
+        x ^= x << 13;
+        x ^= x >> 7;
+        x ^= x << 17;
+        (x >> 11) as f64 / (1u64 << 53) as f64
+    };
+    (0..count)
+        .map(|_| {
+            let q = DVector::from_iterator(
+                robot.dof(),
+                robot.model().links.iter().map(|l| {
+                    let [lo, hi] = l.limits.unwrap_or([-PI, PI]);
+                    lo + (hi - lo) * uniform()
+                }),
+            );
+            let qd = DVector::from_fn(robot.dof(), |_, _| 4.0 * uniform() - 2.0);
+            (q, qd)
+        })
+        .collect()
+}
+
+fn matrix(v: &Value) -> DMatrix<f64> {
+    let rows: Vec<Vec<f64>> = serde_json::from_value(v.clone()).unwrap();
+    DMatrix::from_fn(rows.len(), rows[0].len(), |i, j| rows[i][j])
+}
+
+fn vector(v: &Value) -> Vec<f64> {
+    serde_json::from_value(v.clone()).unwrap()
+}
+
+/// The task's Λ, μ, p and J̄ᵀ as row-major plain vectors.
+fn parts<M: DimName, D: dhgen::nalgebra::Dim>(t: &TaskDynamics<M, D>) -> [Vec<f64>; 4]
+where
+    dhgen::nalgebra::DefaultAllocator: dhgen::nalgebra::allocator::Allocator<M, D>
+        + dhgen::nalgebra::allocator::Allocator<M, M>
+        + dhgen::nalgebra::allocator::Allocator<M>
+        + dhgen::nalgebra::allocator::Allocator<D, D>
+        + dhgen::nalgebra::allocator::Allocator<D>,
+{
+    let rows = |m: &[f64], r: usize, c: usize| -> Vec<f64> {
+        (0..r * c).map(|k| m[(k % c) * r + k / c]).collect()
+    };
+    let (m, n) = t.inverse_transpose().shape();
+    [
+        rows(t.inertia().as_slice(), m, m),
+        t.coriolis().as_slice().to_vec(),
+        t.gravity().as_slice().to_vec(),
+        rows(t.inverse_transpose().as_slice(), m, n),
+    ]
+}
+
+#[test]
+fn matches_the_toolbox() {
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/data/rtb_task_space.json"
+    );
+    let data: Value = serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
+    let robots = data["robots"].as_array().unwrap();
+    let names: Vec<&str> = robots.iter().map(|r| r["name"].as_str().unwrap()).collect();
+    assert_eq!(names, ["Panda", "Puma560", "Stanford", "UR10"]);
+    for r in robots {
+        let robot = Robot::from_toml_str(r["toml"].as_str().unwrap()).unwrap();
+        let mut worst = [0.0f64; 4];
+        for s in r["samples"].as_array().unwrap() {
+            let q = DVector::from_vec(vector(&s["q"]));
+            let qd = DVector::from_vec(vector(&s["qd"]));
+            let ours = match r["task"].as_str().unwrap() {
+                "tool" => parts(&tool(&robot, &q, &qd).unwrap()),
+                other => panic!("task {other}"),
+            };
+            let theirs = [
+                matrix(&s["Lambda"]).transpose().as_slice().to_vec(),
+                vector(&s["mu"]),
+                vector(&s["p"]),
+                matrix(&s["JbarT"]).transpose().as_slice().to_vec(),
+            ];
+            for k in 0..4 {
+                worst[k] = worst[k].max(relative(&ours[k], &theirs[k]));
+            }
+        }
+        eprintln!("{}: Λ, μ, p, J̄ᵀ worst relative error {worst:?}", r["name"]);
+        assert!(worst.iter().all(|&e| e < 1e-9), "{}: {worst:?}", r["name"]);
+    }
+}
+
+/// The largest over smallest eigenvalue of a symmetric matrix.
+fn condition(m: DMatrix<f64>) -> f64 {
+    let e = m.symmetric_eigenvalues();
+    e.max() / e.min()
+}
+
+/// The law of task-space dynamics on `count` seeded states of `robot`, for the task `$task`
+/// (`tool` or `tool_position`) with rows `$m`: returns the worst relative residual, the
+/// number of states checked, and the largest null-space torque seen.
+macro_rules! law {
+    ($robot:expr, $task:ident, $m:ty, $count:expr) => {{
+        let rows = <$m as DimName>::DIM;
+        let robot: &Robot = $robot;
+        let (mut worst, mut checked, mut null) = (0.0f64, 0usize, 0.0f64);
+        for (k, (q, qd)) in states(robot, $count, 0x9E37_79B9_7F4A_7C15 ^ robot.dof() as u64)
+            .into_iter()
+            .enumerate()
+        {
+            let task = match $task(robot, &q, &qd) {
+                Ok(task) => task,
+                Err(TaskSpaceError::SingularTask) => continue,
+                Err(e) => panic!("{}: {e} at {q}", robot.model().name),
+            };
+            // Near a singularity Λ grows as 1/σ² and the law loses digits with it.
+            let mobility = DMatrix::from_fn(rows, rows, |i, j| task.mobility()[(i, j)]);
+            if condition(mobility) > 1e8 {
+                continue;
+            }
+            checked += 1;
+            let f = OVector::<f64, $m>::from_fn(|i, _| 10.0 * ((i + k) as f64 * 1.3).sin());
+            let tau0 = DVector::from_fn(robot.dof(), |i, _| 5.0 * ((i * 7 + k) as f64).cos());
+            let null_torque = task.null_space_torque(&tau0);
+            null = null.max(null_torque.amax());
+            let tau = task.torque(&f) + null_torque;
+            let qdd = ArmDynamics::forward_dynamics(robot, &q, &qd, &tau).unwrap();
+            let a = Arm::jacobian(robot, &q) * qdd + Arm::jdot_qdot(robot, &q, &qd);
+            let achieved = a.rows(0, rows).into_owned();
+            let predicted = task.acceleration(&f);
+            worst = worst.max(relative(achieved.as_slice(), predicted.as_slice()));
+            // The force for an acceleration gives that acceleration back.
+            let back = task.acceleration(&task.force(&predicted));
+            worst = worst.max(relative(back.as_slice(), predicted.as_slice()));
+            // J J̄ = I and Λ (J D⁻¹ Jᵀ) = I.
+            let jjbar = task.jacobian() * task.inverse_transpose().transpose();
+            let eye = OMatrix::<f64, $m, $m>::identity();
+            worst = worst.max(relative(jjbar.as_slice(), eye.as_slice()));
+            let product = task.inertia() * task.mobility();
+            worst = worst.max(relative(product.as_slice(), eye.as_slice()));
+            let inertia = task.inertia();
+            worst = worst.max(relative(inertia.as_slice(), inertia.transpose().as_slice()));
+        }
+        (worst, checked, null)
+    }};
+}
+
+/// [`law!`] on `$count` states, asserted: at least three in four states away from
+/// singularities, the law to 1e-8, and null-space torques only where the arm is redundant.
+macro_rules! check_law {
+    ($robot:expr, $task:ident, $m:ty, $count:expr) => {{
+        let robot: &Robot = $robot;
+        let (worst, checked, null) = law!(robot, $task, $m, $count);
+        let name = &robot.model().name;
+        let what = stringify!($task);
+        eprintln!(
+            "{name} {what}: {checked} states, worst {worst:.1e}, null-space torque {null:.1e}"
+        );
+        assert!(checked >= $count * 3 / 4, "{name} {what}: {checked} states");
+        assert!(worst < 1e-8, "{name} {what}: {worst:e}");
+        if robot.dof() > <$m as DimName>::DIM {
+            assert!(null > 1e-2, "{name} {what}: {null:e}");
+        } else {
+            assert!(null < 1e-8, "{name} {what}: {null:e}");
+        }
+    }};
+}
+
+#[test]
+fn forward_dynamics_obeys_the_task_space_equation() {
+    let count = 40;
+    let mut six: Vec<Robot> = ["puma560", "stanford", "panda"].map(runtime).into();
+    six.extend(["ur5_urdf", "snake17"].map(fixture));
+    for robot in &six {
+        check_law!(robot, tool, U6, count);
+    }
+    let mut three: Vec<Robot> = ["scara", "panda"].map(runtime).into();
+    three.extend(["driven", "odd", "tilted_modified", "rpp_arm", "snake17"].map(fixture));
+    for robot in &three {
+        check_law!(robot, tool_position, U3, count);
+    }
+}
+
+#[test]
+fn generated_arms_agree_with_the_runtime_path_without_allocating() {
+    fn check<const N: usize, A: ArmDynamics<Dof = dhgen::nalgebra::Const<N>>>(arm: &A, name: &str) {
+        let robot = runtime(name);
+        let mut worst = [0.0f64; 4];
+        for (q, qd) in states(&robot, 20, 7) {
+            let (sq, sqd) = (
+                SVector::<f64, N>::from_column_slice(q.as_slice()),
+                SVector::<f64, N>::from_column_slice(qd.as_slice()),
+            );
+            let Ok(runtime) = tool(&robot, &q, &qd) else {
+                continue;
+            };
+            let mut generated = None;
+            let allocations = allocations_during(|| generated = Some(tool(arm, &sq, &sqd)));
+            assert_eq!(allocations, 0, "{name}");
+            let generated = generated.unwrap().unwrap();
+            for (k, (a, b)) in parts(&generated).iter().zip(parts(&runtime)).enumerate() {
+                worst[k] = worst[k].max(relative(a, &b));
+            }
+            let position = tool_position(arm, &sq, &sqd).unwrap();
+            let full = tool_position(&robot, &q, &qd).unwrap();
+            worst[0] = worst[0].max(relative(
+                position.inertia().as_slice(),
+                full.inertia().as_slice(),
+            ));
+        }
+        eprintln!("{name}: generated vs runtime Λ, μ, p, J̄ᵀ {worst:?}");
+        assert!(worst.iter().all(|&e| e < 1e-9), "{name}: {worst:?}");
+    }
+    check(&puma560::Robot, "puma560");
+    check(&stanford::Robot, "stanford");
+    check(&panda::Robot, "panda");
+}
+
+#[test]
+fn errors_say_why() {
+    // Two joints cannot hold six task directions, nor three.
+    let (q, qd) = (SVector::<f64, 2>::new(0.3, 0.4), SVector::<f64, 2>::zeros());
+    assert_eq!(
+        tool(&planar_elbow::Robot, &q, &qd).unwrap_err(),
+        TaskSpaceError::SingularTask
+    );
+    assert_eq!(
+        tool_position(&planar_elbow::Robot, &q, &qd).unwrap_err(),
+        TaskSpaceError::SingularTask
+    );
+    // Four joints hold the position (SCARA), not the orientation.
+    let (q, qd) = (
+        SVector::<f64, 4>::new(0.3, 0.8, 0.1, 0.2),
+        SVector::<f64, 4>::zeros(),
+    );
+    assert!(tool_position(&scara::Robot, &q, &qd).is_ok());
+    assert_eq!(
+        tool(&scara::Robot, &q, &qd).unwrap_err(),
+        TaskSpaceError::SingularTask
+    );
+    // The gantry's revolute joint turns about the world's x axis, its two prismatic joints
+    // slide along y and z: its tool moves in a plane, everywhere.
+    let gantry = fixture("gantry");
+    for (q, qd) in states(&gantry, 20, 3) {
+        assert_eq!(
+            tool_position(&gantry, &q, &qd).unwrap_err(),
+            TaskSpaceError::SingularTask,
+            "{q}"
+        );
+    }
+    // The wrist singularity of the PUMA 560 and of the Stanford arm (θ5 = 0: joints 4 and 6
+    // aligned), on both paths; with θ5 = 0.9 instead, the tool's task is held.
+    let qd = SVector::<f64, 6>::zeros();
+    for theta5 in [0.0, 0.9] {
+        let q = SVector::from([0.2, -0.5, 0.4, 0.3, theta5, -0.2]);
+        let dq = DVector::from_column_slice(q.as_slice());
+        let results = [
+            tool(&puma560::Robot, &q, &qd).err(),
+            tool(&stanford::Robot, &q, &qd).err(),
+            tool(&runtime("puma560"), &dq, &DVector::zeros(6)).err(),
+            tool(&runtime("stanford"), &dq, &DVector::zeros(6)).err(),
+        ];
+        let expected = (theta5 == 0.0).then_some(TaskSpaceError::SingularTask);
+        assert_eq!(results, [expected; 4], "θ5 = {theta5}");
+    }
+    // UR5's published data has no inertia tensors: D(q) is singular everywhere.
+    let ur5 = runtime("ur5");
+    let q = DVector::from_column_slice(&[0.1, -1.0, 1.2, 0.3, 0.9, 0.2]);
+    assert_eq!(
+        tool(&ur5, &q, &DVector::zeros(6)).unwrap_err(),
+        TaskSpaceError::SingularInertia
+    );
+    // Non-finite input.
+    let q = SVector::from([0.2, f64::NAN, 0.4, 0.3, 0.9, -0.2]);
+    assert_eq!(
+        tool(&puma560::Robot, &q, &qd).unwrap_err(),
+        TaskSpaceError::NotFinite
+    );
+    let qd = SVector::from([0.0, 0.0, f64::INFINITY, 0.0, 0.0, 0.0]);
+    assert_eq!(
+        tool(
+            &puma560::Robot,
+            &SVector::from([0.2, -0.5, 0.4, 0.3, 0.9, -0.2]),
+            &qd
+        )
+        .unwrap_err(),
+        TaskSpaceError::NotFinite
+    );
+    assert_eq!(
+        TaskSpaceError::SingularTask.to_string(),
+        "task space: the task Jacobian has lost rank (J D⁻¹ Jᵀ is singular)"
+    );
+}
