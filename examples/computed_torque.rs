@@ -64,26 +64,6 @@ fn control(q: &[f64; 6], qd: &[f64; 6], q_ref: &V6, qd_ref: &V6, qdd_ref: &V6) -
     tau.into()
 }
 
-/// q̈ of the plant; its D(q) is positive definite everywhere, so the solve cannot fail.
-fn plant_acceleration(q: &V6, qd: &V6, tau: &[f64; 6]) -> V6 {
-    plant::State::new(q)
-        .forward_dynamics(qd, tau)
-        .expect("the plant's inertia matrix is positive definite")
-}
-
-/// One RK4 step of `(q̇, q̈)` over `dt` with the torque held.
-fn rk4(q: &V6, qd: &V6, tau: &[f64; 6], dt: f64) -> (V6, V6) {
-    let f = |q: &V6, qd: &V6| (*qd, plant_acceleration(q, qd, tau));
-    let (k1q, k1v) = f(q, qd);
-    let (k2q, k2v) = f(&(q + k1q * (dt / 2.0)), &(qd + k1v * (dt / 2.0)));
-    let (k3q, k3v) = f(&(q + k2q * (dt / 2.0)), &(qd + k2v * (dt / 2.0)));
-    let (k4q, k4v) = f(&(q + k3q * dt), &(qd + k3v * dt));
-    (
-        q + (k1q + k2q * 2.0 + k3q * 2.0 + k4q) * (dt / 6.0),
-        qd + (k1v + k2v * 2.0 + k3v * 2.0 + k4v) * (dt / 6.0),
-    )
-}
-
 /// Fails unless the plant's description is the controller's with link 6's mass and inertia
 /// ×1.1, so the printed mismatch is the only one.
 fn check_mismatch() -> Result<(), Box<dyn Error>> {
@@ -151,7 +131,9 @@ fn main() -> Result<(), Box<dyn Error>> {
         );
         control_times.push(start.elapsed());
 
-        (q, qd) = rk4(&q, &qd, &tau, DT);
+        // The plant's D(q) is positive definite everywhere, so the step cannot fail.
+        (q, qd) = dhgen::simulate::rk4_step(&plant::Robot, &q, &qd, &V6::from(tau), DT)
+            .expect("the plant's inertia matrix is positive definite");
     }
 
     println!(

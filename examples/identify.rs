@@ -152,24 +152,12 @@ fn record(seconds: f64, seed: f64) -> Vec<Record> {
         let v: [f64; 6] =
             core::array::from_fn(|j| qddr[j] + 400.0 * (qr[j] - qa[j]) + 40.0 * (qdr[j] - qda[j]));
         let tau = puma560::inverse_dynamics(&qa, &qda, &v);
-        let f = |q: &V6, qd: &V6| {
-            plant::forward_dynamics_with_payload(q, qd, &tau, &held)
-                .expect("the plant's D is positive definite")
-        };
-        let qdd = f(&q, &qd);
+        // The plant's D is positive definite everywhere: its accelerations always exist.
+        let f = |q: &V6, qd: &V6| plant::forward_dynamics_with_payload(q, qd, &tau, &held);
+        let qdd = f(&q, &qd).expect("the plant's D is positive definite");
         out.push(Record { t, q, qd, qdd, tau });
-        let k1 = (qd, qdd);
-        let k2 = (
-            qd + k1.1 * (DT / 2.0),
-            f(&(q + k1.0 * (DT / 2.0)), &(qd + k1.1 * (DT / 2.0))),
-        );
-        let k3 = (
-            qd + k2.1 * (DT / 2.0),
-            f(&(q + k2.0 * (DT / 2.0)), &(qd + k2.1 * (DT / 2.0))),
-        );
-        let k4 = (qd + k3.1 * DT, f(&(q + k3.0 * DT), &(qd + k3.1 * DT)));
-        q += (k1.0 + k2.0 * 2.0 + k3.0 * 2.0 + k4.0) * (DT / 6.0);
-        qd += (k1.1 + k2.1 * 2.0 + k3.1 * 2.0 + k4.1) * (DT / 6.0);
+        (q, qd) = dhgen::simulate::rk4_step_with(f, &q, &qd, DT)
+            .expect("the plant's D is positive definite");
     }
     out
 }

@@ -104,21 +104,6 @@ fn replan(q: &[f64; 6], qd: &[f64; 6]) -> Option<[f64; 6]> {
     Some((u0 - gain * x).into())
 }
 
-/// One RK4 step of the plant with the torque held.
-fn rk4(q: &V6, qd: &V6, tau: &[f64; 6], dt: f64) -> Option<(V6, V6)> {
-    let f = |q: &V6, qd: &V6| -> Option<(V6, V6)> {
-        Some((*qd, puma560::forward_dynamics(q, qd, tau)?))
-    };
-    let (k1q, k1v) = f(q, qd)?;
-    let (k2q, k2v) = f(&(q + k1q * (dt / 2.0)), &(qd + k1v * (dt / 2.0)))?;
-    let (k3q, k3v) = f(&(q + k2q * (dt / 2.0)), &(qd + k2v * (dt / 2.0)))?;
-    let (k4q, k4v) = f(&(q + k3q * dt), &(qd + k3v * dt))?;
-    Some((
-        q + (k1q + k2q * 2.0 + k3q * 2.0 + k4q) * (dt / 6.0),
-        qd + (k1v + k2v * 2.0 + k3v * 2.0 + k4v) * (dt / 6.0),
-    ))
-}
-
 struct Sample {
     t: f64,
     q: [f64; 6],
@@ -158,7 +143,8 @@ fn main() -> Result<(), Box<dyn Error>> {
             q: q.into(),
             tau,
         });
-        (q, qd) = rk4(&q, &qd, &tau, DT).ok_or("the plant's inertia matrix became singular")?;
+        (q, qd) = dhgen::simulate::rk4_step(&puma560::Robot, &q, &qd, &V6::from(tau), DT)
+            .ok_or("the plant's inertia matrix became singular")?;
     }
     replans.sort();
     let micros = |d: Duration| d.as_secs_f64() * 1e6;

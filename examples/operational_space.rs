@@ -77,20 +77,6 @@ fn circle(start: &Vector3<f64>, t: f64) -> [Vector3<f64>; 3] {
     ]
 }
 
-/// One RK4 step of the plant with the torque held.
-fn rk4(q: &V7, qd: &V7, tau: &V7, dt: f64) -> Option<(V7, V7)> {
-    let f =
-        |q: &V7, qd: &V7| -> Option<(V7, V7)> { Some((*qd, panda::forward_dynamics(q, qd, tau)?)) };
-    let (k1q, k1v) = f(q, qd)?;
-    let (k2q, k2v) = f(&(q + k1q * (dt / 2.0)), &(qd + k1v * (dt / 2.0)))?;
-    let (k3q, k3v) = f(&(q + k2q * (dt / 2.0)), &(qd + k2v * (dt / 2.0)))?;
-    let (k4q, k4v) = f(&(q + k3q * dt), &(qd + k3v * dt))?;
-    Some((
-        q + (k1q + k2q * 2.0 + k3q * 2.0 + k4q) * (dt / 6.0),
-        qd + (k1v + k2v * 2.0 + k3v * 2.0 + k4v) * (dt / 6.0),
-    ))
-}
-
 struct Sample {
     t: f64,
     position: Vector3<f64>,
@@ -153,7 +139,8 @@ fn run(null_space: bool) -> Result<(Vec<Sample>, Vec<Duration>), Box<dyn Error>>
             orientation_error: (goal * pose.rotation.inverse()).angle(),
             posture: (q - V7::from(Q_REST)).norm(),
         });
-        (q, qd) = rk4(&q, &qd, &tau, DT).ok_or("the plant's inertia matrix became singular")?;
+        (q, qd) = dhgen::simulate::rk4_step(&panda::Robot, &q, &qd, &tau, DT)
+            .ok_or("the plant's inertia matrix became singular")?;
     }
     Ok((samples, times))
 }

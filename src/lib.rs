@@ -102,6 +102,9 @@ pub mod velocity;
 // Task-space (operational-space) dynamics: Λ, J̄, μ, p and the null-space torques.
 pub mod task_space;
 
+// Simulation: one Runge–Kutta step of the forward dynamics, for a plant in the loop.
+pub mod simulate;
+
 #[cfg(feature = "std")]
 mod dynamics;
 #[cfg(feature = "std")]

@@ -49,6 +49,7 @@ mod rotation;
 mod rtb_models;
 mod runtime_laws;
 mod runtime_reference;
+mod simulate;
 mod singular_inertia;
 mod task_space;
 mod trajectory_lspb;
