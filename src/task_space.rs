@@ -97,7 +97,12 @@ where
     ///
     /// Costs one Cholesky factorisation `D = L Lᵀ`, two triangular substitutions of `J`
     /// (`W = J L⁻ᵀ`, then `J D⁻¹ = W L⁻¹`), the product `J D⁻¹ Jᵀ = W Wᵀ` and its
-    /// inverse.
+    /// inverse. `d` is read in its lower triangle.
+    ///
+    /// # Panics
+    ///
+    /// If `d`, `bias` or `gravity` does not have one row per column of `jacobian` (only
+    /// possible with `Dyn` joint dimensions), naming the sizes.
     pub fn new(
         d: OMatrix<f64, D, D>,
         jacobian: OMatrix<f64, M, D>,
@@ -105,6 +110,16 @@ where
         bias: &OVector<f64, D>,
         gravity: &OVector<f64, D>,
     ) -> Result<Self, TaskSpaceError> {
+        let n = jacobian.ncols();
+        assert!(
+            d.shape() == (n, n) && bias.len() == n && gravity.len() == n,
+            "dhgen::task_space::TaskDynamics::new: `d` is {}×{}, `bias` has length {} and \
+             `gravity` {}, expected {n}×{n} and {n} (one per column of `jacobian`)",
+            d.nrows(),
+            d.ncols(),
+            bias.len(),
+            gravity.len()
+        );
         let finite = |x: &[f64]| x.iter().all(|v| v.is_finite());
         if !(finite(d.as_slice())
             && finite(jacobian.as_slice())
@@ -116,7 +131,6 @@ where
         }
         let factor = crate::inertia_cholesky(d).ok_or(TaskSpaceError::SingularInertia)?;
         let l = factor.l_dirty(); // D = L Lᵀ, in the lower triangle
-        let n = l.ncols();
         // W = J L⁻ᵀ, column by column (substitution from the right: the columns of an M×n
         // matrix are contiguous M-vectors), then J D⁻¹ = W L⁻¹ the same way backwards.
         let mut w = jacobian.clone();
@@ -221,7 +235,19 @@ where
     /// `Nᵀ τ₀ = τ₀ − Jᵀ J̄ᵀ τ₀`, in `O(M n)` without forming the projector. Add it to
     /// [`torque`](Self::torque)'s to drive a redundant arm's posture behind its task. Zero for
     /// a square, non-singular `J`.
+    ///
+    /// # Panics
+    ///
+    /// If `tau0` does not have one entry per joint (only possible with `Dyn` joint
+    /// dimensions).
     pub fn null_space_torque(&self, tau0: &OVector<f64, D>) -> OVector<f64, D> {
+        let n = self.jacobian.ncols();
+        assert!(
+            tau0.len() == n,
+            "dhgen::task_space::TaskDynamics::null_space_torque: `tau0` has length {}, \
+             expected {n} (one entry per joint)",
+            tau0.len()
+        );
         tau0 - self.jacobian.tr_mul(&(&self.inverse_transpose * tau0))
     }
 }

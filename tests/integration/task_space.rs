@@ -199,6 +199,12 @@ fn forward_dynamics_obeys_the_task_space_equation() {
     let count = 40;
     let mut six: Vec<Robot> = ["puma560", "stanford", "panda"].map(runtime).into();
     six.extend(["ur5_urdf", "snake17"].map(fixture));
+    // URDF arms as read from their files: xArm7 (7 joints) and Kinova's six.
+    let urdf = |file: &str| {
+        let path = format!("{}/tests/data/urdf/{file}", env!("CARGO_MANIFEST_DIR"));
+        Robot::from_urdf_file(path).unwrap()
+    };
+    six.extend([urdf("xarm7.urdf"), urdf("kinova.urdf")]);
     for robot in &six {
         check_law!(robot, tool, U6, count);
     }
@@ -242,6 +248,29 @@ fn generated_arms_agree_with_the_runtime_path_without_allocating() {
     check(&puma560::Robot, "puma560");
     check(&stanford::Robot, "stanford");
     check(&panda::Robot, "panda");
+}
+
+#[test]
+#[should_panic(
+    expected = "dhgen::task_space::TaskDynamics::new: `d` is 3×3, `bias` has length 3 \
+                           and `gravity` 3, expected 2×2 and 2"
+)]
+fn sizes_that_disagree_are_named() {
+    let _ = TaskDynamics::<U3, dhgen::nalgebra::Dyn>::new(
+        DMatrix::identity(3, 3),
+        OMatrix::<f64, U3, dhgen::nalgebra::Dyn>::zeros(2),
+        &OVector::<f64, U3>::zeros(),
+        &DVector::zeros(3),
+        &DVector::zeros(3),
+    );
+}
+
+#[test]
+#[should_panic(expected = "null_space_torque: `tau0` has length 6, expected 7")]
+fn a_wrong_length_posture_torque_is_named() {
+    let panda = runtime("panda");
+    let task = tool(&panda, &DVector::from_element(7, 0.3), &DVector::zeros(7)).unwrap();
+    let _ = task.null_space_torque(&DVector::zeros(6));
 }
 
 #[test]
