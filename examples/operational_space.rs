@@ -15,9 +15,9 @@
 //! orientation to the desired one), `τ₀ = K_q (q_rest − q) − D_q q̇` a joint-space pull toward a
 //! rest posture, which `Nᵀ` filters so that it does not disturb the tool. The plant is the
 //! generated forward dynamics of the same arm, integrated by RK4 at 1 kHz with the torque held
-//! between control steps. The example prints the time of one control step, the tracking
-//! errors, and how far the joints move from the rest posture, with and without the null-space
-//! torque (without it the task is tracked as well, but nothing holds the arm's self-motion), and draws
+//! between control steps. The example prints the time of one control step, the tracking errors,
+//! and how far the joints move from the rest posture, with and without the null-space torque
+//! (without it the task is tracked as well, but nothing holds the arm's self-motion), and draws
 //! the path and the errors into an SVG (`target/operational_space.svg` unless a path is given).
 
 use dhgen::nalgebra::{SVector, UnitQuaternion, Vector3, Vector6};

@@ -17,7 +17,8 @@
 //! };
 //! let e0 = energy(&q, &qd);
 //! for _ in 0..1000 {
-//!     (q, qd) = dhgen::simulate::rk4_step(&elbow::Robot, &q, &qd, &SVector::zeros(), 1e-3).unwrap();
+//!     let step = dhgen::simulate::rk4_step(&elbow::Robot, &q, &qd, &SVector::zeros(), 1e-3);
+//!     (q, qd) = step.unwrap();
 //! }
 //! assert!(qd.norm() > 1.0);
 //! assert!((energy(&q, &qd) - e0).abs() < 1e-6 * e0.abs());

@@ -19,11 +19,12 @@
 //! posture behind a Cartesian task.
 //!
 //! `J` is any task Jacobian with rows indexed by `M` ([`TaskDynamics::new`]); [`tool`] takes the
-//! tool's geometric Jacobian (rows `[v; ω]`, world axes, as [`Arm::jacobian`](crate::Arm::jacobian)) and
-//! [`tool_position`] its three linear rows, the task an arm with fewer than six joints can
-//! hold. Everything is computed from the arm's own `D`, `J`, `J̇ q̇`, `b` and `g` (generated
-//! code for a generated arm), with nalgebra's Cholesky factorisations on fixed-size matrices:
-//! no allocation for generated arms, and `no_std`.
+//! tool's geometric Jacobian (rows `[v; ω]`, world axes, as
+//! [`Arm::jacobian`](crate::Arm::jacobian)), [`tool_with_payload`] the same with a payload in the
+//! gripper, and [`tool_position`] its three linear rows, the task an arm with fewer than six joints
+//! can hold. Everything is computed from the arm's own `D`, `J`, `J̇ q̇`, `b` and `g` (generated
+//! code for a generated arm), with nalgebra's Cholesky factorisations on fixed-size matrices: no
+//! allocation for generated arms, and `no_std`.
 //!
 //! A singular `D` or a task Jacobian that has lost rank is reported, not papered over: `Λ`
 //! grows as `1/σ²` with the smallest singular value `σ` of `J D^{-1/2}`, and is refused where
@@ -281,9 +282,9 @@ where
 }
 
 /// The task-space dynamics of the tool frame's twist `[v; ω]` (world axes, the rows of
-/// [`Arm::jacobian`](crate::Arm::jacobian)) at `(q, q̇)`. Needs six independent joint directions: an arm with fewer
-/// than six joints, or at a kinematic singularity, gives [`TaskSpaceError::SingularTask`];
-/// [`tool_position`] is the task such arms can hold.
+/// [`Arm::jacobian`](crate::Arm::jacobian)) at `(q, q̇)`. Needs six independent joint
+/// directions: an arm with fewer than six joints, or at a kinematic singularity, gives
+/// [`TaskSpaceError::SingularTask`]; [`tool_position`] is the task such arms can hold.
 pub fn tool<A: ArmDynamics>(
     arm: &A,
     q: &OVector<f64, A::Dof>,
@@ -301,9 +302,32 @@ where
     )
 }
 
+/// [`tool`] for the arm holding `payload` in its tool frame: the task-space dynamics of arm
+/// and payload together, from [`payload`](crate::payload)'s mass matrix, bias and gravity
+/// torques (the Jacobian and `J̇ q̇` are the arm's: the payload rides on the tool frame).
+#[cfg(feature = "std")]
+pub fn tool_with_payload<A: ArmDynamics>(
+    arm: &A,
+    payload: &crate::payload::Payload,
+    q: &OVector<f64, A::Dof>,
+    qd: &OVector<f64, A::Dof>,
+) -> Result<TaskDynamics<U6, A::Dof>, TaskSpaceError>
+where
+    DefaultAllocator: ArmAllocator<A::Dof>,
+{
+    use crate::payload;
+    TaskDynamics::<U6, A::Dof>::new(
+        payload::mass_matrix(arm, payload, q),
+        arm.jacobian(q),
+        &arm.jdot_qdot(q, qd),
+        &payload::bias(arm, payload, q, qd),
+        &payload::gravity(arm, payload, q),
+    )
+}
+
 /// The task-space dynamics of the tool frame's origin (the three linear rows of
-/// [`Arm::jacobian`](crate::Arm::jacobian), world axes) at `(q, q̇)`: the task of a Cartesian position or
-/// impedance controller that leaves the orientation free.
+/// [`Arm::jacobian`](crate::Arm::jacobian), world axes) at `(q, q̇)`: the task of a Cartesian
+/// position or impedance controller that leaves the orientation free.
 pub fn tool_position<A: ArmDynamics>(
     arm: &A,
     q: &OVector<f64, A::Dof>,

@@ -12,8 +12,8 @@
 
 use crate::catalogue::{panda, planar_elbow, puma560, scara, stanford};
 use crate::support::{allocations_during, fixture, runtime};
-use dhgen::nalgebra::{DMatrix, DVector, DimName, OMatrix, OVector, SVector, U3, U6};
-use dhgen::task_space::{TaskDynamics, TaskSpaceError, tool, tool_position};
+use dhgen::nalgebra::{DMatrix, DVector, DimName, OMatrix, OVector, SVector, U3, U6, Vector6};
+use dhgen::task_space::{TaskDynamics, TaskSpaceError, tool, tool_position, tool_with_payload};
 use dhgen::{Arm, ArmDynamics, Robot};
 use serde_json::Value;
 use std::f64::consts::PI;
@@ -248,6 +248,72 @@ fn generated_arms_agree_with_the_runtime_path_without_allocating() {
     check(&puma560::Robot, "puma560");
     check(&stanford::Robot, "stanford");
     check(&panda::Robot, "panda");
+}
+
+#[test]
+fn a_payload_joins_the_task_space_inertia() {
+    use dhgen::payload::{self, Payload};
+    let (mass, com, inertia) = (
+        2.5,
+        [0.02, -0.01, 0.08],
+        [[4e-3, 1e-4, 0.0], [1e-4, 5e-3, 0.0], [0.0, 0.0, 3e-3]],
+    );
+    let part = Payload::new(mass, com, inertia).unwrap();
+    let robot = runtime("panda");
+    let held = robot.with_payload(&part).unwrap();
+    let mut worst = [0.0f64; 5];
+    let mut added = 0.0f64;
+    for (q, qd) in states(&robot, 20, 11) {
+        let Ok(task) = tool_with_payload(&robot, &part, &q, &qd) else {
+            continue;
+        };
+        // As the runtime arm with the payload written into its last body ...
+        let whole = tool(&held, &q, &qd).unwrap();
+        for (k, (a, b)) in parts(&task).iter().zip(parts(&whole)).enumerate() {
+            worst[k] = worst[k].max(relative(a, &b));
+        }
+        // ... and as the generated arm with it.
+        let sq = SVector::<f64, 7>::from_column_slice(q.as_slice());
+        let sqd = SVector::<f64, 7>::from_column_slice(qd.as_slice());
+        let generated = tool_with_payload(&panda::Robot, &part, &sq, &sqd).unwrap();
+        worst[4] = worst[4].max(relative(&parts(&generated)[0], &parts(&task)[0]));
+        // Under the torques Jᵀ F the arm holding it accelerates its tool as predicted.
+        let f = Vector6::new(5.0, -3.0, 8.0, 0.4, -0.2, 0.3);
+        let qdd = payload::forward_dynamics(&robot, &part, &q, &qd, &task.torque(&f)).unwrap();
+        let a = Arm::jacobian(&robot, &q) * qdd + Arm::jdot_qdot(&robot, &q, &qd);
+        worst[4] = worst[4].max(relative(a.as_slice(), task.acceleration(&f).as_slice()));
+        // The task-space inertia grows by exactly the payload's spatial inertia at the tool
+        // origin (world axes; the Woodbury identity, J of full row rank): [m, −h×; h×, I_o]
+        // with h = m R c and I_o = R (I_c + m (|c|² − c cᵀ)) Rᵀ.
+        let r = Arm::fk(&robot, &q)
+            .rotation
+            .to_rotation_matrix()
+            .into_inner();
+        let c = dhgen::nalgebra::Vector3::from(com);
+        let i_c = dhgen::nalgebra::Matrix3::from_fn(|i, j| inertia[i][j]);
+        let h = r * c * mass;
+        let i_o = r
+            * (i_c
+                + (dhgen::nalgebra::Matrix3::identity() * c.norm_squared() - c * c.transpose())
+                    * mass)
+            * r.transpose();
+        let mut spatial = dhgen::nalgebra::Matrix6::zeros();
+        spatial.fixed_view_mut::<3, 3>(0, 0).fill_with_identity();
+        spatial.fixed_view_mut::<3, 3>(0, 0).scale_mut(mass);
+        spatial
+            .fixed_view_mut::<3, 3>(0, 3)
+            .copy_from(&-h.cross_matrix());
+        spatial
+            .fixed_view_mut::<3, 3>(3, 0)
+            .copy_from(&h.cross_matrix());
+        spatial.fixed_view_mut::<3, 3>(3, 3).copy_from(&i_o);
+        let bare = tool(&robot, &q, &qd).unwrap();
+        let growth = task.inertia() - bare.inertia();
+        added = added.max((growth - spatial).amax() / bare.inertia().amax());
+    }
+    eprintln!("Panda with a payload: {worst:?}, Λ − Λ_bare − M_payload {added:.1e} of Λ");
+    assert!(worst.iter().all(|&e| e < 1e-9), "{worst:?}");
+    assert!(added < 1e-10, "{added:e}");
 }
 
 #[test]
