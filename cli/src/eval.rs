@@ -1,5 +1,6 @@
 //! `dhgen eval`: T, J, D, C, g, τ and the kinetic and potential energy at one configuration,
-//! on the runtime path, and with `--derivatives` those of inverse and forward dynamics.
+//! on the runtime path, with `--derivatives` those of inverse and forward dynamics, and with
+//! `--task-space` the tool's task-space dynamics.
 
 use crate::table::{degrees, trimmed};
 use dhgen::Robot;
@@ -29,6 +30,15 @@ struct Dynamics {
     energy: [f64; 2],
     /// Present when asked for (`--derivatives`).
     derivatives: Option<Derivatives>,
+    /// Present when asked for (`--task-space`): the tool's Λ, μ and p, or why there are none.
+    task_space: Option<Result<TaskSpace, String>>,
+}
+
+/// The tool's task-space dynamics at (q, q̇) (`dhgen::task_space::tool`).
+struct TaskSpace {
+    inertia: DMatrix<f64>,
+    coriolis: DVector<f64>,
+    gravity: DVector<f64>,
 }
 
 /// The derivatives of inverse dynamics at (q, q̇, q̈), and of forward dynamics at (q, q̇, τ)
@@ -69,6 +79,12 @@ impl Dynamics {
                 all.push(("∂q̈/∂q̇", "dqdd_dqd", dqd.clone()));
                 all.push(("D(q)⁻¹", "Minv", inverse.clone()));
             }
+        }
+        if let Some(Ok(t)) = &self.task_space {
+            let row = |v: &DVector<f64>| DMatrix::from_row_slice(1, v.len(), v.as_slice());
+            all.push(("Λ(q)", "Lambda", t.inertia.clone()));
+            all.push(("μ(q, q̇)", "mu", row(&t.coriolis)));
+            all.push(("p(q)", "p", row(&t.gravity)));
         }
         all
     }
@@ -159,7 +175,8 @@ pub fn check_len(robot: &Robot, flag: &str, len: usize) -> Result<(), String> {
 }
 
 /// Evaluates at `q`, `qd`, `qdd` (lengths already checked, values finite), with the
-/// derivatives of the dynamics when `derivatives` is set; the one place
+/// derivatives of the dynamics when `derivatives` is set and the tool's task-space dynamics
+/// when `task_space` is; the one place
 /// `eval` checks its input against the robot (docs/conventions.md, "Non-finite input": the
 /// runtime path does not check, so the command does):
 ///
@@ -176,6 +193,7 @@ pub fn evaluate(
     qd: Vec<f64>,
     qdd: Vec<f64>,
     derivatives: bool,
+    task_space: bool,
 ) -> Result<Evaluation, String> {
     let mut warnings = Vec::new();
     for (i, (l, &x)) in robot.model().links.iter().zip(&q).enumerate() {
@@ -206,7 +224,7 @@ pub fn evaluate(
             ));
         }
     }
-    let e = compute(robot, q, qd, qdd, derivatives);
+    let e = compute(robot, q, qd, qdd, derivatives, task_space);
     let matrices: [(&str, DMatrix<f64>); 2] = [
         ("T", DMatrix::from_fn(4, 4, |r, c| e.pose[(r, c)])),
         ("J", e.jacobian.clone()),
@@ -242,14 +260,15 @@ pub fn evaluate(
     Ok(e)
 }
 
-/// T, J and (with mass properties) D, C, g, τ and, if asked, the derivatives at `q`, `qd`,
-/// `qdd`, unchecked.
+/// T, J and (with mass properties) D, C, g, τ and, if asked, the derivatives and the
+/// task-space dynamics at `q`, `qd`, `qdd`, unchecked.
 fn compute(
     robot: &Robot,
     q: Vec<f64>,
     qd: Vec<f64>,
     qdd: Vec<f64>,
     derivatives: bool,
+    task_space: bool,
 ) -> Evaluation {
     let pose = robot.fk(&q).to_homogeneous();
     let j = robot.jacobian(&q);
@@ -264,6 +283,19 @@ fn compute(
                 forward: robot.forward_dynamics_derivatives(&q, &qd, tau.as_slice()),
             }
         });
+        let task_space = task_space.then(|| {
+            let (qv, qdv) = (
+                DVector::from_column_slice(&q),
+                DVector::from_column_slice(&qd),
+            );
+            dhgen::task_space::tool(robot, &qv, &qdv)
+                .map(|t| TaskSpace {
+                    inertia: DMatrix::from_column_slice(6, 6, t.inertia().as_slice()),
+                    coriolis: DVector::from_column_slice(t.coriolis().as_slice()),
+                    gravity: DVector::from_column_slice(t.gravity().as_slice()),
+                })
+                .map_err(|e| e.to_string())
+        });
         Dynamics {
             d: robot.mass_matrix(&q),
             c: robot.coriolis(&q, &qd),
@@ -271,6 +303,7 @@ fn compute(
             tau,
             energy: [robot.kinetic_energy(&q, &qd), robot.potential_energy(&q)],
             derivatives,
+            task_space,
         }
     });
     Evaluation {
@@ -288,7 +321,9 @@ impl Evaluation {
     /// `tau`, `kinetic_energy` and `potential_energy` (numbers) only when the robot has
     /// dynamics; with `--derivatives` also `dtau_dq`,
     /// `dtau_dqd` (entry `[k][m]` = ∂τ_k/∂x_m) and, unless D(q) is singular, `dqdd_dq`,
-    /// `dqdd_dqd` and `Minv` (forward dynamics' derivatives at the τ above).
+    /// `dqdd_dqd` and `Minv` (forward dynamics' derivatives at the τ above); with
+    /// `--task-space` the tool's `Lambda`, `mu` and `p`, or `task_space_error` saying why there
+    /// are none.
     pub fn json(&self, robot: &Robot) -> Value {
         let rows = |m: &DMatrix<f64>| -> Value {
             Value::from(
@@ -313,12 +348,15 @@ impl Evaluation {
                 // Numbers, vectors (one row) as arrays, matrices as arrays of rows.
                 let value = if matches!(key, "kinetic_energy" | "potential_energy") {
                     Value::from(m[(0, 0)])
-                } else if matches!(key, "g" | "tau") {
+                } else if matches!(key, "g" | "tau" | "mu" | "p") {
                     Value::from(m.as_slice().to_vec())
                 } else {
                     rows(&m)
                 };
                 obj.insert(key.into(), value);
+            }
+            if let Some(Err(why)) = &dynamics.task_space {
+                obj.insert("task_space_error".into(), Value::from(why.as_str()));
             }
         }
         v
@@ -353,6 +391,7 @@ impl Evaluation {
                 tau,
                 energy: [kinetic, potential],
                 derivatives,
+                task_space,
             }) => {
                 block(&mut out, "D(q): joint-space inertia matrix", d);
                 block(
@@ -402,6 +441,36 @@ impl Evaluation {
                             );
                         }
                     }
+                }
+                match task_space {
+                    Some(Ok(TaskSpace {
+                        inertia,
+                        coriolis,
+                        gravity,
+                    })) => {
+                        let row =
+                            |v: &DVector<f64>| DMatrix::from_row_slice(1, v.len(), v.as_slice());
+                        block(
+                            &mut out,
+                            "Λ(q) = (J D⁻¹ Jᵀ)⁻¹: task-space inertia of the tool, rows and columns vx vy vz ωx ωy ωz",
+                            inertia,
+                        );
+                        block(
+                            &mut out,
+                            "μ(q, q̇): task-space Coriolis, centrifugal and friction forces (transposed)",
+                            &row(coriolis),
+                        );
+                        block(
+                            &mut out,
+                            "p(q): task-space gravity forces (transposed)",
+                            &row(gravity),
+                        );
+                    }
+                    Some(Err(why)) => {
+                        let why = why.strip_prefix("task space: ").unwrap_or(why);
+                        let _ = writeln!(out, "\nno task-space dynamics: {why}");
+                    }
+                    None => {}
                 }
             }
             None => {

@@ -1,9 +1,9 @@
 //! `dhgen`: the command line of dhgen.
 //!
 //! - `dhgen info ROBOT.toml`: the DH table, joints, limits, masses, spherical wrist;
-//! - `dhgen eval ROBOT.toml --q ... [--qd ...] [--qdd ...] [--json] [--derivatives]`: T, J, D, C,
-//!   g, τ, the kinetic and potential energy (and the derivatives of the dynamics) on the runtime
-//!   path;
+//! - `dhgen eval ROBOT.toml --q ... [--qd ...] [--qdd ...] [--json] [--derivatives]
+//!   [--task-space]`: T, J, D, C, g, τ, the kinetic and potential energy (and the derivatives
+//!   of the dynamics, the tool's task-space dynamics) on the runtime path;
 //! - `dhgen emit ROBOT.toml [-o FILE] [--name MOD] [--derivatives] [--regressor]`: the module `robot!`
 //!   generates, formatted;
 //! - `dhgen latex ROBOT.toml`: D(q), c_ijk, g(q) and P(q) as LaTeX equations;
@@ -67,6 +67,11 @@ enum Command {
         /// dynamics at the τ printed (∂q̈/∂q, ∂q̈/∂q̇, D⁻¹), analytic, on the runtime path.
         #[arg(long)]
         derivatives: bool,
+        /// Also print the tool's task-space (operational-space) dynamics: its inertia
+        /// Λ = (J D⁻¹ Jᵀ)⁻¹, and the forces μ and p (`dhgen::task_space::tool`), or why there
+        /// are none (a kinematic singularity, fewer than six joints).
+        #[arg(long)]
+        task_space: bool,
     },
     /// Write the module `dhgen::robot!` generates for the description, formatted, as a Rust
     /// source file.
@@ -273,12 +278,13 @@ fn run(command: Command) -> Result<String, String> {
             qdd,
             json,
             derivatives,
+            task_space,
         } => {
             let r = load(&robot)?;
             let q = eval::positions(&r, &eval::split("--q", &q)?)?;
             let qd = eval::rates(&r, "--qd", qd.as_deref())?;
             let qdd = eval::rates(&r, "--qdd", qdd.as_deref())?;
-            let e = eval::evaluate(&r, q, qd, qdd, derivatives)?;
+            let e = eval::evaluate(&r, q, qd, qdd, derivatives, task_space)?;
             Ok(if json {
                 format!("{}\n", e.json(&r))
             } else {

@@ -2,6 +2,7 @@
 //! runtime path and against known values.
 
 use dhgen::Robot;
+use dhgen::nalgebra::DVector;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
@@ -311,6 +312,65 @@ fn eval_prints_the_derivatives_of_the_runtime() {
     }
     let m = block(&text, "∂q̈/∂τ = D(q)⁻¹");
     assert!((m[1][1] - inverse[(1, 1)]).abs() <= 5e-7 * (1.0 + inverse[(1, 1)].abs()));
+}
+
+#[test]
+fn eval_prints_the_task_space_dynamics_of_the_tool() {
+    let file = "robots/puma560.toml";
+    let robot = Robot::from_toml_file(root().join(file)).expect("puma560 loads");
+    let (q, qd, qdd) = (
+        [0.2, -0.5, 0.4, 0.3, 0.9, -0.2],
+        [0.5, -0.3, 0.8, 1.0, -0.4, 0.2],
+        [0.0; 6],
+    );
+    let args = eval_json(file, &q, &qd, &qdd);
+    let args = as_strs(&args);
+    let plain: serde_json::Value = serde_json::from_str(&stdout(&args)).expect("valid JSON");
+    for key in ["Lambda", "mu", "p", "task_space_error"] {
+        assert!(
+            plain.get(key).is_none(),
+            "{key} printed without --task-space"
+        );
+    }
+    let v: serde_json::Value =
+        serde_json::from_str(&stdout(&[&args[..], &["--task-space"]].concat()))
+            .expect("valid JSON");
+    let (qv, qdv) = (DVector::from_row_slice(&q), DVector::from_row_slice(&qd));
+    let task = dhgen::task_space::tool(&robot, &qv, &qdv).expect("away from singularities");
+    let scale = 1.0 + task.inertia().amax();
+    for r in 0..6 {
+        for c in 0..6 {
+            let x = v["Lambda"][r][c].as_f64().unwrap();
+            assert!(
+                (x - task.inertia()[(r, c)]).abs() <= 1e-12 * scale,
+                "Λ[{r}][{c}]"
+            );
+        }
+        let mu = v["mu"][r].as_f64().unwrap();
+        assert!((mu - task.coriolis()[r]).abs() <= 1e-12 * scale, "μ[{r}]");
+        let p = v["p"][r].as_f64().unwrap();
+        assert!(
+            (p - task.gravity()[r]).abs() <= 1e-12 * (1.0 + task.gravity().amax()),
+            "p[{r}]"
+        );
+    }
+    let text = stdout(&[&args[..args.len() - 1], &["--task-space"]].concat());
+    let lambda = block(&text, "Λ(q) = (J D⁻¹ Jᵀ)⁻¹");
+    assert!((lambda[1][1] - task.inertia()[(1, 1)]).abs() <= 5e-7 * scale);
+    // At the wrist singularity (θ5 = 0) the command says why there is none.
+    let singular = ["0.2", "-0.5", "0.4", "0.3", "0", "-0.2"].join(",");
+    let text = stdout(&["eval", file, "--q", &singular, "--task-space"]);
+    assert!(
+        text.contains("no task-space dynamics: the task Jacobian has lost rank"),
+        "{text}"
+    );
+    let json = stdout(&["eval", file, "--q", &singular, "--task-space", "--json"]);
+    let v: serde_json::Value = serde_json::from_str(&json).expect("valid JSON");
+    assert!(v.get("Lambda").is_none());
+    assert_eq!(
+        v["task_space_error"],
+        "task space: the task Jacobian has lost rank (J D⁻¹ Jᵀ is singular)"
+    );
 }
 
 #[test]
