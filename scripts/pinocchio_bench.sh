@@ -11,6 +11,9 @@
 # dhgen built with `RUSTFLAGS="-C target-cpu=x86-64-v3"`).
 # `--time FLAGS` times a build with FLAGS instead of -march=native: `--time ""` for baseline
 # x86-64 (like `cargo bench`), `--time -march=x86-64-v3` (like dhgen's x86-64-v3 build).
+# Timing builds also benches/pinocchio/task_space.cpp (the tool's task-space dynamics as a
+# Pinocchio user writes them, about 2 more minutes) and times it, for comparison with
+# `cargo bench --bench generated -- task_space`.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 out="${TMPDIR:-/tmp}/dhgen-pinocchio-bench"
@@ -20,6 +23,8 @@ march=-march=native
 pinocchio_cxx benches/pinocchio/derivatives.cpp "$out/bench" -O3 $march
 if [[ "${1:-}" != --callgrind ]]; then
     "$out/bench" "$out/puma560.bin" "$out/panda.bin"
+    pinocchio_cxx benches/pinocchio/task_space.cpp "$out/task_space" -O3 $march
+    "$out/task_space" "$out/puma560.bin" "$out/panda.bin"
     exit
 fi
 for name in puma560 panda; do
