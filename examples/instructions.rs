@@ -235,15 +235,18 @@ macro_rules! run {
                 }
                 // Task-space dynamics of the tool (Λ, J̄, μ, p) from the arm's D, J, J̇ q̇ and g.
                 ("task_space", true) => {
-                    let (q, qd) = (dhgen::nalgebra::SVector::from(*q), dhgen::nalgebra::SVector::from(*qd));
-                    dhgen::task_space::tool(&$m::Robot, &q, &qd).map_or(0.0, |t| t.inertia()[(1, 1)])
+                    let q = dhgen::nalgebra::SVector::from(*q);
+                    let qd = dhgen::nalgebra::SVector::from(*qd);
+                    dhgen::task_space::tool(&$m::Robot, &q, &qd)
+                        .map_or(0.0, |t| t.inertia()[(1, 1)])
                 }
                 ("task_space", false) => {
                     let (q, qd) = (
                         dhgen::nalgebra::DVector::from_row_slice(q),
                         dhgen::nalgebra::DVector::from_row_slice(qd),
                     );
-                    dhgen::task_space::tool(&robot, &q, &qd).map_or(0.0, |t| t.inertia()[(1, 1)])
+                    dhgen::task_space::tool(&robot, &q, &qd)
+                        .map_or(0.0, |t| t.inertia()[(1, 1)])
                 }
                 ("regressor", true) => $m::regressor(q, qd, qd)[(1, 12)],
                 ("regressor", false) => robot.regressor(q, qd, qd)[(1, 12)],
