@@ -80,6 +80,7 @@ where
     DefaultAllocator: Allocator<M, D> + Allocator<M, M> + Allocator<M>,
 {
     jacobian: OMatrix<f64, M, D>,
+    jdot_qdot: OVector<f64, M>,
     inertia: OMatrix<f64, M, M>,
     mobility: OMatrix<f64, M, M>,
     inverse_transpose: OMatrix<f64, M, D>,
@@ -171,6 +172,7 @@ where
         }
         Ok(TaskDynamics {
             jacobian,
+            jdot_qdot: jdot_qdot.clone_owned(),
             inertia,
             mobility,
             inverse_transpose,
@@ -250,6 +252,40 @@ where
             tau0.len()
         );
         tau0 - self.jacobian.tr_mul(&(&self.inverse_transpose * tau0))
+    }
+
+    /// Forward dynamics with the task held to the acceleration `a` by a constraint (a rigid
+    /// contact, a tool fixed in a vice, or a guide: Pinocchio's constrained `forwardDynamics`
+    /// with the constraint Jacobian `J` and drift `J̇ q̇`): from the unconstrained
+    /// accelerations `qdd_free` (the arm's forward dynamics under the applied torques), the
+    /// accelerations `q̈ = q̈_free + D⁻¹ Jᵀ F` and the constraint's force
+    /// `F = Λ (a − J q̈_free − J̇ q̇)`, so that `J q̈ + J̇ q̇ = a` and `D q̈ + b = τ + Jᵀ F`. Of all
+    /// accelerations meeting the constraint, `q̈` is the one closest to `q̈_free` in the metric
+    /// of `D` (Gauss's principle of least constraint). `a = 0` holds the task still.
+    ///
+    /// # Panics
+    ///
+    /// If `qdd_free` does not have one entry per joint (only possible with `Dyn` joint
+    /// dimensions).
+    #[doc(alias = "forwardDynamics")]
+    #[doc(alias = "constraintDynamics")]
+    pub fn constrained(
+        &self,
+        qdd_free: &OVector<f64, D>,
+        a: &OVector<f64, M>,
+    ) -> (OVector<f64, D>, OVector<f64, M>) {
+        let n = self.jacobian.ncols();
+        assert!(
+            qdd_free.len() == n,
+            "dhgen::task_space::TaskDynamics::constrained: `qdd_free` has length {}, \
+             expected {n} (one entry per joint)",
+            qdd_free.len()
+        );
+        let drift = &self.jacobian * qdd_free + &self.jdot_qdot;
+        let force = &self.inertia * (a - drift);
+        // D⁻¹ Jᵀ F = J̄ Λ⁻¹ F, with J̄ᵀ stored.
+        let qdd = qdd_free + self.inverse_transpose.tr_mul(&(&self.mobility * &force));
+        (qdd, force)
     }
 }
 

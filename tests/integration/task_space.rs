@@ -215,6 +215,101 @@ fn forward_dynamics_obeys_the_task_space_equation() {
     }
 }
 
+/// Forward dynamics with the task held (`TaskDynamics::constrained`) on `count` seeded states:
+/// the worst relative residual of the constraint `J q̈ + J̇ q̇ = a` (relative to the free
+/// motion's task acceleration), of the equation of motion
+/// `D q̈ + b = τ + Jᵀ F` (through inverse dynamics), and of Gauss's principle (moving `q̈`
+/// along a direction the constraint allows raises `(q̈ − q̈_free)ᵀ D (q̈ − q̈_free)`).
+macro_rules! constrained_law {
+    ($robot:expr, $task:ident, $m:ty, $count:expr) => {{
+        let robot: &Robot = $robot;
+        let (mut worst, mut checked) = (0.0f64, 0usize);
+        for (k, (q, qd)) in states(robot, $count, 0xC0FF_EE00 ^ robot.dof() as u64)
+            .into_iter()
+            .enumerate()
+        {
+            let Ok(task) = $task(robot, &q, &qd) else {
+                continue;
+            };
+            let rows = <$m as DimName>::DIM;
+            checked += 1;
+            let n = robot.dof();
+            let tau = DVector::from_fn(n, |i, _| 8.0 * ((i * 5 + k) as f64 * 0.7).sin());
+            let qdd_free = ArmDynamics::forward_dynamics(robot, &q, &qd, &tau).unwrap();
+            // Held still (a = 0), then driven along a given acceleration.
+            let driven = OVector::<f64, $m>::from_fn(|i, _| ((i + k) as f64 * 0.9).cos());
+            for a in [OVector::<f64, $m>::zeros(), driven] {
+                let (qdd, force) = task.constrained(&qdd_free, &a);
+                let reached = (Arm::jacobian(robot, &q) * &qdd + Arm::jdot_qdot(robot, &q, &qd))
+                    .rows(0, rows)
+                    .into_owned();
+                // J q̈ + J̇ q̇ = a is the difference of J q̈_free + J̇ q̇ and of J D⁻¹ Jᵀ F, which
+                // cancel: its rounding is relative to their size (the PUMA 560's light wrist
+                // under these torques: 1e5 rad/s²).
+                let drift = (Arm::jacobian(robot, &q) * &qdd_free + Arm::jdot_qdot(robot, &q, &qd))
+                    .rows(0, rows)
+                    .amax();
+                let e1 = (reached - &a).amax() / drift.max(a.amax()).max(1.0);
+                let needed = ArmDynamics::inverse_dynamics(robot, &q, &qd, &qdd);
+                let applied = &tau + task.torque(&force);
+                let e2 = relative(needed.as_slice(), applied.as_slice());
+                                worst = worst.max(e1).max(e2);
+                // A direction the constraint allows: z − J̄ J z, for which J δ = 0.
+                let z = DVector::from_fn(n, |i, _| ((i * 3 + k) as f64).sin());
+                let delta = &z - task.inverse_transpose().tr_mul(&(task.jacobian() * &z));
+                let d = ArmDynamics::mass_matrix(robot, &q);
+                let cost = |x: &DVector<f64>| {
+                    let e = x - &qdd_free;
+                    e.dot(&(&d * &e))
+                };
+                let step = 1e-3 * (1.0 + qdd.amax()) / (1e-12 + delta.amax());
+                let best = cost(&qdd);
+                if delta.amax() > 1e-9 {
+                    assert!(
+                        cost(&(&qdd + &delta * step)) > best
+                            && cost(&(&qdd - &delta * step)) > best,
+                        "{}: q̈ is not the least constrained",
+                        robot.model().name
+                    );
+                }
+            }
+        }
+        (worst, checked)
+    }};
+}
+
+#[test]
+fn a_held_task_obeys_the_constrained_equation_of_motion() {
+    let mut six: Vec<Robot> = ["puma560", "panda"].map(runtime).into();
+    six.push(fixture("snake17"));
+    for robot in &six {
+        let (worst, checked) = constrained_law!(robot, tool, U6, 30);
+        eprintln!(
+            "{} tool held: {checked} states, worst {worst:.1e}",
+            robot.model().name
+        );
+        assert!(
+            checked >= 20 && worst < 1e-8,
+            "{}: {worst:e}",
+            robot.model().name
+        );
+    }
+    let mut three: Vec<Robot> = ["scara"].map(runtime).into();
+    three.extend(["driven", "odd", "tilted_modified"].map(fixture));
+    for robot in &three {
+        let (worst, checked) = constrained_law!(robot, tool_position, U3, 30);
+        eprintln!(
+            "{} tool position held: {checked} states, worst {worst:.1e}",
+            robot.model().name
+        );
+        assert!(
+            checked >= 20 && worst < 1e-8,
+            "{}: {worst:e}",
+            robot.model().name
+        );
+    }
+}
+
 #[test]
 fn generated_arms_agree_with_the_runtime_path_without_allocating() {
     fn check<const N: usize, A: ArmDynamics<Dof = dhgen::nalgebra::Const<N>>>(arm: &A, name: &str) {
