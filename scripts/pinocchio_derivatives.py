@@ -53,8 +53,10 @@ def rx(t):
     return se3(r=rot("x", t))
 
 
-def model_of(robot):
-    """The Pinocchio model of a DH table: joint i about (along) the z axis of its DH frame."""
+def model_of(robot, with_tool=False):
+    """The Pinocchio model of a DH table: joint i about (along) the z axis of its DH frame; with
+    `with_tool`, also the frame "tool" (a model of its own, so that the other quantities are
+    computed as without it, bit for bit)."""
     model = pin.Model()
     model.gravity.linear = np.array(robot["gravity"], dtype=float)
     links = robot["links"]
@@ -90,6 +92,14 @@ def model_of(robot):
         inertia_com = np.array([[ixx, ixy, ixz], [ixy, iyy, iyz], [ixz, iyz, izz]], dtype=float)
         local = pin.Inertia(link["mass"], np.array(link["com"], dtype=float), inertia_com)
         model.appendBodyToJoint(parent, body_frame.act(local), pin.SE3.Identity())
+    if with_tool:
+        # The tool frame: link frame n (the last joint's frame, then its DH tail in a standard
+        # table), then the file's tool transform.
+        tool = se3()
+        if robot.get("tool") is not None:
+            t = np.array(robot["tool"], dtype=float)
+            tool = se3(t[:3, :3], t[:3, 3])
+        model.addFrame(pin.Frame("tool", parent, previous_tail * tool, pin.FrameType.OP_FRAME))
     return model
 
 
@@ -108,6 +118,8 @@ def main():
         robot = json.loads((DATA / f"{name}.json").read_text())
         model = model_of(robot)
         data = model.createData()
+        tooled = model_of(robot, with_tool=True)
+        tooled_data = tooled.createData()
         out = {
             "source": f"Pinocchio {pin.__version__} (scripts/pinocchio_derivatives.py), from tests/data/{name}.json",
             "conventions": {
@@ -118,10 +130,15 @@ def main():
                 "kinetic_energy": "computeKineticEnergy(q, qd): 1/2 qd' D qd",
                 "potential_energy": "computePotentialEnergy(q): -sum_k m_k gravity . c_k, centres "
                 "of mass in the base frame",
+                "held_qdd, held_force": "forwardDynamics(q, qd, tau, J, gamma): the accelerations "
+                "and the constraint force lambda_c (M qdd + b = tau + J^T lambda_c) with the tool "
+                "frame held still, J its Jacobian in world axes [v; w] (getFrameJacobian, "
+                "LOCAL_WORLD_ALIGNED; equal to the file's J0) and gamma = Jd qd its classical "
+                "acceleration at qdd = 0",
             },
             "samples": [],
         }
-        worst = 0.0
+        worst = worst_j = worst_held = 0.0
         for sample in robot["samples"][:10]:
             q, v, a = (np.array(sample[k], dtype=float) for k in ("q", "qd", "qdd"))
             tau = pin.rnea(model, data, q, v, a).copy()
@@ -132,6 +149,17 @@ def main():
             minv = np.triu(data.Minv) + np.triu(data.Minv, 1).T
             kinetic = float(pin.computeKineticEnergy(model, data, q, v))
             potential = float(pin.computePotentialEnergy(model, data, q))
+            # The tool held still: its Jacobian (checked against the file's J0) and drift.
+            m, d = tooled, tooled_data
+            tool = m.getFrameId("tool")
+            world = pin.ReferenceFrame.LOCAL_WORLD_ALIGNED
+            J = pin.computeFrameJacobian(m, d, q, tool, world).copy()
+            worst_j = max(worst_j, float(np.max(np.abs(J - np.array(sample["J0"])))))
+            pin.forwardKinematics(m, d, q, v, np.zeros(m.nv))
+            gamma = pin.getFrameClassicalAcceleration(m, d, tool, world).vector.copy()
+            held = pin.forwardDynamics(m, d, q, v, tau, J, gamma).copy()
+            force = d.lambda_c.copy()
+            worst_held = max(worst_held, float(np.max(np.abs(J @ held + gamma))))
             out["samples"].append(
                 {
                     "q": q.tolist(),
@@ -145,11 +173,18 @@ def main():
                     "minv": rows(minv),
                     "kinetic_energy": kinetic,
                     "potential_energy": potential,
+                    "held_qdd": held.tolist(),
+                    "held_force": force.tolist(),
                 }
             )
         if worst > 1e-9:
             sys.exit(f"{name}: the Pinocchio model disagrees with the file's tau by {worst:.1e}")
-        print(f"{name}: Pinocchio tau = file tau to {worst:.1e}")
+        if worst_j > 1e-12:
+            sys.exit(f"{name}: the tool frame's Jacobian disagrees with the file's J0 by {worst_j:.1e}")
+        if worst_held > 1e-9:
+            sys.exit(f"{name}: the held tool accelerates by {worst_held:.1e}")
+        print(f"{name}: Pinocchio tau = file tau to {worst:.1e}, tool Jacobian = J0 to "
+              f"{worst_j:.1e}, held tool's acceleration {worst_held:.1e}")
         (DATA / f"derivatives_{name}.json").write_text(json.dumps(out, indent=1) + "\n")
 
 

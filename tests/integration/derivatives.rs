@@ -281,12 +281,7 @@ fn derivatives_match_pinocchio() {
     }
     let mut worst = 0.0_f64;
     for name in ["puma560", "panda"] {
-        let path = format!(
-            "{}/tests/data/derivatives_{name}.json",
-            env!("CARGO_MANIFEST_DIR")
-        );
-        let data: serde_json::Value =
-            serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
+        let data = crate::support::pinocchio_reference(name);
         let robot = runtime(name);
         let samples = data["samples"].as_array().unwrap();
         assert_eq!(samples.len(), 10);

@@ -153,11 +153,7 @@ fn energies_match_pinocchio() {
     use crate::catalogue::{panda, puma560};
     let mut errors = Errors::default();
     for name in ["puma560", "panda"] {
-        let path = format!(
-            "{}/tests/data/derivatives_{name}.json",
-            env!("CARGO_MANIFEST_DIR")
-        );
-        let data: Value = serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
+        let data = crate::support::pinocchio_reference(name);
         let robot = runtime(name);
         let samples = data["samples"].as_array().unwrap();
         assert_eq!(samples.len(), 10);

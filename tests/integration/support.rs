@@ -67,6 +67,16 @@ pub fn description_paths() -> Vec<PathBuf> {
     all
 }
 
+/// Pinocchio's reference values for the catalogue robot `name` (`puma560` or `panda`):
+/// tests/data/derivatives_<name>.json, made by scripts/pinocchio_derivatives.py.
+pub fn pinocchio_reference(name: &str) -> serde_json::Value {
+    let path = format!(
+        "{}/tests/data/derivatives_{name}.json",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap()
+}
+
 /// The largest magnitude among `values` (0 for none).
 pub fn max_abs(values: impl IntoIterator<Item = f64>) -> f64 {
     values.into_iter().map(f64::abs).fold(0.0, f64::max)

@@ -7,6 +7,9 @@
 //!   `Jᵀ F + Nᵀ τ₀`, forward dynamics gives the task acceleration `J q̈ + J̇ q̇ = Λ⁻¹ (F − μ − p)`,
 //!   whatever `τ₀`; and `J J̄ = I`;
 //! - generated arms against the runtime path, without allocation;
+//! - forward dynamics with the task held (`constrained`): the constraint, the equation of
+//!   motion and Gauss's principle on seeded states, and Pinocchio 4.1.0's constrained
+//!   `forwardDynamics` (tests/data/derivatives_*.json);
 //! - its errors: a task the arm cannot hold, a kinematic singularity, a singular `D`, and
 //!   non-finite input.
 
@@ -306,6 +309,31 @@ fn a_held_task_obeys_the_constrained_equation_of_motion() {
             checked >= 20 && worst < 1e-8,
             "{}: {worst:e}",
             robot.model().name
+        );
+    }
+}
+
+#[test]
+fn a_held_tool_matches_pinocchio() {
+    // Pinocchio 4.1.0's constrained forwardDynamics with the tool frame held still, at the
+    // states of tests/data/derivatives_*.json (scripts/pinocchio_derivatives.py).
+    for name in ["puma560", "panda"] {
+        let data = crate::support::pinocchio_reference(name);
+        let robot = runtime(name);
+        let (mut worst_qdd, mut worst_force, mut held) = (0.0f64, 0.0f64, 0);
+        for s in data["samples"].as_array().unwrap() {
+            let [q, qd, tau] = ["q", "qd", "tau"].map(|k| DVector::from_vec(vector(&s[k])));
+            let task = tool(&robot, &q, &qd).unwrap();
+            let free = ArmDynamics::forward_dynamics(&robot, &q, &qd, &tau).unwrap();
+            let (qdd, force) = task.constrained(&free, &Vector6::zeros());
+            worst_qdd = worst_qdd.max(relative(qdd.as_slice(), &vector(&s["held_qdd"])));
+            worst_force = worst_force.max(relative(force.as_slice(), &vector(&s["held_force"])));
+            held += 1;
+        }
+        eprintln!("{name}: {held} states, q̈ {worst_qdd:.1e}, force {worst_force:.1e}");
+        assert!(
+            held == 10 && worst_qdd < 1e-9 && worst_force < 1e-9,
+            "{name}"
         );
     }
 }
