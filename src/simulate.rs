@@ -31,7 +31,8 @@ use nalgebra::{DefaultAllocator, Dim, OVector};
 /// One step of the classical fourth-order Runge–Kutta method over `dt` seconds, the torque
 /// `tau` held: the state `(q, q̇)` at `t + dt` from the state at `t`, with a local error of
 /// order `dt⁵`. Four evaluations of the arm's forward dynamics; `None` where one of them has
-/// no answer (`D(q)` singular to working precision, or a non-finite acceleration).
+/// no answer (`D(q)` singular to working precision, or a non-finite acceleration) or the new
+/// state is not finite (a step too long for `f64`): `Some` is always finite.
 pub fn rk4_step<A: ArmDynamics>(
     arm: &A,
     q: &OVector<f64, A::Dof>,
@@ -47,7 +48,7 @@ where
 
 /// [`rk4_step`] for any acceleration `q̈ = f(q, q̇)`: a plant that is not an [`ArmDynamics`]
 /// (a generated module's `forward_dynamics_with_payload`, an arm with external forces).
-/// `None` where `f` gives none.
+/// `None` where `f` gives none or the new state is not finite.
 pub fn rk4_step_with<D: Dim>(
     mut acceleration: impl FnMut(&OVector<f64, D>, &OVector<f64, D>) -> Option<OVector<f64, D>>,
     q: &OVector<f64, D>,
@@ -66,8 +67,8 @@ where
     let (q4, qd4) = (q + &qd3 * dt, qd + &k3 * dt);
     let k4 = acceleration(&q4, &qd4)?;
     let sixth = dt / 6.0;
-    Some((
-        q + (qd + qd2 * 2.0 + qd3 * 2.0 + qd4) * sixth,
-        qd + (k1 + k2 * 2.0 + k3 * 2.0 + k4) * sixth,
-    ))
+    let q_next = q + (qd + qd2 * 2.0 + qd3 * 2.0 + qd4) * sixth;
+    let qd_next = qd + (k1 + k2 * 2.0 + k3 * 2.0 + k4) * sixth;
+    let finite = q_next.iter().chain(qd_next.iter()).all(|x| x.is_finite());
+    finite.then_some((q_next, qd_next))
 }

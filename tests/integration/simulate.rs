@@ -1,6 +1,7 @@
 //! `dhgen::simulate`: the Runge–Kutta step is of fourth order (halving the step divides the
 //! error after a fixed time by about 16), conserves the energy of a frictionless arm moving
-//! freely, agrees between generated and runtime arms, and reports a singular `D(q)`.
+//! freely, agrees between generated and runtime arms, and reports a singular `D(q)` and a
+//! state that is not finite.
 
 use crate::catalogue::{panda, weightless_wrist};
 use crate::support::runtime;
@@ -77,7 +78,7 @@ fn generated_and_runtime_arms_step_alike() {
 }
 
 #[test]
-fn a_singular_inertia_matrix_stops_the_step() {
+fn a_singular_inertia_matrix_or_an_overflow_stops_the_step() {
     // The weightless wrist's D(q) is singular everywhere.
     let (q, qd) = (SVector::from([0.3, 0.2]), SVector::<f64, 2>::zeros());
     assert_eq!(
@@ -92,4 +93,19 @@ fn a_singular_inertia_matrix_stops_the_step() {
     };
     assert_eq!(rk4_step_with(failing, &q, &qd, 1e-3), None);
     assert_eq!(calls, 3);
+    // A step too long for f64, and a step of NaN seconds: no state rather than a non-finite one.
+    let (q, qd) = (
+        V7::from([0.1, -0.5, 0.3, -2.0, 0.2, 1.4, 0.6]),
+        V7::repeat(1.0),
+    );
+    for dt in [1e300, f64::NAN] {
+        assert_eq!(
+            rk4_step(&panda::Robot, &q, &qd, &V7::zeros(), dt),
+            None,
+            "dt = {dt}"
+        );
+    }
+    // Finite accelerations at every stage whose sum overflows.
+    let huge = |_: &V7, _: &V7| Some(V7::repeat(1e308));
+    assert_eq!(rk4_step_with(huge, &q, &qd, 10.0), None);
 }
