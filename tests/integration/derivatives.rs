@@ -272,13 +272,7 @@ fn dual_numbers_through_generated_code_give_the_same_derivatives() {
 /// generated modules and the runtime path agree to 1e-9 on both.
 #[test]
 fn derivatives_match_pinocchio() {
-    fn matrix(v: &serde_json::Value) -> DMatrix<f64> {
-        let rows: Vec<Vec<f64>> = serde_json::from_value(v.clone()).unwrap();
-        DMatrix::from_fn(rows.len(), rows[0].len(), |r, c| rows[r][c])
-    }
-    fn vector(v: &serde_json::Value) -> Vec<f64> {
-        serde_json::from_value(v.clone()).unwrap()
-    }
+    use crate::urdf::{matrix, vector};
     let mut worst = 0.0_f64;
     for name in ["puma560", "panda"] {
         let data = crate::support::pinocchio_reference(name);

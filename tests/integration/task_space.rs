@@ -15,6 +15,7 @@
 
 use crate::catalogue::{panda, planar_elbow, puma560, scara, stanford};
 use crate::support::{allocations_during, fixture, runtime};
+use crate::urdf::{matrix, vector};
 use dhgen::nalgebra::{DMatrix, DVector, DimName, OMatrix, OVector, SVector, U3, U6, Vector6};
 use dhgen::task_space::{TaskDynamics, TaskSpaceError, tool, tool_position, tool_with_payload};
 use dhgen::{Arm, ArmDynamics, Robot};
@@ -54,15 +55,6 @@ fn states(robot: &Robot, count: usize, seed: u64) -> Vec<(DVector<f64>, DVector<
             (q, qd)
         })
         .collect()
-}
-
-fn matrix(v: &Value) -> DMatrix<f64> {
-    let rows: Vec<Vec<f64>> = serde_json::from_value(v.clone()).unwrap();
-    DMatrix::from_fn(rows.len(), rows[0].len(), |i, j| rows[i][j])
-}
-
-fn vector(v: &Value) -> Vec<f64> {
-    serde_json::from_value(v.clone()).unwrap()
 }
 
 /// The task's Λ, μ, p and J̄ᵀ as row-major plain vectors.
