@@ -3,7 +3,8 @@
 //!   scripts/rtb_task_space.py from the Toolbox's own D, J, J̇, C and g, and checked there
 //!   against its `inertia_x`, `coriolis_x`, `gravload_x` and forward dynamics);
 //! - against the law it states, on seeded states of arms with prismatic joints, a modified
-//!   table with base, tool and tilted gravity, motors and friction: under the torques
+//!   table with base, tool and tilted gravity, motors and friction, URDF arms, and seeded
+//!   random arms of 8 and 12 joints with oblique axes: under the torques
 //!   `Jᵀ F + Nᵀ τ₀`, forward dynamics gives the task acceleration `J q̈ + J̇ q̇ = Λ⁻¹ (F − μ − p)`,
 //!   whatever `τ₀`; and `J J̄ = I`;
 //! - generated arms against the runtime path, without allocation;
@@ -200,6 +201,15 @@ fn forward_dynamics_obeys_the_task_space_equation() {
         Robot::from_urdf_file(path).unwrap()
     };
     six.extend([urdf("xarm7.urdf"), urdf("kinova.urdf")]);
+    // Seeded random arms with no structure (`dhgen random --style general`): oblique axes,
+    // offsets everywhere, full inertias.
+    for n in [8, 12] {
+        let path = format!(
+            "{}/benches/arms/general_{n}.toml",
+            env!("CARGO_MANIFEST_DIR")
+        );
+        six.push(Robot::from_toml_file(path).unwrap());
+    }
     for robot in &six {
         check_law!(robot, tool, U6, count);
     }
@@ -277,6 +287,8 @@ macro_rules! constrained_law {
 fn a_held_task_obeys_the_constrained_equation_of_motion() {
     let mut six: Vec<Robot> = ["puma560", "panda"].map(runtime).into();
     six.push(fixture("snake17"));
+    let general = format!("{}/benches/arms/general_8.toml", env!("CARGO_MANIFEST_DIR"));
+    six.push(Robot::from_toml_file(general).unwrap());
     for robot in &six {
         let (worst, checked) = constrained_law!(robot, tool, U6, 30);
         eprintln!(
