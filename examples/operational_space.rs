@@ -20,7 +20,7 @@
 //! (without it the task is tracked as well, but nothing holds the arm's self-motion), and draws
 //! the path and the errors into an SVG (`target/operational_space.svg` unless a path is given).
 
-use dhgen::nalgebra::{SVector, UnitQuaternion, Vector3, Vector6};
+use dhgen::nalgebra::{Isometry3, SVector, UnitQuaternion, Vector3, Vector6};
 use dhgen::task_space::tool;
 use plotters::prelude::*;
 use std::error::Error;
@@ -85,7 +85,8 @@ struct Sample {
     posture: f64,
 }
 
-/// The control law at `(q, q̇)` and time `t`: the torques and the time the step took.
+/// The control law at `(q, q̇)` and time `t`: the torques, the tool pose it measured, and the
+/// time the step took.
 fn control(
     q: &V7,
     qd: &V7,
@@ -93,7 +94,7 @@ fn control(
     start: &Vector3<f64>,
     goal: &UnitQuaternion<f64>,
     null_space: bool,
-) -> Result<(V7, Duration), Box<dyn Error>> {
+) -> Result<(V7, Isometry3<f64>, Duration), Box<dyn Error>> {
     let clock = Instant::now();
     let task = tool(&panda::Robot, q, qd)?;
     let pose = panda::fk(q);
@@ -117,7 +118,7 @@ fn control(
         let pull = (V7::from(Q_REST) - q) * KQ - qd * DQ;
         tau += task.null_space_torque(&pull);
     }
-    Ok((tau, clock.elapsed()))
+    Ok((tau, pose, clock.elapsed()))
 }
 
 /// Simulates the circle; returns the samples and the control steps' times.
@@ -129,9 +130,9 @@ fn run(null_space: bool) -> Result<(Vec<Sample>, Vec<Duration>), Box<dyn Error>>
     let mut times = Vec::new();
     for step in 0..(DURATION / DT).round() as usize {
         let t = step as f64 * DT;
-        let (tau, took) = control(&q, &qd, t, &start, &goal, null_space)?;
+        // The pose the controller measured, recorded.
+        let (tau, pose, took) = control(&q, &qd, t, &start, &goal, null_space)?;
         times.push(took);
-        let pose = panda::fk(&q);
         samples.push(Sample {
             t,
             position: pose.translation.vector,

@@ -8,26 +8,12 @@
 #include <pinocchio/algorithm/rnea-derivatives.hpp>
 #include <pinocchio/algorithm/aba-derivatives.hpp>
 #include <pinocchio/serialization.hpp>
-#include <chrono>
-#include <vector>
-#include <algorithm>
+#include "timing.hpp"
 #include <cstdio>
 #include <cstdlib>
 #include <random>
 
 using namespace pinocchio;
-
-template <class F> double median_ns(F f, int batch, int rounds) {
-  std::vector<double> t;
-  for (int r = 0; r < rounds; ++r) {
-    auto a = std::chrono::steady_clock::now();
-    for (int i = 0; i < batch; ++i) f(i);
-    auto b = std::chrono::steady_clock::now();
-    t.push_back(std::chrono::duration<double, std::nano>(b - a).count() / batch);
-  }
-  std::sort(t.begin(), t.end());
-  return t[t.size() / 2];
-}
 
 int main(int argc, char** argv) {
   for (int k = 1; k < argc; ++k) {

@@ -15,27 +15,13 @@
 #include <pinocchio/algorithm/frames.hpp>
 #include <pinocchio/algorithm/rnea.hpp>
 #include <pinocchio/serialization.hpp>
+#include "timing.hpp"
 #include <Eigen/Cholesky>
-#include <chrono>
-#include <vector>
-#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <random>
 
 using namespace pinocchio;
-
-template <class F> double median_ns(F f, int batch, int rounds) {
-  std::vector<double> t;
-  for (int r = 0; r < rounds; ++r) {
-    auto a = std::chrono::steady_clock::now();
-    for (int i = 0; i < batch; ++i) f(i);
-    auto b = std::chrono::steady_clock::now();
-    t.push_back(std::chrono::duration<double, std::nano>(b - a).count() / batch);
-  }
-  std::sort(t.begin(), t.end());
-  return t[t.size() / 2];
-}
 
 int main(int argc, char** argv) {
   for (int k = 1; k < argc; ++k) {
@@ -57,21 +43,20 @@ int main(int argc, char** argv) {
     Eigen::Matrix<double, 6, 6> Lambda;
     Eigen::Matrix<double, 6, 1> mu, p;
     double sink = 0;
-    auto task_space = [&](int i) {
+    // The state i's J, bias, g and J̇q̇, and from J D⁻¹ (which `j_dinv` forms from q and J)
+    // Λ, J̄ᵀ, μ and p.
+    auto task_space = [&](int i, auto j_dinv) {
       const Eigen::VectorXd& qi = q[i % S];
       const Eigen::VectorXd& vi = v[i % S];
-      computeMinverse(model, data, qi);
-      data.Minv.triangularView<Eigen::StrictlyLower>() = data.Minv.transpose();
       computeJointJacobians(model, data, qi);
       J.setZero();
       getJointJacobian(model, data, tip, LOCAL_WORLD_ALIGNED, J);
-      const Eigen::VectorXd& b = nonLinearEffects(model, data, qi, vi);
-      const Eigen::VectorXd bias = b;
+      j_dinv(qi);
+      const Eigen::VectorXd bias = nonLinearEffects(model, data, qi, vi);
       const Eigen::VectorXd& g = computeGeneralizedGravity(model, data, qi);
       forwardKinematics(model, data, qi, vi, zero);
       const Eigen::Matrix<double, 6, 1> jdqd =
           getClassicalAcceleration(model, data, tip, LOCAL_WORLD_ALIGNED).toVector();
-      JDinv.noalias() = J * data.Minv;
       const Eigen::Matrix<double, 6, 6> mobility = JDinv * J.transpose();
       Lambda = mobility.llt().solve(Eigen::Matrix<double, 6, 6>::Identity());
       JbarT.noalias() = Lambda * JDinv;
@@ -79,34 +64,24 @@ int main(int argc, char** argv) {
       mu.noalias() = JbarT * (bias - g) - Lambda * jdqd;
       sink += Lambda(1, 1) + mu(0) + p(2);
     };
-    // The same from D itself (crba) and Eigen's Cholesky factorisation, solving instead of
-    // inverting: J D⁻¹ = (D⁻¹ Jᵀ)ᵀ.
+    // J D⁻¹ from D⁻¹ itself (computeMinverse) ...
+    auto from_minverse = [&](const Eigen::VectorXd& qi) {
+      computeMinverse(model, data, qi);
+      data.Minv.triangularView<Eigen::StrictlyLower>() = data.Minv.transpose();
+      JDinv.noalias() = J * data.Minv;
+    };
+    // ... or from D (crba) and Eigen's Cholesky factorisation, solving instead of inverting.
     Eigen::Matrix<double, Eigen::Dynamic, 6> DinvJt(model.nv, 6);
-    auto task_space_crba = [&](int i) {
-      const Eigen::VectorXd& qi = q[i % S];
-      const Eigen::VectorXd& vi = v[i % S];
+    auto from_crba = [&](const Eigen::VectorXd& qi) {
       crba(model, data, qi);
       data.M.triangularView<Eigen::StrictlyLower>() = data.M.transpose();
-      computeJointJacobians(model, data, qi);
-      J.setZero();
-      getJointJacobian(model, data, tip, LOCAL_WORLD_ALIGNED, J);
-      const Eigen::VectorXd bias = nonLinearEffects(model, data, qi, vi);
-      const Eigen::VectorXd& g = computeGeneralizedGravity(model, data, qi);
-      forwardKinematics(model, data, qi, vi, zero);
-      const Eigen::Matrix<double, 6, 1> jdqd =
-          getClassicalAcceleration(model, data, tip, LOCAL_WORLD_ALIGNED).toVector();
       DinvJt = data.M.llt().solve(J.transpose());
-      const Eigen::Matrix<double, 6, 6> mobility = J * DinvJt;
-      Lambda = mobility.llt().solve(Eigen::Matrix<double, 6, 6>::Identity());
-      JbarT.noalias() = Lambda * DinvJt.transpose();
-      p.noalias() = JbarT * g;
-      mu.noalias() = JbarT * (bias - g) - Lambda * jdqd;
-      sink += Lambda(1, 1) + mu(0) + p(2);
+      JDinv = DinvJt.transpose();
     };
     const char* calls = std::getenv("DHGEN_PIN_CALLS");
     const int batch = calls ? std::atoi(calls) : 20000, rounds = calls ? 1 : 31;
-    double t = median_ns(task_space, batch, rounds);
-    double t_crba = median_ns(task_space_crba, batch, rounds);
+    double t = median_ns([&](int i) { task_space(i, from_minverse); }, batch, rounds);
+    double t_crba = median_ns([&](int i) { task_space(i, from_crba); }, batch, rounds);
     std::printf("%s: task space (Λ, J̄ᵀ, μ, p) from computeMinverse %.1f ns, from crba and LLT %.1f ns (%g)\n",
                 argv[k], t, t_crba, sink);
   }
