@@ -165,6 +165,23 @@ where
         self.inverse_dynamics(q, qd, &zero)
     }
 
+    /// D(q), the tool's Jacobian J(q) and `J̇ q̇`, the bias torques and g(q) at once: what
+    /// [`task_space`](crate::task_space) reads. By default five calls; generated modules
+    /// override it to compute all five from one state's sines and cosines.
+    fn tool_terms(
+        &self,
+        q: &OVector<f64, Self::Dof>,
+        qd: &OVector<f64, Self::Dof>,
+    ) -> crate::task_space::ToolTerms<f64, Self::Dof> {
+        crate::task_space::ToolTerms {
+            mass_matrix: self.mass_matrix(q),
+            jacobian: self.jacobian(q),
+            jdot_qdot: self.jdot_qdot(q, qd),
+            bias: self.bias(q, qd),
+            gravity: self.gravity(q),
+        }
+    }
+
     /// Kinetic energy `T(q, q̇) = ½ q̇ᵀ D(q) q̇` of the links and rotors. By default from
     /// the mass matrix.
     #[doc(alias = "computeKineticEnergy")]

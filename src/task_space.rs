@@ -51,7 +51,7 @@
 
 use crate::arm::{ArmAllocator, ArmDynamics};
 use nalgebra::allocator::Allocator;
-use nalgebra::{DefaultAllocator, Dim, DimName, OMatrix, OVector, U3, U6};
+use nalgebra::{DefaultAllocator, Dim, DimName, OMatrix, OVector, Scalar, U3, U6};
 
 /// Why task-space dynamics could not be formed.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, thiserror::Error)]
@@ -69,6 +69,26 @@ pub enum TaskSpaceError {
     /// kinematic singularity, or more task rows than joints).
     #[error("task space: the task Jacobian has lost rank (J D⁻¹ Jᵀ is singular)")]
     SingularTask,
+}
+
+/// The joint-space terms task-space dynamics is built from, at one state `(q, q̇)`: what
+/// [`ArmDynamics::tool_terms`] returns. Generated arms compute the five from one state's sines
+/// and cosines (their `tool_terms`), the runtime path by separate calls.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ToolTerms<T: Scalar, D: Dim>
+where
+    DefaultAllocator: ArmAllocator<D>,
+{
+    /// The mass matrix D(q).
+    pub mass_matrix: OMatrix<T, D, D>,
+    /// The tool frame's geometric Jacobian J(q) (rows `[v; ω]`, world axes).
+    pub jacobian: OMatrix<T, U6, D>,
+    /// The tool's `J̇(q, q̇) q̇`.
+    pub jdot_qdot: OVector<T, U6>,
+    /// The torques at zero acceleration `b(q, q̇) = C q̇ + g` plus friction.
+    pub bias: OVector<T, D>,
+    /// The gravity torques g(q).
+    pub gravity: OVector<T, D>,
 }
 
 /// The task-space dynamics of one task at one state `(q, q̇)`: `Λ a + μ + p = F` for the
@@ -329,13 +349,8 @@ pub fn tool<A: ArmDynamics>(
 where
     DefaultAllocator: ArmAllocator<A::Dof>,
 {
-    TaskDynamics::<U6, A::Dof>::new(
-        arm.mass_matrix(q),
-        arm.jacobian(q),
-        &arm.jdot_qdot(q, qd),
-        &arm.bias(q, qd),
-        &arm.gravity(q),
-    )
+    let t = arm.tool_terms(q, qd);
+    TaskDynamics::<U6, A::Dof>::new(t.mass_matrix, t.jacobian, &t.jdot_qdot, &t.bias, &t.gravity)
 }
 
 /// [`tool`] for the arm holding `payload` in its tool frame: the task-space dynamics of arm
@@ -372,14 +387,8 @@ pub fn tool_position<A: ArmDynamics>(
 where
     DefaultAllocator: ArmAllocator<A::Dof>,
 {
-    let j = arm.jacobian(q);
-    let linear = j.fixed_rows::<3>(0).into_owned();
-    let jdq = arm.jdot_qdot(q, qd).fixed_rows::<3>(0).into_owned();
-    TaskDynamics::<U3, A::Dof>::new(
-        arm.mass_matrix(q),
-        linear,
-        &jdq,
-        &arm.bias(q, qd),
-        &arm.gravity(q),
-    )
+    let t = arm.tool_terms(q, qd);
+    let linear = t.jacobian.fixed_rows::<3>(0).into_owned();
+    let jdq = t.jdot_qdot.fixed_rows::<3>(0).into_owned();
+    TaskDynamics::<U3, A::Dof>::new(t.mass_matrix, linear, &jdq, &t.bias, &t.gravity)
 }

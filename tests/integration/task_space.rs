@@ -7,14 +7,15 @@
 //!   random arms of 8 and 12 joints with oblique axes: under the torques
 //!   `Jᵀ F + Nᵀ τ₀`, forward dynamics gives the task acceleration `J q̈ + J̇ q̇ = Λ⁻¹ (F − μ − p)`,
 //!   whatever `τ₀`; and `J J̄ = I`;
-//! - generated arms against the runtime path, without allocation;
+//! - generated arms against the runtime path, without allocation, and their `tool_terms`
+//!   against their five separate quantities;
 //! - forward dynamics with the task held (`constrained`): the constraint, the equation of
 //!   motion and Gauss's principle on seeded states, and Pinocchio 4.1.0's constrained
 //!   `forwardDynamics` (tests/data/derivatives_*.json);
 //! - its errors: a task the arm cannot hold, a kinematic singularity, a singular `D`, and
 //!   non-finite input.
 
-use crate::catalogue::{panda, planar_elbow, puma560, scara, stanford};
+use crate::catalogue::{odd, panda, planar_elbow, puma560, scara, stanford};
 use crate::support::{allocations_during, fixture, runtime};
 use crate::urdf::{matrix, vector};
 use dhgen::nalgebra::{DMatrix, DVector, DimName, OMatrix, OVector, SVector, U3, U6, Vector6};
@@ -375,6 +376,51 @@ fn generated_arms_agree_with_the_runtime_path_without_allocating() {
     check(&puma560::Robot, "puma560");
     check(&stanford::Robot, "stanford");
     check(&panda::Robot, "panda");
+}
+
+/// A generated arm's `tool_terms` (one state's sines and cosines) are its five separate
+/// quantities bit for bit, and the runtime path's default (five calls) agrees with them: on
+/// arms with Coulomb and viscous friction, a prismatic joint and modified DH (odd), a
+/// prismatic joint (SCARA, Stanford) and seven joints (Panda).
+#[test]
+fn tool_terms_are_the_five_quantities_at_once() {
+    fn check<const N: usize, A: ArmDynamics<Dof = dhgen::nalgebra::Const<N>>>(
+        arm: &A,
+        robot: &Robot,
+        name: &str,
+    ) {
+        for (q, qd) in states(robot, 10, 11) {
+            let (sq, sqd) = (
+                SVector::<f64, N>::from_column_slice(q.as_slice()),
+                SVector::<f64, N>::from_column_slice(qd.as_slice()),
+            );
+            let t = arm.tool_terms(&sq, &sqd);
+            assert_eq!(t.mass_matrix, arm.mass_matrix(&sq), "{name}");
+            assert_eq!(t.jacobian, arm.jacobian(&sq), "{name}");
+            assert_eq!(t.jdot_qdot, arm.jdot_qdot(&sq, &sqd), "{name}");
+            assert_eq!(t.bias, arm.bias(&sq, &sqd), "{name}");
+            assert_eq!(t.gravity, arm.gravity(&sq), "{name}");
+            let r = robot.tool_terms(&q, &qd);
+            let pairs: [(&[f64], &[f64]); 5] = [
+                (t.mass_matrix.as_slice(), r.mass_matrix.as_slice()),
+                (t.jacobian.as_slice(), r.jacobian.as_slice()),
+                (t.jdot_qdot.as_slice(), r.jdot_qdot.as_slice()),
+                (t.bias.as_slice(), r.bias.as_slice()),
+                (t.gravity.as_slice(), r.gravity.as_slice()),
+            ];
+            for (k, (a, b)) in pairs.iter().enumerate() {
+                assert!(
+                    relative(a, b) < 1e-12,
+                    "{name}: term {k}, {}",
+                    relative(a, b)
+                );
+            }
+        }
+    }
+    check(&odd::Robot, &fixture("odd"), "odd");
+    check(&scara::Robot, &runtime("scara"), "scara");
+    check(&stanford::Robot, &runtime("stanford"), "stanford");
+    check(&panda::Robot, &runtime("panda"), "panda");
 }
 
 #[test]

@@ -3570,6 +3570,21 @@ pub mod puma560 {
                 jacobian: self.jacobian(),
             }
         }
+        ///D(q), the tool's Jacobian J(q) and J̇q̇, the bias torques and g(q) at once, sharing one state's sines and cosines: what task-space dynamics (`dhgen::task_space`) reads.
+        #[must_use]
+        pub fn tool_terms(
+            &self,
+            qd: &impl ::dhgen::JointArray<T, DOF>,
+        ) -> ::dhgen::task_space::ToolTerms<T, na::Const<DOF>> {
+            let qd = &qd.to_array();
+            ::dhgen::task_space::ToolTerms {
+                mass_matrix: self.mass_matrix(),
+                jacobian: self.jacobian(),
+                jdot_qdot: self.jdot_qdot(qd),
+                bias: self.bias(qd),
+                gravity: self.gravity(),
+            }
+        }
         fn inverse_dynamics_smooth(
             &self,
             qd: &[T; DOF],
@@ -7183,6 +7198,34 @@ pub mod puma560 {
             c[4] = ca[4];
             State { c, s, d }
         }
+        #[inline]
+        fn for_tool_terms(q: &impl ::dhgen::JointArray<T, DOF>) -> Self {
+            let q = q.to_array();
+            let mut c = [T::zero(); DOF];
+            let mut s = [T::zero(); DOF];
+            let d = [T::zero(); DOF];
+            let (sa, ca) = ::dhgen::Real::sincos_array([
+                q[0],
+                q[1],
+                q[2],
+                q[3],
+                q[4],
+                q[5],
+            ]);
+            s[0] = sa[0];
+            c[0] = ca[0];
+            s[1] = sa[1];
+            c[1] = ca[1];
+            s[2] = sa[2];
+            c[2] = ca[2];
+            s[3] = sa[3];
+            c[3] = ca[3];
+            s[4] = sa[4];
+            c[4] = ca[4];
+            s[5] = sa[5];
+            c[5] = ca[5];
+            State { c, s, d }
+        }
     }
     ///Pose of the tool frame in the world frame as a homogeneous matrix, base · A1 ⋯ An · tool: the fast path (no conversion to a quaternion).
     #[doc(alias = "fkine")]
@@ -7436,6 +7479,14 @@ pub mod puma560 {
         qd: &impl ::dhgen::JointArray<T, DOF>,
     ) -> Terms<T> {
         State::for_terms(q).terms(qd)
+    }
+    ///D(q), the tool's Jacobian J(q) and J̇q̇, the bias torques and g(q) at once, sharing one state's sines and cosines: what task-space dynamics (`dhgen::task_space`) reads.
+    #[must_use]
+    pub fn tool_terms<T: ::dhgen::Real>(
+        q: &impl ::dhgen::JointArray<T, DOF>,
+        qd: &impl ::dhgen::JointArray<T, DOF>,
+    ) -> ::dhgen::task_space::ToolTerms<T, na::Const<DOF>> {
+        State::for_tool_terms(q).tool_terms(qd)
     }
     /// Every function above whose value is read lane by lane, for slices of
     /// configurations: evaluated on SIMD packs (`dhgen::batch`), each configuration's
@@ -8005,6 +8056,13 @@ pub mod puma560 {
         }
         fn potential_energy(&self, q: &na::SVector<f64, DOF>) -> f64 {
             State::for_potential_energy(q).potential_energy()
+        }
+        fn tool_terms(
+            &self,
+            q: &na::SVector<f64, DOF>,
+            qd: &na::SVector<f64, DOF>,
+        ) -> ::dhgen::task_space::ToolTerms<f64, na::Const<DOF>> {
+            State::for_tool_terms(q).tool_terms(qd)
         }
     }
     fn isometry<T: ::dhgen::Real>(m: &na::Matrix4<T>) -> na::Isometry3<T> {

@@ -544,7 +544,8 @@ impl Items {
             Shape::OptionVector
             | Shape::OptionSquare
             | Shape::OptionSquareTriple
-            | Shape::Terms => {
+            | Shape::Terms
+            | Shape::ToolTerms => {
                 return;
             }
             Shape::VectorMask => (

@@ -1305,4 +1305,30 @@ pub const QUANTITIES: &[Quantity] = &[
         },
         arm: None,
     },
+    Quantity {
+        name: "tool_terms",
+        doc: "D(q), the tool's Jacobian J(q) and J̇q̇, the bias torques and g(q) at once, \
+              sharing one state's sines and cosines: what task-space dynamics \
+              (`dhgen::task_space`) reads.",
+        aliases: &[],
+        inputs: &[Input::Qd],
+        shape: Shape::ToolTerms,
+        available: Availability::Dynamics,
+        public: true,
+        make: |_| {
+            composed(
+                quote! {
+                    ::dhgen::task_space::ToolTerms {
+                        mass_matrix: self.mass_matrix(),
+                        jacobian: self.jacobian(),
+                        jdot_qdot: self.jdot_qdot(qd),
+                        bias: self.bias(qd),
+                        gravity: self.gravity(),
+                    }
+                },
+                &["mass_matrix", "jacobian", "jdot_qdot", "bias", "gravity"],
+            )
+        },
+        arm: Some(ArmMethod::Dynamics),
+    },
 ];

@@ -44,6 +44,8 @@ pub enum Shape {
     Cube,
     /// The `Terms` struct.
     Terms,
+    /// `dhgen::task_space::ToolTerms`.
+    ToolTerms,
     /// The regressor, n × `PARAMETERS`, row by row.
     Regressor,
     /// The base regressor, n × `BASE_PARAMETERS`, row by row.
@@ -94,6 +96,7 @@ impl Shape {
             )),
             Shape::Cube => quote!([[[#t; DOF]; DOF]; DOF]),
             Shape::Terms => quote!(Terms<#t>),
+            Shape::ToolTerms => quote!(::dhgen::task_space::ToolTerms<#t, na::Const<DOF>>),
             Shape::Regressor => quote!(na::SMatrix<#t, DOF, PARAMETERS>),
             Shape::BaseRegressor => quote!(na::SMatrix<#t, DOF, BASE_PARAMETERS>),
         }
@@ -143,7 +146,8 @@ impl Shape {
             | Shape::OptionSquare
             | Shape::OptionSquareTriple
             | Shape::SquareTripleMask
-            | Shape::Terms => {
+            | Shape::Terms
+            | Shape::ToolTerms => {
                 unreachable!("{self:?} values are composed, never derived entry by entry")
             }
         }
@@ -208,7 +212,8 @@ impl Shape {
             | Shape::OptionSquare
             | Shape::OptionSquareTriple
             | Shape::SquareTripleMask
-            | Shape::Terms => {
+            | Shape::Terms
+            | Shape::ToolTerms => {
                 unreachable!("{self:?} values are composed, never derived entry by entry")
             }
         }
