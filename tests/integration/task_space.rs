@@ -59,6 +59,17 @@ fn states(robot: &Robot, count: usize, seed: u64) -> Vec<(DVector<f64>, DVector<
         .collect()
 }
 
+/// A state `(q, q̇)` of [`states`] as the joint vectors of a generated arm of `N` joints.
+fn fixed<const N: usize>(
+    q: &DVector<f64>,
+    qd: &DVector<f64>,
+) -> (SVector<f64, N>, SVector<f64, N>) {
+    (
+        SVector::from_column_slice(q.as_slice()),
+        SVector::from_column_slice(qd.as_slice()),
+    )
+}
+
 /// The task's Λ, μ, p and J̄ᵀ as row-major plain vectors.
 fn parts<M: DimName, D: dhgen::nalgebra::Dim>(t: &TaskDynamics<M, D>) -> [Vec<f64>; 4]
 where
@@ -349,10 +360,7 @@ fn generated_arms_agree_with_the_runtime_path_without_allocating() {
         let robot = runtime(name);
         let mut worst = [0.0f64; 4];
         for (q, qd) in states(&robot, 20, 7) {
-            let (sq, sqd) = (
-                SVector::<f64, N>::from_column_slice(q.as_slice()),
-                SVector::<f64, N>::from_column_slice(qd.as_slice()),
-            );
+            let (sq, sqd) = fixed::<N>(&q, &qd);
             let Ok(runtime) = tool(&robot, &q, &qd) else {
                 continue;
             };
@@ -390,10 +398,7 @@ fn tool_terms_are_the_five_quantities_at_once() {
         name: &str,
     ) {
         for (q, qd) in states(robot, 10, 11) {
-            let (sq, sqd) = (
-                SVector::<f64, N>::from_column_slice(q.as_slice()),
-                SVector::<f64, N>::from_column_slice(qd.as_slice()),
-            );
+            let (sq, sqd) = fixed::<N>(&q, &qd);
             let t = arm.tool_terms(&sq, &sqd);
             assert_eq!(t.mass_matrix, arm.mass_matrix(&sq), "{name}");
             assert_eq!(t.jacobian, arm.jacobian(&sq), "{name}");
@@ -446,8 +451,7 @@ fn a_payload_joins_the_task_space_inertia() {
             worst[k] = worst[k].max(relative(a, &b));
         }
         // ... and as the generated arm with it.
-        let sq = SVector::<f64, 7>::from_column_slice(q.as_slice());
-        let sqd = SVector::<f64, 7>::from_column_slice(qd.as_slice());
+        let (sq, sqd) = fixed::<7>(&q, &qd);
         let generated = tool_with_payload(&panda::Robot, &part, &sq, &sqd).unwrap();
         worst[4] = worst[4].max(relative(&parts(&generated)[0], &parts(&task)[0]));
         // Under the torques Jᵀ F the arm holding it accelerates its tool as predicted.
