@@ -248,6 +248,21 @@ macro_rules! run {
                     dhgen::task_space::tool(&robot, &q, &qd)
                         .map_or(0.0, |t| t.inertia()[(1, 1)])
                 }
+                // The same with the payload in the tool frame.
+                ("task_space_payload", true) => {
+                    let q = dhgen::nalgebra::SVector::from(*q);
+                    let qd = dhgen::nalgebra::SVector::from(*qd);
+                    dhgen::task_space::tool_with_payload(&$m::Robot, &payload, &q, &qd)
+                        .map_or(0.0, |t| t.inertia()[(1, 1)])
+                }
+                ("task_space_payload", false) => {
+                    let (q, qd) = (
+                        dhgen::nalgebra::DVector::from_row_slice(q),
+                        dhgen::nalgebra::DVector::from_row_slice(qd),
+                    );
+                    dhgen::task_space::tool_with_payload(&robot, &payload, &q, &qd)
+                        .map_or(0.0, |t| t.inertia()[(1, 1)])
+                }
                 ("regressor", true) => $m::regressor(q, qd, qd)[(1, 12)],
                 ("regressor", false) => robot.regressor(q, qd, qd)[(1, 12)],
                 ("base_regressor", true) => $m::base_regressor(q, qd, qd)[(1, 3)],

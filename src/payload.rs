@@ -29,6 +29,7 @@
 //! ```
 
 use crate::arm::{Arm, ArmAllocator, ArmDynamics};
+use crate::task_space::ToolTerms;
 use nalgebra::{DefaultAllocator, Isometry3, Matrix3, Matrix6, OMatrix, OVector, Vector3, Vector6};
 
 /// A rigid body fixed in the tool frame: mass, centre of mass and inertia about it, in the
@@ -282,6 +283,44 @@ where
     let j = arm.jacobian(q);
     let m = spatial_inertia(&world(arm, payload, q));
     arm.mass_matrix(q) + j.tr_mul(&(m * &j))
+}
+
+/// [`ArmDynamics::tool_terms`] with the payload: D(q) + Jᵀ M J, the tool's J and `J̇ q̇` (the
+/// payload rides on the tool frame, so they are the arm's), the bias and the gravity torques
+/// with the payload. One call of the arm's `tool_terms` and one tool pose, where the separate
+/// functions here ([`mass_matrix`], [`bias`], [`gravity`]) each compute J and the pose again.
+///
+/// ```
+/// dhgen::robot!(mod puma560 = "robots/puma560.toml");
+/// use dhgen::payload::{Payload, tool_terms};
+///
+/// let part = Payload::new(1.5, [0.0, 0.02, 0.06], [[2e-3, 0.0, 0.0], [0.0, 2e-3, 0.0], [0.0, 0.0, 1e-3]])
+///     .unwrap();
+/// let q = dhgen::nalgebra::SVector::from([0.1, -0.6, 0.4, 0.3, 0.8, -0.2]);
+/// let qd = dhgen::nalgebra::SVector::from([0.5, -0.2, 0.3, 1.0, -0.7, 0.4]);
+/// let t = tool_terms(&puma560::Robot, &part, &q, &qd);
+/// let d = dhgen::payload::mass_matrix(&puma560::Robot, &part, &q);
+/// assert!((t.mass_matrix - d).norm() < 1e-12 * d.norm());
+/// ```
+pub fn tool_terms<A: ArmDynamics>(
+    arm: &A,
+    payload: &Payload,
+    q: &OVector<f64, A::Dof>,
+    qd: &OVector<f64, A::Dof>,
+) -> ToolTerms<f64, A::Dof>
+where
+    DefaultAllocator: ArmAllocator<A::Dof>,
+{
+    let mut t = arm.tool_terms(q, qd);
+    let w = world(arm, payload, q);
+    let g = gravity_vector(arm);
+    let m = spatial_inertia(&w);
+    let v = &t.jacobian * qd;
+    let zero = Vector6::zeros();
+    t.mass_matrix += t.jacobian.tr_mul(&(m * &t.jacobian));
+    t.bias += t.jacobian.tr_mul(&wrench(&w, &v, &t.jdot_qdot, &g));
+    t.gravity += t.jacobian.tr_mul(&wrench(&w, &zero, &zero, &g));
+    t
 }
 
 /// Gravity torques with the payload: `g(q) − Jᵀ [m g; h × g]`.

@@ -355,7 +355,8 @@ where
 
 /// [`tool`] for the arm holding `payload` in its tool frame: the task-space dynamics of arm
 /// and payload together, from [`payload`](crate::payload)'s mass matrix, bias and gravity
-/// torques (the Jacobian and `J̇ q̇` are the arm's: the payload rides on the tool frame).
+/// torques (the Jacobian and `J̇ q̇` are the arm's: the payload rides on the tool frame), all
+/// from one [`payload::tool_terms`](crate::payload::tool_terms).
 #[cfg(feature = "std")]
 pub fn tool_with_payload<A: ArmDynamics>(
     arm: &A,
@@ -366,14 +367,8 @@ pub fn tool_with_payload<A: ArmDynamics>(
 where
     DefaultAllocator: ArmAllocator<A::Dof>,
 {
-    use crate::payload;
-    TaskDynamics::<U6, A::Dof>::new(
-        payload::mass_matrix(arm, payload, q),
-        arm.jacobian(q),
-        &arm.jdot_qdot(q, qd),
-        &payload::bias(arm, payload, q, qd),
-        &payload::gravity(arm, payload, q),
-    )
+    let t = crate::payload::tool_terms(arm, payload, q, qd);
+    TaskDynamics::<U6, A::Dof>::new(t.mass_matrix, t.jacobian, &t.jdot_qdot, &t.bias, &t.gravity)
 }
 
 /// The task-space dynamics of the tool frame's origin (the three linear rows of

@@ -19,7 +19,9 @@ use crate::catalogue::{odd, panda, planar_elbow, puma560, scara, stanford};
 use crate::support::{allocations_during, fixture, runtime};
 use crate::urdf::{matrix, vector};
 use dhgen::nalgebra::{DMatrix, DVector, DimName, OMatrix, OVector, SVector, U3, U6, Vector6};
-use dhgen::task_space::{TaskDynamics, TaskSpaceError, tool, tool_position, tool_with_payload};
+use dhgen::task_space::{
+    TaskDynamics, TaskSpaceError, ToolTerms, tool, tool_position, tool_with_payload,
+};
 use dhgen::{Arm, ArmDynamics, Robot};
 use serde_json::Value;
 use std::f64::consts::PI;
@@ -426,6 +428,88 @@ fn tool_terms_are_the_five_quantities_at_once() {
     check(&scara::Robot, &runtime("scara"), "scara");
     check(&stanford::Robot, &runtime("stanford"), "stanford");
     check(&panda::Robot, &runtime("panda"), "panda");
+}
+
+#[test]
+fn payload_tool_terms_are_the_payload_quantities_at_once() {
+    use dhgen::payload::{self, Payload};
+    // Off-centre, with products of inertia.
+    let part = Payload::new(
+        1.7,
+        [0.03, -0.02, 0.07],
+        [[3e-3, 2e-4, -1e-4], [2e-4, 4e-3, 3e-4], [-1e-4, 3e-4, 2e-3]],
+    )
+    .unwrap();
+    fn check<const N: usize, A: ArmDynamics<Dof = dhgen::nalgebra::Const<N>>>(
+        arm: &A,
+        robot: &Robot,
+        part: &Payload,
+        name: &str,
+    ) {
+        for (q, qd) in states(robot, 10, 5) {
+            let (sq, sqd) = fixed::<N>(&q, &qd);
+            for (r, t) in [
+                (
+                    robot.tool_terms(&q, &qd),
+                    payload::tool_terms(robot, part, &q, &qd),
+                ),
+                {
+                    let t = payload::tool_terms(arm, part, &sq, &sqd);
+                    let r = arm.tool_terms(&sq, &sqd);
+                    (to_dynamic(r), to_dynamic(t))
+                },
+            ] {
+                // Against the separate functions of `payload` (runtime arm) ...
+                let pairs: [(&[f64], DVector<f64>); 5] = [
+                    (
+                        t.mass_matrix.as_slice(),
+                        DVector::from_column_slice(
+                            payload::mass_matrix(robot, part, &q).as_slice(),
+                        ),
+                    ),
+                    (
+                        t.jacobian.as_slice(),
+                        DVector::from_column_slice(r.jacobian.as_slice()),
+                    ),
+                    (
+                        t.jdot_qdot.as_slice(),
+                        DVector::from_column_slice(r.jdot_qdot.as_slice()),
+                    ),
+                    (t.bias.as_slice(), payload::bias(robot, part, &q, &qd)),
+                    (t.gravity.as_slice(), payload::gravity(robot, part, &q)),
+                ];
+                for (k, (a, b)) in pairs.iter().enumerate() {
+                    assert!(
+                        relative(a, b.as_slice()) < 1e-12,
+                        "{name}: term {k}, {}",
+                        relative(a, b.as_slice())
+                    );
+                }
+                // ... and the payload changes D, the bias and g (the test could fail).
+                assert!(relative(t.mass_matrix.as_slice(), r.mass_matrix.as_slice()) > 1e-6);
+                assert!(relative(t.gravity.as_slice(), r.gravity.as_slice()) > 1e-6);
+            }
+        }
+    }
+    check(&odd::Robot, &fixture("odd"), &part, "odd");
+    check(&scara::Robot, &runtime("scara"), &part, "scara");
+    check(&stanford::Robot, &runtime("stanford"), &part, "stanford");
+    check(&panda::Robot, &runtime("panda"), &part, "panda");
+}
+
+/// A generated arm's `ToolTerms` in the runtime path's dynamic sizes.
+fn to_dynamic<const N: usize>(
+    t: ToolTerms<f64, dhgen::nalgebra::Const<N>>,
+) -> ToolTerms<f64, dhgen::nalgebra::Dyn> {
+    ToolTerms {
+        mass_matrix: DMatrix::from_column_slice(N, N, t.mass_matrix.as_slice()),
+        jacobian: DMatrix::from_column_slice(6, N, t.jacobian.as_slice())
+            .fixed_rows::<6>(0)
+            .into_owned(),
+        jdot_qdot: t.jdot_qdot,
+        bias: DVector::from_column_slice(t.bias.as_slice()),
+        gravity: DVector::from_column_slice(t.gravity.as_slice()),
+    }
 }
 
 #[test]
