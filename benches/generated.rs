@@ -185,8 +185,9 @@ macro_rules! bench_robot {
 }
 
 /// Task-space dynamics of the tool (`dhgen::task_space::tool`: Λ, J̄, μ, p) from the generated
-/// arm's D, J, J̇ q̇, bias and g, against the same function on the runtime path:
-/// `task_space/{robot}/{generated_f64|runtime}`.
+/// arm's D, J, J̇ q̇, bias and g, against the same function on the runtime path, without and
+/// with a payload (`tool_with_payload`):
+/// `task_space/{robot}/{generated_f64|runtime|with_payload_generated_f64|with_payload_runtime}`.
 macro_rules! bench_task_space {
     ($c:expr, $m:ident) => {{
         use dhgen::nalgebra::{DVector, SVector};
@@ -224,6 +225,27 @@ macro_rules! bench_task_space {
                 let (q, qd) = black_box(&dynamic[i % STATES]);
                 i += 1;
                 black_box(dhgen::task_space::tool(&robot, q, qd).ok())
+            })
+        });
+        // The same holding a payload (1.7 kg, off-centre, products of inertia).
+        let part = dhgen::payload::Payload::new(
+            1.7,
+            [0.03, -0.02, 0.07],
+            [[3e-3, 2e-4, -1e-4], [2e-4, 4e-3, 3e-4], [-1e-4, 3e-4, 2e-3]],
+        )
+        .unwrap();
+        group.bench_function(BenchmarkId::new(name, "with_payload_generated_f64"), |b| {
+            b.iter(|| {
+                let (q, qd) = black_box(&fixed[i % STATES]);
+                i += 1;
+                black_box(dhgen::task_space::tool_with_payload(&$m::Robot, &part, q, qd).ok())
+            })
+        });
+        group.bench_function(BenchmarkId::new(name, "with_payload_runtime"), |b| {
+            b.iter(|| {
+                let (q, qd) = black_box(&dynamic[i % STATES]);
+                i += 1;
+                black_box(dhgen::task_space::tool_with_payload(&robot, &part, q, qd).ok())
             })
         });
     }};

@@ -342,9 +342,10 @@ where
             .tr_mul(&Vector6::new(f.x, f.y, f.z, n.x, n.y, n.z))
 }
 
-/// Forward dynamics with the payload: `(D + Jᵀ M J) q̈ = τ − bias`, by the one rule for a
-/// singular inertia matrix ([`inertia_cholesky`](crate::inertia_cholesky)); `None` where it
-/// is singular to working precision or q̈ is not finite.
+/// Forward dynamics with the payload: `(D + Jᵀ M J) q̈ = τ − bias`, both from one
+/// [`tool_terms`], by the one rule for a singular inertia matrix
+/// ([`inertia_cholesky`](crate::inertia_cholesky)); `None` where it is singular to working
+/// precision or q̈ is not finite.
 pub fn forward_dynamics<A: ArmDynamics>(
     arm: &A,
     payload: &Payload,
@@ -355,9 +356,8 @@ pub fn forward_dynamics<A: ArmDynamics>(
 where
     DefaultAllocator: ArmAllocator<A::Dof>,
 {
-    let d = mass_matrix(arm, payload, q);
-    let rhs = tau - bias(arm, payload, q, qd);
-    let qdd = crate::inertia_cholesky(d)?.solve(&rhs);
+    let t = tool_terms(arm, payload, q, qd);
+    let qdd = crate::inertia_cholesky(t.mass_matrix)?.solve(&(tau - t.bias));
     qdd.iter().all(|x| x.is_finite()).then_some(qdd)
 }
 
