@@ -108,6 +108,37 @@ where
     fn jdot_qdot(&self, q: &OVector<f64, Self::Dof>, qd: &OVector<f64, Self::Dof>) -> Vector6<f64> {
         crate::velocity::jdot_qdot_from_jacobian(self, &self.jacobian(q), qd)
     }
+
+    /// The tool frame's geometric Jacobian in the tool's own axes, its body Jacobian: rows
+    /// `[v; ω]`, the tool origin's velocity and the tool's angular velocity, both resolved in
+    /// the tool frame, `J_b = diag(Rᵀ, Rᵀ) J` for the tool's rotation `R` (Pinocchio's `LOCAL`
+    /// frame Jacobian). It is the Jacobian of a velocity command given in the tool frame, and
+    /// `J_bᵀ F` maps a wrench measured by a wrist force sensor to joint torques. It does not
+    /// depend on the base placement. By default from [`fk`](Self::fk) and
+    /// [`jacobian`](Self::jacobian).
+    ///
+    /// ```
+    /// use dhgen::Arm;
+    /// use dhgen::nalgebra::{SVector, Vector6};
+    /// dhgen::robot!(mod puma = "robots/puma560.toml");
+    ///
+    /// let q = SVector::<f64, 6>::new(0.2, -0.3, 0.4, 0.5, 0.6, 0.7);
+    /// let jb = puma::Robot.body_jacobian(&q);
+    /// // The PUMA's last joint turns its tool about the tool's own z axis, at any q.
+    /// assert!((jb.column(5) - Vector6::new(0.0, 0.0, 0.0, 0.0, 0.0, 1.0)).norm() < 1e-12);
+    /// ```
+    #[doc(alias = "jacobe")]
+    #[doc(alias = "LOCAL")]
+    fn body_jacobian(&self, q: &OVector<f64, Self::Dof>) -> OMatrix<f64, U6, Self::Dof> {
+        let rt = self.fk(q).rotation.to_rotation_matrix().transpose();
+        let mut j = self.jacobian(q);
+        for mut c in j.column_iter_mut() {
+            let v = rt * Vector3::new(c[0], c[1], c[2]);
+            let w = rt * Vector3::new(c[3], c[4], c[5]);
+            c.copy_from_slice(&[v.x, v.y, v.z, w.x, w.y, w.z]);
+        }
+        j
+    }
 }
 
 /// Rigid-body dynamics of a serial arm (`τ = D q̈ + C q̇ + g`, plus motor inertia and

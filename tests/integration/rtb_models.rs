@@ -3,7 +3,8 @@
 //! 10-joint snakes, a PUMA 560 on a two-axis gantry with a rotated base, standard and modified
 //! tables, base and tool transforms, joints turning against their DH axis (Jaco and Mico, in
 //! the `urdf` convention) — each written as a dhgen description, on the runtime path against the
-//! Toolbox's T, J0 and, where the model has dynamics, D, g, C q̇ and τ at 5 seeded states; and
+//! Toolbox's T, J0 and, where the model has dynamics, D, g, C q̇ and τ at 5 seeded states (and
+//! the body Jacobian against its `jacobe`, tests/data/rtb_jacobe.json); and
 //! the same robots converted to DH tables of both conventions (`convert::to_dh`). The
 //! Toolbox's data that is outside the format's ranges (IRB 140: a centre of mass 198 km away)
 //! must be rejected with an error naming the field.
@@ -12,7 +13,7 @@ use crate::urdf::{matrix as rows, vector as column};
 use dhgen::Robot;
 use dhgen::model::convert::to_dh;
 use dhgen::model::{Convention, RobotModel};
-use nalgebra::DMatrix;
+use nalgebra::{DMatrix, DVector};
 use serde_json::Value;
 
 fn data() -> Value {
@@ -89,6 +90,36 @@ fn toolbox_models_match_on_the_runtime_path() {
 /// Converted to a DH table of either convention (the flipped joints of Jaco and Mico get a z
 /// axis along the joint's turning direction, the frames around them change, q does not), each
 /// robot still matches the Toolbox.
+/// The body Jacobian (`Arm::body_jacobian`) against the Toolbox's `jacobe` at the same states
+/// (tests/data/rtb_jacobe.json, made by scripts/rtb_jacobe.py), on all 23 models.
+#[test]
+fn toolbox_models_body_jacobians_match_jacobe() {
+    let d = data();
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/rtb_jacobe.json");
+    let je: Value = serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
+    let (robots, references) = (
+        d["robots"].as_array().unwrap(),
+        je["robots"].as_array().unwrap(),
+    );
+    assert_eq!(robots.len(), references.len());
+    for (r, reference) in robots.iter().zip(references) {
+        let name = r["name"].as_str().unwrap();
+        assert_eq!(reference["name"].as_str(), Some(name));
+        let robot = Robot::from_toml_str(r["toml"].as_str().unwrap()).unwrap();
+        let n = robot.dof();
+        let states = r["samples"].as_array().unwrap();
+        let refs = reference["samples"].as_array().unwrap();
+        assert_eq!(states.len(), refs.len(), "{name}");
+        for (s, e) in states.iter().zip(refs) {
+            let q = column(&s["q"]);
+            let jb = dhgen::Arm::body_jacobian(&robot, &DVector::from_column_slice(&q));
+            let jb = DMatrix::from_fn(6, n, |a, b| jb[(a, b)]);
+            let w = error(&jb, &rows(&e["Je"]));
+            assert!(w < 1e-12, "{name}: body Jacobian off jacobe by {w:e}");
+        }
+    }
+}
+
 #[test]
 fn toolbox_models_converted_to_dh_still_match() {
     let d = data();

@@ -1,7 +1,8 @@
 //! Velocity kinematics: the analytic Jacobian against finite differences of Euler angles,
 //! J̇ q̇ against finite differences, the SVD and pseudo-inverse identities, singularity
 //! detection at known singular configurations, the decoupled determinants, inverse velocity
-//! and acceleration, and the Jacobians of points on every link.
+//! and acceleration, the Jacobians of points on every link, and the body Jacobian against
+//! finite differences of the pose in tool axes (and its independence of the base).
 
 use crate::catalogue::{cylindrical, elbow, odd, panda, planar_elbow as planar, puma560, stanford};
 use crate::support::runtime;
@@ -150,6 +151,87 @@ fn point_jacobians_match_finite_differences_on_every_link() {
     check_point_jacobian(&odd::Robot, "modified DH, prismatic, base and tool");
     check_point_jacobian(&runtime("panda"), "panda (runtime)");
     check_point_jacobian(&runtime("ur5"), "ur5 (runtime)");
+}
+
+/// The body Jacobian against central differences of the pose along `q̇`:
+/// `J_b q̇ = [Rᵀ ṗ; (Rᵀ Ṙ)^∨]`, both resolved in the tool frame.
+fn check_body_jacobian<A: Arm>(arm: &A, name: &str)
+where
+    DefaultAllocator: ArmAllocator<A::Dof>,
+{
+    let mut rng = StdRng::seed_from_u64(29);
+    let h = 1e-6;
+    for _ in 0..20 {
+        let q = random_q(arm, &mut rng);
+        let qd = random_qd(arm, &mut rng);
+        let (plus, minus, at) = (arm.fk(&(&q + &qd * h)), arm.fk(&(&q - &qd * h)), arm.fk(&q));
+        let rt = at.rotation.to_rotation_matrix().into_inner().transpose();
+        let p_dot = (plus.translation.vector - minus.translation.vector) / (2.0 * h);
+        let r_dot = (plus.rotation.to_rotation_matrix().into_inner()
+            - minus.rotation.to_rotation_matrix().into_inner())
+            / (2.0 * h);
+        let w = rt * r_dot; // skew-symmetric: [ω]× in tool axes
+        let v = rt * p_dot;
+        let expected = Vector6::new(v.x, v.y, v.z, w[(2, 1)], w[(0, 2)], w[(1, 0)]);
+        let got = arm.body_jacobian(&q) * &qd;
+        let scale = expected.norm().max(1.0);
+        assert!(
+            (got - expected).norm() < 1e-7 * scale,
+            "{name}: body Jacobian off finite differences by {:e}",
+            (got - expected).norm()
+        );
+        // Its norm per column is the world Jacobian's: only the axes differ.
+        let j = arm.jacobian(&q);
+        let jb = arm.body_jacobian(&q);
+        for c in 0..arm.dof() {
+            let (a, b) = (j.column(c), jb.column(c));
+            assert!(
+                (a.fixed_rows::<3>(0).norm() - b.fixed_rows::<3>(0).norm()).abs() < 1e-12
+                    && (a.fixed_rows::<3>(3).norm() - b.fixed_rows::<3>(3).norm()).abs() < 1e-12,
+                "{name}: column {c}"
+            );
+        }
+    }
+}
+
+#[test]
+fn body_jacobian_matches_finite_differences_in_tool_axes() {
+    // Generated arms (a prismatic joint in the cylindrical and Stanford arms; odd: modified DH,
+    // base and tool at inexact angles) and the runtime path.
+    check_body_jacobian(&puma560::Robot, "puma560");
+    check_body_jacobian(&panda::Robot, "panda");
+    check_body_jacobian(&stanford::Robot, "stanford");
+    check_body_jacobian(&cylindrical::Robot, "cylindrical");
+    check_body_jacobian(&odd::Robot, "odd");
+    check_body_jacobian(&runtime("panda"), "panda (runtime)");
+    check_body_jacobian(&crate::support::fixture("odd"), "odd (runtime)");
+}
+
+#[test]
+fn body_jacobian_does_not_depend_on_the_base() {
+    // The odd fixture with the base of another fixture: world Jacobians differ, body
+    // Jacobians agree.
+    let arm = crate::support::fixture("odd");
+    let mut model = arm.model().clone();
+    model.base = crate::support::fixture("puma_offsets").model().base;
+    assert_ne!(model.base, arm.model().base);
+    let moved = dhgen::Robot::from_model(model);
+    let mut rng = StdRng::seed_from_u64(31);
+    for _ in 0..20 {
+        let q = random_q(&arm, &mut rng);
+        let (a, b) = (arm.body_jacobian(&q), moved.body_jacobian(&q));
+        assert!((&a - &b).abs().max() < 1e-12, "{}", (&a - &b).abs().max());
+        assert!((arm.jacobian(&q) - moved.jacobian(&q)).abs().max() > 1e-3);
+        // Generated: the same.
+        let sq = SVector::<f64, { odd::DOF }>::from_column_slice(q.as_slice());
+        let g = odd::Robot.body_jacobian(&sq);
+        assert!(
+            (DMatrix::from_column_slice(6, odd::DOF, g.as_slice()) - &a)
+                .abs()
+                .max()
+                < 1e-12
+        );
+    }
 }
 
 #[test]
