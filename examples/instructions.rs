@@ -197,6 +197,18 @@ macro_rules! run {
                 ("fk_matrix", true) => $m::fk_matrix(q)[(0, 3)],
                 ("jacobian", true) => $m::jacobian(q)[(0, 1)],
                 ("jacobian", false) => robot.jacobian(q)[(0, 1)],
+                ("body_jacobian", true) => $m::body_jacobian(q)[(0, 1)],
+                ("body_jacobian", false) => {
+                    dhgen::Arm::body_jacobian(&robot, &dhgen::nalgebra::DVector::from_row_slice(q))
+                        [(0, 1)]
+                }
+                // The trait's default (fk, then J rotated into tool axes) on the generated arm.
+                ("body_jacobian_default", true) => {
+                    let q = dhgen::nalgebra::SVector::from(*q);
+                    let j = dhgen::Arm::jacobian(&$m::Robot, &q);
+                    let rt = dhgen::Arm::fk(&$m::Robot, &q).rotation.to_rotation_matrix().transpose();
+                    (rt * j.fixed_view::<3, 1>(0, 1))[0]
+                }
                 ("mass_matrix", true) => $m::mass_matrix(q)[(1, 1)],
                 ("mass_matrix", false) => robot.mass_matrix(q)[(1, 1)],
                 ("christoffel", true) => $m::christoffel(q)[1][2][0],

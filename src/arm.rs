@@ -115,7 +115,9 @@ where
     /// frame Jacobian). It is the Jacobian of a velocity command given in the tool frame, and
     /// `J_bᵀ F` maps a wrench measured by a wrist force sensor to joint torques. It does not
     /// depend on the base placement. By default from [`fk`](Self::fk) and
-    /// [`jacobian`](Self::jacobian).
+    /// [`jacobian`](Self::jacobian); generated modules override it with straight-line code
+    /// walked back from the tool, which never computes the base's joints' frames (PUMA 560: 730
+    /// instructions, as many as `jacobian`, against 1,608 for this default on the same arm).
     ///
     /// ```
     /// use dhgen::Arm;

@@ -181,6 +181,7 @@ macro_rules! kinematics {
                 fk(),
                 frames_matrix(),
                 jacobian(),
+                body_jacobian(),
                 jdot_qdot(qd)
             ]
         )

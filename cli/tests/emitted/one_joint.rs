@@ -189,6 +189,22 @@ pub mod one_joint {
             out[(5, 0)] = ::dhgen::nalgebra::convert::<f64, T>(1f64);
             out
         }
+        ///The tool frame's geometric Jacobian in the tool's own axes (the body Jacobian), rows [v; ω]: it does not depend on the base.
+        #[doc(alias = "jacobe")]
+        #[doc(alias = "LOCAL")]
+        #[must_use]
+        pub fn body_jacobian(&self) -> na::SMatrix<T, 6, DOF> {
+            let mut out: na::SMatrix<T, 6, DOF> = na::Matrix::from_data(
+                na::ArrayStorage([[T::zero(); 6]; DOF]),
+            );
+            out[(0, 0)] = ::dhgen::nalgebra::convert::<f64, T>(0f64);
+            out[(1, 0)] = ::dhgen::nalgebra::convert::<f64, T>(1f64);
+            out[(2, 0)] = ::dhgen::nalgebra::convert::<f64, T>(0f64);
+            out[(3, 0)] = ::dhgen::nalgebra::convert::<f64, T>(0f64);
+            out[(4, 0)] = ::dhgen::nalgebra::convert::<f64, T>(0f64);
+            out[(5, 0)] = ::dhgen::nalgebra::convert::<f64, T>(1f64);
+            out
+        }
         ///J̇(q, q̇) q̇ of the tool frame origin in world axes, rows [v; ω]: the tool's acceleration at q̈ = 0.
         #[doc(alias = "jacob_dot")]
         #[doc(alias = "getFrameClassicalAcceleration")]
@@ -1100,6 +1116,14 @@ pub mod one_joint {
             State { c, s, d }
         }
         #[inline]
+        fn for_body_jacobian(q: &impl ::dhgen::JointArray<T, DOF>) -> Self {
+            let _ = q;
+            let c = [T::zero(); DOF];
+            let s = [T::zero(); DOF];
+            let d = [T::zero(); DOF];
+            State { c, s, d }
+        }
+        #[inline]
         fn for_jdot_qdot(q: &impl ::dhgen::JointArray<T, DOF>) -> Self {
             let q = q.to_array();
             let mut c = [T::zero(); DOF];
@@ -1446,6 +1470,15 @@ pub mod one_joint {
         q: &impl ::dhgen::JointArray<T, DOF>,
     ) -> na::SMatrix<T, 6, DOF> {
         State::for_jacobian(q).jacobian()
+    }
+    ///The tool frame's geometric Jacobian in the tool's own axes (the body Jacobian), rows [v; ω]: it does not depend on the base.
+    #[doc(alias = "jacobe")]
+    #[doc(alias = "LOCAL")]
+    #[must_use]
+    pub fn body_jacobian<T: ::dhgen::Real>(
+        q: &impl ::dhgen::JointArray<T, DOF>,
+    ) -> na::SMatrix<T, 6, DOF> {
+        State::for_body_jacobian(q).body_jacobian()
     }
     ///J̇(q, q̇) q̇ of the tool frame origin in world axes, rows [v; ω]: the tool's acceleration at q̈ = 0.
     #[doc(alias = "jacob_dot")]
@@ -1837,6 +1870,16 @@ pub mod one_joint {
             out: &mut [na::SMatrix<T, 6, DOF>],
         ) -> Result<(), ::dhgen::batch::LengthMismatch> {
             ::dhgen::batch::run([q], out, |[q]| super::jacobian(q))
+        }
+        /// [`body_jacobian`](super::body_jacobian) for each configuration: `out[c]` from `q[c]`, four `f64` or eight `f32` configurations per call (`dhgen::batch`).
+        ///
+        /// # Errors
+        /// `LengthMismatch` (nothing written) unless every slice has `out.len()` entries.
+        pub fn body_jacobian<T: ::dhgen::batch::Lanes>(
+            q: &[[T; DOF]],
+            out: &mut [na::SMatrix<T, 6, DOF>],
+        ) -> Result<(), ::dhgen::batch::LengthMismatch> {
+            ::dhgen::batch::run([q], out, |[q]| super::body_jacobian(q))
         }
         /// [`jdot_qdot`](super::jdot_qdot) for each configuration: `out[c]` from `q[c]`, `qd[c]`, four `f64` or eight `f32` configurations per call (`dhgen::batch`).
         ///
@@ -2363,6 +2406,9 @@ pub mod one_joint {
         }
         fn jacobian(&self, q: &na::SVector<f64, DOF>) -> na::SMatrix<f64, 6, DOF> {
             State::for_jacobian(q).jacobian()
+        }
+        fn body_jacobian(&self, q: &na::SVector<f64, DOF>) -> na::SMatrix<f64, 6, DOF> {
+            State::for_body_jacobian(q).body_jacobian()
         }
         fn jdot_qdot(
             &self,

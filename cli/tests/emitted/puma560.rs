@@ -692,6 +692,136 @@ pub mod puma560 {
             out[(2, 5)] = ::dhgen::nalgebra::convert::<f64, T>(0f64);
             out
         }
+        ///The tool frame's geometric Jacobian in the tool's own axes (the body Jacobian), rows [v; ω]: it does not depend on the base.
+        #[doc(alias = "jacobe")]
+        #[doc(alias = "LOCAL")]
+        #[must_use]
+        pub fn body_jacobian(&self) -> na::SMatrix<T, 6, DOF> {
+            let mut out: na::SMatrix<T, 6, DOF> = na::Matrix::from_data(
+                na::ArrayStorage([[T::zero(); 6]; DOF]),
+            );
+            let c2: T = self.c[1];
+            let s2: T = self.s[1];
+            let c3: T = self.c[2];
+            let s3: T = self.s[2];
+            let c4: T = self.c[3];
+            let s4: T = self.s[3];
+            let c5: T = self.c[4];
+            let s5: T = self.s[4];
+            let c6: T = self.c[5];
+            let s6: T = self.s[5];
+            let k52: T = ::dhgen::nalgebra::convert::<f64, T>(0.0203f64);
+            let k54: T = ::dhgen::nalgebra::convert::<f64, T>(0.4318f64);
+            let k148: T = ::dhgen::nalgebra::convert::<f64, T>(0.15005f64);
+            let t23: T = c5 * c6;
+            let t41: T = s4 * t23;
+            let t45: T = ::dhgen::Real::mul_add_fast(c4, s6, t41);
+            let t93: T = c3 * k52;
+            let t96: T = ::dhgen::Real::mul_add_fast(-s3, k54, t93);
+            let t97: T = k54 + t96;
+            let t139: T = c2 * t97;
+            let t98: T = s3 * k52;
+            let t100: T = ::dhgen::Real::mul_add_fast(c3, k54, t98);
+            let t142: T = ::dhgen::Real::mul_add_fast(-s2, t100, t139);
+            let t146: T = t45 * t142;
+            let t29: T = c4 * t23;
+            let t32: T = ::dhgen::Real::mul_add_fast(-s4, s6, t29);
+            let t66: T = c3 * t32;
+            let t26: T = s5 * c6;
+            out[(3, 3)] = t26;
+            let t69: T = ::dhgen::Real::mul_add_fast(-s3, t26, t66);
+            let t113: T = c2 * t69;
+            let t80: T = s3 * t32;
+            let t82: T = ::dhgen::Real::mul_add_fast(c3, t26, t80);
+            let t116: T = ::dhgen::Real::mul_add_fast(-s2, t82, t113);
+            let t151: T = ::dhgen::Real::mul_add_fast(t116, k148, t146);
+            out[(0, 0)] = t151;
+            let t48: T = c4 * c6;
+            let t24: T = c5 * s6;
+            let t47: T = s4 * t24;
+            let t126: T = t48 - t47;
+            let t152: T = t126 * t142;
+            let t27: T = s5 * s6;
+            let t72: T = s3 * t27;
+            let t33: T = c4 * t24;
+            let t37: T = ::dhgen::Real::mul_add_fast(s4, c6, t33);
+            let t73: T = ::dhgen::Real::mul_add_fast(-c3, t37, t72);
+            let t117: T = c2 * t73;
+            let t83: T = s3 * t37;
+            let t87: T = ::dhgen::Real::mul_add_fast(c3, t27, t83);
+            let t119: T = ::dhgen::Real::mul_add_fast(s2, t87, t117);
+            let t155: T = ::dhgen::Real::mul_add_fast(t119, k148, t152);
+            out[(1, 0)] = t155;
+            let t51: T = s4 * s5;
+            out[(5, 1)] = t51;
+            out[(5, 2)] = t51;
+            let t156: T = t51 * t142;
+            let t39: T = c4 * s5;
+            let t74: T = c3 * t39;
+            let t78: T = ::dhgen::Real::mul_add_fast(s3, c5, t74);
+            let t120: T = c2 * t78;
+            let t91: T = c3 * c5;
+            let t92: T = ::dhgen::Real::mul_add_fast(-s3, t39, t91);
+            let t124: T = ::dhgen::Real::mul_add_fast(s2, t92, t120);
+            let t160: T = ::dhgen::Real::mul_add_fast(t124, k148, t156);
+            let t161: T = -t160;
+            out[(2, 0)] = t161;
+            let t128: T = s2 * t69;
+            let t130: T = ::dhgen::Real::mul_add_fast(c2, t82, t128);
+            out[(3, 0)] = t130;
+            let t131: T = s2 * t73;
+            let t134: T = ::dhgen::Real::mul_add_fast(-c2, t87, t131);
+            out[(4, 0)] = t134;
+            let t137: T = c2 * t92;
+            let t138: T = ::dhgen::Real::mul_add_fast(-s2, t78, t137);
+            out[(5, 0)] = t138;
+            let t101: T = t82 * t97;
+            let t103: T = ::dhgen::Real::mul_add_fast(-t69, t100, t101);
+            out[(0, 1)] = t103;
+            let t104: T = t87 * t97;
+            let t107: T = ::dhgen::Real::mul_add_fast(t73, t100, t104);
+            let t108: T = -t107;
+            out[(1, 1)] = t108;
+            let t109: T = t92 * t97;
+            let t112: T = ::dhgen::Real::mul_add_fast(t78, t100, t109);
+            out[(2, 1)] = t112;
+            let t46: T = -t45;
+            out[(3, 1)] = t46;
+            out[(3, 2)] = t46;
+            let t50: T = t47 - t48;
+            out[(4, 1)] = t50;
+            out[(4, 2)] = t50;
+            let t53: T = t26 * k52;
+            let t56: T = ::dhgen::Real::mul_add_fast(-t32, k54, t53);
+            out[(0, 2)] = t56;
+            let t59: T = t37 * k54;
+            let t61: T = ::dhgen::Real::mul_add_fast(-t27, k52, t59);
+            out[(1, 2)] = t61;
+            let t62: T = c5 * k52;
+            let t65: T = ::dhgen::Real::mul_add_fast(t39, k54, t62);
+            out[(2, 2)] = t65;
+            let t28: T = -t27;
+            out[(4, 3)] = t28;
+            let t17: T = -s6;
+            out[(3, 4)] = t17;
+            let t22: T = -c6;
+            out[(4, 4)] = t22;
+            out[(0, 3)] = ::dhgen::nalgebra::convert::<f64, T>(0f64);
+            out[(1, 3)] = ::dhgen::nalgebra::convert::<f64, T>(0f64);
+            out[(2, 3)] = ::dhgen::nalgebra::convert::<f64, T>(0f64);
+            out[(5, 3)] = c5;
+            out[(0, 4)] = ::dhgen::nalgebra::convert::<f64, T>(0f64);
+            out[(1, 4)] = ::dhgen::nalgebra::convert::<f64, T>(0f64);
+            out[(2, 4)] = ::dhgen::nalgebra::convert::<f64, T>(0f64);
+            out[(5, 4)] = ::dhgen::nalgebra::convert::<f64, T>(0f64);
+            out[(0, 5)] = ::dhgen::nalgebra::convert::<f64, T>(0f64);
+            out[(1, 5)] = ::dhgen::nalgebra::convert::<f64, T>(0f64);
+            out[(2, 5)] = ::dhgen::nalgebra::convert::<f64, T>(0f64);
+            out[(3, 5)] = ::dhgen::nalgebra::convert::<f64, T>(0f64);
+            out[(4, 5)] = ::dhgen::nalgebra::convert::<f64, T>(0f64);
+            out[(5, 5)] = ::dhgen::nalgebra::convert::<f64, T>(1f64);
+            out
+        }
         ///J̇(q, q̇) q̇ of the tool frame origin in world axes, rows [v; ω]: the tool's acceleration at q̈ = 0.
         #[doc(alias = "jacob_dot")]
         #[doc(alias = "getFrameClassicalAcceleration")]
@@ -6777,6 +6907,25 @@ pub mod puma560 {
             State { c, s, d }
         }
         #[inline]
+        fn for_body_jacobian(q: &impl ::dhgen::JointArray<T, DOF>) -> Self {
+            let q = q.to_array();
+            let mut c = [T::zero(); DOF];
+            let mut s = [T::zero(); DOF];
+            let d = [T::zero(); DOF];
+            let (sa, ca) = ::dhgen::Real::sincos_array([q[1], q[2], q[3], q[4], q[5]]);
+            s[1] = sa[0];
+            c[1] = ca[0];
+            s[2] = sa[1];
+            c[2] = ca[1];
+            s[3] = sa[2];
+            c[3] = ca[2];
+            s[4] = sa[3];
+            c[4] = ca[3];
+            s[5] = sa[4];
+            c[5] = ca[4];
+            State { c, s, d }
+        }
+        #[inline]
         fn for_jdot_qdot(q: &impl ::dhgen::JointArray<T, DOF>) -> Self {
             let q = q.to_array();
             let mut c = [T::zero(); DOF];
@@ -7271,6 +7420,15 @@ pub mod puma560 {
     ) -> na::SMatrix<T, 6, DOF> {
         State::for_jacobian(q).jacobian()
     }
+    ///The tool frame's geometric Jacobian in the tool's own axes (the body Jacobian), rows [v; ω]: it does not depend on the base.
+    #[doc(alias = "jacobe")]
+    #[doc(alias = "LOCAL")]
+    #[must_use]
+    pub fn body_jacobian<T: ::dhgen::Real>(
+        q: &impl ::dhgen::JointArray<T, DOF>,
+    ) -> na::SMatrix<T, 6, DOF> {
+        State::for_body_jacobian(q).body_jacobian()
+    }
     ///J̇(q, q̇) q̇ of the tool frame origin in world axes, rows [v; ω]: the tool's acceleration at q̈ = 0.
     #[doc(alias = "jacob_dot")]
     #[doc(alias = "getFrameClassicalAcceleration")]
@@ -7542,6 +7700,16 @@ pub mod puma560 {
             out: &mut [na::SMatrix<T, 6, DOF>],
         ) -> Result<(), ::dhgen::batch::LengthMismatch> {
             ::dhgen::batch::run([q], out, |[q]| super::jacobian(q))
+        }
+        /// [`body_jacobian`](super::body_jacobian) for each configuration: `out[c]` from `q[c]`, four `f64` or eight `f32` configurations per call (`dhgen::batch`).
+        ///
+        /// # Errors
+        /// `LengthMismatch` (nothing written) unless every slice has `out.len()` entries.
+        pub fn body_jacobian<T: ::dhgen::batch::Lanes>(
+            q: &[[T; DOF]],
+            out: &mut [na::SMatrix<T, 6, DOF>],
+        ) -> Result<(), ::dhgen::batch::LengthMismatch> {
+            ::dhgen::batch::run([q], out, |[q]| super::body_jacobian(q))
         }
         /// [`jdot_qdot`](super::jdot_qdot) for each configuration: `out[c]` from `q[c]`, `qd[c]`, four `f64` or eight `f32` configurations per call (`dhgen::batch`).
         ///
@@ -7995,6 +8163,9 @@ pub mod puma560 {
         }
         fn jacobian(&self, q: &na::SVector<f64, DOF>) -> na::SMatrix<f64, 6, DOF> {
             State::for_jacobian(q).jacobian()
+        }
+        fn body_jacobian(&self, q: &na::SVector<f64, DOF>) -> na::SMatrix<f64, 6, DOF> {
+            State::for_body_jacobian(q).body_jacobian()
         }
         fn jdot_qdot(
             &self,

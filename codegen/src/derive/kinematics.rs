@@ -113,6 +113,52 @@ pub fn jacobian(chain: ChainRef<'_>) -> (SharedGraph, Vec<[E; 6]>) {
     )
 }
 
+/// The 6×n body Jacobian: the tool frame's Jacobian in the tool's own axes, rows `[v; ω]`,
+/// column-major as `[column][row]`, in a new graph. Walked back from the tool, so the base
+/// never enters: with `B_k = T_{k+1} ⋯ T_{n−1} P_n` the tool in joint frame k (rotation `R`,
+/// origin `p`), joint k turns about that frame's z axis through its origin, so its column is
+/// `[Rᵀ (e_z × p); Rᵀ e_z]` (revolute) or `[Rᵀ e_z; 0]` (prismatic), and `Rᵀ x` is the sum of
+/// R's rows weighted by x.
+pub fn body_jacobian(chain: ChainRef<'_>) -> (SharedGraph, Vec<[E; 6]>) {
+    let graph = SharedGraph::default();
+    let ring = super::graph_chain(chain, &graph);
+    let n = chain.dof();
+    let mut tool_in_k: Frame<E> = chain.placements[n].to_ring();
+    let mut columns = vec![core::array::from_fn(|_| E::K(0.0)); n];
+    for k in (0..n).rev() {
+        let (r, p) = (&tool_in_k.r, &tool_in_k.p);
+        let z: [E; 3] = r[2].clone();
+        columns[k] = match chain.bodies[k].joint {
+            JointKind::Revolute => {
+                // Rᵀ (e_z × p) = Rᵀ [−p_y, p_x, 0] = p_x · row 1 − p_y · row 0.
+                let v: [E; 3] = core::array::from_fn(|i| {
+                    p[0].clone() * r[1][i].clone() - p[1].clone() * r[0][i].clone()
+                });
+                [
+                    v[0].clone(),
+                    v[1].clone(),
+                    v[2].clone(),
+                    z[0].clone(),
+                    z[1].clone(),
+                    z[2].clone(),
+                ]
+            }
+            JointKind::Prismatic => [
+                z[0].clone(),
+                z[1].clone(),
+                z[2].clone(),
+                E::K(0.0),
+                E::K(0.0),
+                E::K(0.0),
+            ],
+        };
+        if k > 0 {
+            tool_in_k = ring.t[k].compose(&tool_in_k);
+        }
+    }
+    (graph, columns)
+}
+
 /// `J̇(q, q̇) q̇` of the tool frame origin, world axes, rows `[v; ω]`.
 pub fn jdot_qdot(chain: ChainRef<'_>, graph: &SharedGraph) -> [E; 6] {
     let ring = super::graph_chain(chain, graph);

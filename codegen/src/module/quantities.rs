@@ -487,6 +487,21 @@ pub const QUANTITIES: &[Quantity] = &[
         arm: Some(ArmMethod::Arm),
     },
     Quantity {
+        name: "body_jacobian",
+        doc: "The tool frame's geometric Jacobian in the tool's own axes (the body Jacobian), \
+              rows [v; ω]: it does not depend on the base.",
+        aliases: &["jacobe", "LOCAL"],
+        inputs: &[],
+        shape: Shape::Jacobian,
+        available: Availability::Always,
+        public: true,
+        make: |cx| {
+            let (graph, columns) = kinematics::body_jacobian(cx.chain);
+            derived(graph, columns.into_iter().flatten().collect())
+        },
+        arm: Some(ArmMethod::Arm),
+    },
+    Quantity {
         name: "jdot_qdot",
         doc: "J̇(q, q̇) q̇ of the tool frame origin in world axes, rows [v; ω]: the tool's \
               acceleration at q̈ = 0.",
