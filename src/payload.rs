@@ -280,9 +280,23 @@ pub fn mass_matrix<A: ArmDynamics>(
 where
     DefaultAllocator: ArmAllocator<A::Dof>,
 {
-    let j = arm.jacobian(q);
-    let m = spatial_inertia(&world(arm, payload, q));
-    arm.mass_matrix(q) + j.tr_mul(&(m * &j))
+    arm.mass_matrix(q) + inertia_torques(&arm.jacobian(q), &world(arm, payload, q))
+}
+
+/// The payload's share of the mass matrix, `Jᵀ M J`.
+fn inertia_torques<D: nalgebra::Dim>(
+    j: &OMatrix<f64, nalgebra::U6, D>,
+    w: &World,
+) -> OMatrix<f64, D, D>
+where
+    DefaultAllocator: ArmAllocator<D>,
+{
+    j.tr_mul(&(spatial_inertia(w) * j))
+}
+
+/// The wrench that holds the payload still against gravity `g`, `[−m g; −h × g]`.
+fn weight(w: &World, g: &Vector3<f64>) -> Vector6<f64> {
+    wrench(w, &Vector6::zeros(), &Vector6::zeros(), g)
 }
 
 /// [`ArmDynamics::tool_terms`] with the payload: D(q) + Jᵀ M J, the tool's J and `J̇ q̇` (the
@@ -314,12 +328,10 @@ where
     let mut t = arm.tool_terms(q, qd);
     let w = world(arm, payload, q);
     let g = gravity_vector(arm);
-    let m = spatial_inertia(&w);
     let v = &t.jacobian * qd;
-    let zero = Vector6::zeros();
-    t.mass_matrix += t.jacobian.tr_mul(&(m * &t.jacobian));
+    t.mass_matrix += inertia_torques(&t.jacobian, &w);
     t.bias += t.jacobian.tr_mul(&wrench(&w, &v, &t.jdot_qdot, &g));
-    t.gravity += t.jacobian.tr_mul(&wrench(&w, &zero, &zero, &g));
+    t.gravity += t.jacobian.tr_mul(&weight(&w, &g));
     t
 }
 
@@ -332,14 +344,8 @@ pub fn gravity<A: ArmDynamics>(
 where
     DefaultAllocator: ArmAllocator<A::Dof>,
 {
-    let w = world(arm, payload, q);
-    let g = gravity_vector(arm);
-    let f = -g * w.mass;
-    let n = -w.h.cross(&g);
-    arm.gravity(q)
-        + arm
-            .jacobian(q)
-            .tr_mul(&Vector6::new(f.x, f.y, f.z, n.x, n.y, n.z))
+    let weight = weight(&world(arm, payload, q), &gravity_vector(arm));
+    arm.gravity(q) + arm.jacobian(q).tr_mul(&weight)
 }
 
 /// Forward dynamics with the payload: `(D + Jᵀ M J) q̈ = τ − bias`, both from one
