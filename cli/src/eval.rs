@@ -16,6 +16,8 @@ pub struct Evaluation {
     qdd: Vec<f64>,
     pose: Matrix4<f64>,
     jacobian: DMatrix<f64>,
+    /// The same in the tool's own axes (`Arm::body_jacobian`).
+    body_jacobian: DMatrix<f64>,
     /// Present when the description has mass properties.
     dynamics: Option<Dynamics>,
 }
@@ -225,9 +227,10 @@ pub fn evaluate(
         }
     }
     let e = compute(robot, q, qd, qdd, derivatives, task_space);
-    let matrices: [(&str, DMatrix<f64>); 2] = [
+    let matrices: [(&str, DMatrix<f64>); 3] = [
         ("T", DMatrix::from_fn(4, 4, |r, c| e.pose[(r, c)])),
         ("J", e.jacobian.clone()),
+        ("Jb", e.body_jacobian.clone()),
     ];
     let dynamics = e
         .dynamics
@@ -273,6 +276,8 @@ fn compute(
     let pose = robot.fk(&q).to_homogeneous();
     let j = robot.jacobian(&q);
     let jacobian = DMatrix::from_column_slice(6, robot.dof(), j.as_slice());
+    let jb = dhgen::Arm::body_jacobian(robot, &DVector::from_column_slice(&q));
+    let body_jacobian = DMatrix::from_column_slice(6, robot.dof(), jb.as_slice());
     let dynamics = robot.has_dynamics().then(|| {
         let tau = robot.inverse_dynamics(&q, &qd, &qdd);
         let derivatives = derivatives.then(|| {
@@ -312,12 +317,14 @@ fn compute(
         qdd,
         pose,
         jacobian,
+        body_jacobian,
         dynamics,
     }
 }
 
 impl Evaluation {
-    /// The evaluation as JSON: vectors as arrays, matrices as arrays of rows; `D`, `C`, `g`,
+    /// The evaluation as JSON: vectors as arrays, matrices as arrays of rows; `T`, `J` and `Jb`
+    /// (the body Jacobian, tool axes) always; `D`, `C`, `g`,
     /// `tau`, `kinetic_energy` and `potential_energy` (numbers) only when the robot has
     /// dynamics; with `--derivatives` also `dtau_dq`,
     /// `dtau_dqd` (entry `[k][m]` = ∂τ_k/∂x_m) and, unless D(q) is singular, `dqdd_dq`,
@@ -342,6 +349,7 @@ impl Evaluation {
             "qdd": self.qdd,
             "T": rows(&pose),
             "J": rows(&self.jacobian),
+            "Jb": rows(&self.body_jacobian),
         });
         if let (Some(dynamics), Some(obj)) = (&self.dynamics, v.as_object_mut()) {
             for (_, key, m) in dynamics.named() {
@@ -382,6 +390,11 @@ impl Evaluation {
             &mut out,
             "J: geometric Jacobian of the tool origin, world axes, rows vx vy vz ωx ωy ωz",
             &self.jacobian,
+        );
+        block(
+            &mut out,
+            "J_b: the same in the tool's own axes (body Jacobian, Pinocchio LOCAL, Toolbox jacobe)",
+            &self.body_jacobian,
         );
         match &self.dynamics {
             Some(Dynamics {

@@ -2,8 +2,8 @@
 //!
 //! - `dhgen info ROBOT.toml`: the DH table, joints, limits, masses, spherical wrist;
 //! - `dhgen eval ROBOT.toml --q ... [--qd ...] [--qdd ...] [--json] [--derivatives]
-//!   [--task-space]`: T, J, D, C, g, τ, the kinetic and potential energy (and the derivatives
-//!   of the dynamics, the tool's task-space dynamics) on the runtime path;
+//!   [--task-space]`: T, J, J_b (tool axes), D, C, g, τ, the kinetic and potential energy
+//!   (and the derivatives of the dynamics, the tool's task-space dynamics) on the runtime path;
 //! - `dhgen emit ROBOT.toml [-o FILE] [--name MOD] [--derivatives] [--regressor]`: the module `robot!`
 //!   generates, formatted;
 //! - `dhgen latex ROBOT.toml`: D(q), c_ijk, g(q) and P(q) as LaTeX equations;
@@ -44,8 +44,9 @@ enum Command {
         #[command(flatten)]
         robot: Source,
     },
-    /// Evaluate the pose T, Jacobian J, and (with mass properties) D, C, g, τ and the kinetic
-    /// and potential energy at one configuration, on the runtime path (`dhgen::Robot`).
+    /// Evaluate the pose T, Jacobian J (world axes) and J_b (tool axes), and (with mass
+    /// properties) D, C, g, τ and the kinetic and potential energy at one configuration, on the
+    /// runtime path (`dhgen::Robot`).
     Eval {
         #[command(flatten)]
         robot: Source,

@@ -231,6 +231,8 @@ fn eval_json_matches_the_runtime() {
     check("T", matrix("T"), &|r, c| t[(r, c)], (4, 4));
     let j = robot.jacobian(&q);
     check("J", matrix("J"), &|r, c| j[(r, c)], (6, 6));
+    let jb = dhgen::Arm::body_jacobian(&robot, &dhgen::nalgebra::DVector::from_column_slice(&q));
+    check("Jb", matrix("Jb"), &|r, c| jb[(r, c)], (6, 6));
     let d = robot.mass_matrix(&q);
     check("D", matrix("D"), &|r, c| d[(r, c)], (6, 6));
     let cm = robot.coriolis(&q, &qd);
