@@ -205,9 +205,10 @@ macro_rules! run {
                 // The trait's default (fk, then J rotated into tool axes) on the generated arm.
                 ("body_jacobian_default", true) => {
                     let q = dhgen::nalgebra::SVector::from(*q);
-                    let j = dhgen::Arm::jacobian(&$m::Robot, &q);
-                    let rt = dhgen::Arm::fk(&$m::Robot, &q).rotation.to_rotation_matrix().transpose();
-                    (rt * j.fixed_view::<3, 1>(0, 1))[0]
+                    dhgen::velocity::body_jacobian_from_jacobian(
+                        &dhgen::Arm::fk(&$m::Robot, &q),
+                        dhgen::Arm::jacobian(&$m::Robot, &q),
+                    )[(0, 1)]
                 }
                 ("mass_matrix", true) => $m::mass_matrix(q)[(1, 1)],
                 ("mass_matrix", false) => robot.mass_matrix(q)[(1, 1)],

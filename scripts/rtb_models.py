@@ -50,6 +50,15 @@ def fail(msg):
     sys.exit(1)
 
 
+def close(a, b, tol, what):
+    """The largest difference of a from b relative to max(1, |b|); fails above tol."""
+    scale = max(1.0, np.abs(b).max())
+    e = np.abs(np.asarray(a) - np.asarray(b)).max()
+    if e > tol * scale:
+        fail(f"{what}: {e} (scale {scale})")
+    return e
+
+
 def num(x):
     return repr(float(x))
 

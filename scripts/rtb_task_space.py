@@ -32,20 +32,12 @@ import numpy as np
 import roboticstoolbox as rtb
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from rtb_models import NAMES, description, fail, gravity_torques, has_dynamics  # noqa: E402
+from rtb_models import NAMES, close, description, gravity_torques, has_dynamics  # noqa: E402
 
 warnings.filterwarnings("ignore")
 OUT = Path(__file__).resolve().parent.parent / "tests" / "data" / "rtb_task_space.json"
 SAMPLES = 5
 SEED = 20261202
-
-
-def close(a, b, tol, what):
-    scale = max(1.0, np.abs(b).max())
-    e = np.abs(np.asarray(a) - np.asarray(b)).max()
-    if e > tol * scale:
-        fail(f"{what}: {e} (scale {scale})")
-    return e
 
 
 def main():

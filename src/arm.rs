@@ -115,9 +115,11 @@ where
     /// frame Jacobian). It is the Jacobian of a velocity command given in the tool frame, and
     /// `J_bᵀ F` maps a wrench measured by a wrist force sensor to joint torques. It does not
     /// depend on the base placement. By default from [`fk`](Self::fk) and
-    /// [`jacobian`](Self::jacobian); generated modules override it with straight-line code
-    /// walked back from the tool, which never computes the base's joints' frames (PUMA 560: 730
-    /// instructions, as many as `jacobian`, against 1,608 for this default on the same arm).
+    /// [`jacobian`](Self::jacobian)
+    /// ([`body_jacobian_from_jacobian`](crate::velocity::body_jacobian_from_jacobian));
+    /// generated modules override it with straight-line code walked back from the tool, which
+    /// never computes the base's joints' frames (PUMA 560: 730 instructions, as many as
+    /// `jacobian`, against 1,916 for this default on the same arm).
     ///
     /// ```
     /// use dhgen::Arm;
@@ -132,14 +134,7 @@ where
     #[doc(alias = "jacobe")]
     #[doc(alias = "LOCAL")]
     fn body_jacobian(&self, q: &OVector<f64, Self::Dof>) -> OMatrix<f64, U6, Self::Dof> {
-        let rt = self.fk(q).rotation.to_rotation_matrix().transpose();
-        let mut j = self.jacobian(q);
-        for mut c in j.column_iter_mut() {
-            let v = rt * Vector3::new(c[0], c[1], c[2]);
-            let w = rt * Vector3::new(c[3], c[4], c[5]);
-            c.copy_from_slice(&[v.x, v.y, v.z, w.x, w.y, w.z]);
-        }
-        j
+        crate::velocity::body_jacobian_from_jacobian(&self.fk(q), self.jacobian(q))
     }
 }
 

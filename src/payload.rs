@@ -308,8 +308,8 @@ fn weight(w: &World, g: &Vector3<f64>) -> Vector6<f64> {
 /// dhgen::robot!(mod puma560 = "robots/puma560.toml");
 /// use dhgen::payload::{Payload, tool_terms};
 ///
-/// let part = Payload::new(1.5, [0.0, 0.02, 0.06], [[2e-3, 0.0, 0.0], [0.0, 2e-3, 0.0], [0.0, 0.0, 1e-3]])
-///     .unwrap();
+/// let inertia = [[2e-3, 0.0, 0.0], [0.0, 2e-3, 0.0], [0.0, 0.0, 1e-3]];
+/// let part = Payload::new(1.5, [0.0, 0.02, 0.06], inertia).unwrap();
 /// let q = dhgen::nalgebra::SVector::from([0.1, -0.6, 0.4, 0.3, 0.8, -0.2]);
 /// let qd = dhgen::nalgebra::SVector::from([0.5, -0.2, 0.3, 1.0, -0.7, 0.4]);
 /// let t = tool_terms(&puma560::Robot, &part, &q, &qd);

@@ -349,8 +349,15 @@ pub fn tool<A: ArmDynamics>(
 where
     DefaultAllocator: ArmAllocator<A::Dof>,
 {
-    let t = arm.tool_terms(q, qd);
-    TaskDynamics::<U6, A::Dof>::new(t.mass_matrix, t.jacobian, &t.jdot_qdot, &t.bias, &t.gravity)
+    whole_tool(arm.tool_terms(q, qd))
+}
+
+/// The task of the tool's whole twist, from its joint-space terms.
+fn whole_tool<D: Dim>(t: ToolTerms<f64, D>) -> Result<TaskDynamics<U6, D>, TaskSpaceError>
+where
+    DefaultAllocator: ArmAllocator<D>,
+{
+    TaskDynamics::<U6, D>::new(t.mass_matrix, t.jacobian, &t.jdot_qdot, &t.bias, &t.gravity)
 }
 
 /// [`tool`] for the arm holding `payload` in its tool frame: the task-space dynamics of arm
@@ -367,8 +374,7 @@ pub fn tool_with_payload<A: ArmDynamics>(
 where
     DefaultAllocator: ArmAllocator<A::Dof>,
 {
-    let t = crate::payload::tool_terms(arm, payload, q, qd);
-    TaskDynamics::<U6, A::Dof>::new(t.mass_matrix, t.jacobian, &t.jdot_qdot, &t.bias, &t.gravity)
+    whole_tool(crate::payload::tool_terms(arm, payload, q, qd))
 }
 
 /// The task-space dynamics of the tool frame's origin (the three linear rows of

@@ -538,6 +538,25 @@ where
     )
 }
 
+/// The body Jacobian from the tool pose and the world-axes Jacobian `J`: each column's `v` and
+/// `ω` turned into tool axes, `diag(Rᵀ, Rᵀ) J`. What [`Arm::body_jacobian`] computes for arms
+/// without a generated `body_jacobian`.
+pub fn body_jacobian_from_jacobian<D: Dim>(
+    tool: &nalgebra::Isometry3<f64>,
+    mut j: OMatrix<f64, U6, D>,
+) -> OMatrix<f64, U6, D>
+where
+    DefaultAllocator: Allocator<U6, D>,
+{
+    let rt = tool.rotation.to_rotation_matrix().transpose();
+    for mut c in j.column_iter_mut() {
+        let v = rt * nalgebra::Vector3::new(c[0], c[1], c[2]);
+        let w = rt * nalgebra::Vector3::new(c[3], c[4], c[5]);
+        c.copy_from_slice(&[v.x, v.y, v.z, w.x, w.y, w.z]);
+    }
+    j
+}
+
 /// `J̇(q, q̇) q̇` from the Jacobian `j` at q: the tool acceleration `[a; α]` at zero joint
 /// acceleration, as in `ẍ = J q̈ + J̇ q̇`. Same derivation as [`jacobian_dot`], summed on the
 /// fly (no n×6 temporary). What [`Arm::jdot_qdot`] computes for arms without a generated

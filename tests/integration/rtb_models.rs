@@ -17,7 +17,12 @@ use nalgebra::{DMatrix, DVector};
 use serde_json::Value;
 
 fn data() -> Value {
-    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/rtb_models.json");
+    data_file("rtb_models.json")
+}
+
+/// `tests/data/<name>`, parsed.
+fn data_file(name: &str) -> Value {
+    let path = format!("{}/tests/data/{name}", env!("CARGO_MANIFEST_DIR"));
     serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap()
 }
 
@@ -95,8 +100,7 @@ fn toolbox_models_match_on_the_runtime_path() {
 #[test]
 fn toolbox_models_body_jacobians_match_jacobe() {
     let d = data();
-    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/rtb_jacobe.json");
-    let je: Value = serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
+    let je = data_file("rtb_jacobe.json");
     let (robots, references) = (
         d["robots"].as_array().unwrap(),
         je["robots"].as_array().unwrap(),

@@ -83,34 +83,27 @@ pub fn jacobian(chain: ChainRef<'_>) -> (SharedGraph, Vec<[E; 6]>) {
                 .zip(chain.bodies)
                 .map(|(f, body)| {
                     let z: V3<E> = f.z_axis();
-                    match body.joint {
-                        JointKind::Revolute => {
-                            let r: V3<E> =
-                                core::array::from_fn(|i| tip[i].clone() - f.p[i].clone());
-                            let v = cross(&z, &r);
-                            [
-                                v[0].clone(),
-                                v[1].clone(),
-                                v[2].clone(),
-                                z[0].clone(),
-                                z[1].clone(),
-                                z[2].clone(),
-                            ]
-                        }
-                        JointKind::Prismatic => [
-                            z[0].clone(),
-                            z[1].clone(),
-                            z[2].clone(),
-                            E::K(0.0),
-                            E::K(0.0),
-                            E::K(0.0),
-                        ],
-                    }
+                    column(body.joint, z.clone(), || {
+                        let r: V3<E> = core::array::from_fn(|i| tip[i].clone() - f.p[i].clone());
+                        cross(&z, &r)
+                    })
                 })
                 .collect::<Vec<_>>()
         },
         |cols| cols.iter().flatten().cloned().collect(),
     )
+}
+
+/// One Jacobian column, rows `[v; ω]`, for a joint along `z`: `[moment(); z]` for a revolute
+/// joint (`moment` is `z × r` in the column's axes), `[z; 0]` for a prismatic one.
+fn column(joint: JointKind, z: V3<E>, moment: impl FnOnce() -> V3<E>) -> [E; 6] {
+    let (v, w) = match joint {
+        JointKind::Revolute => (moment(), z),
+        JointKind::Prismatic => (z, core::array::from_fn(|_| E::K(0.0))),
+    };
+    let [v0, v1, v2] = v;
+    let [w0, w1, w2] = w;
+    [v0, v1, v2, w0, w1, w2]
 }
 
 /// The 6×n body Jacobian: the tool frame's Jacobian in the tool's own axes, rows `[v; ω]`,
@@ -127,31 +120,12 @@ pub fn body_jacobian(chain: ChainRef<'_>) -> (SharedGraph, Vec<[E; 6]>) {
     let mut columns = vec![core::array::from_fn(|_| E::K(0.0)); n];
     for k in (0..n).rev() {
         let (r, p) = (&tool_in_k.r, &tool_in_k.p);
-        let z: [E; 3] = r[2].clone();
-        columns[k] = match chain.bodies[k].joint {
-            JointKind::Revolute => {
-                // Rᵀ (e_z × p) = Rᵀ [−p_y, p_x, 0] = p_x · row 1 − p_y · row 0.
-                let v: [E; 3] = core::array::from_fn(|i| {
-                    p[0].clone() * r[1][i].clone() - p[1].clone() * r[0][i].clone()
-                });
-                [
-                    v[0].clone(),
-                    v[1].clone(),
-                    v[2].clone(),
-                    z[0].clone(),
-                    z[1].clone(),
-                    z[2].clone(),
-                ]
-            }
-            JointKind::Prismatic => [
-                z[0].clone(),
-                z[1].clone(),
-                z[2].clone(),
-                E::K(0.0),
-                E::K(0.0),
-                E::K(0.0),
-            ],
-        };
+        columns[k] = column(chain.bodies[k].joint, r[2].clone(), || {
+            // Rᵀ (e_z × p) = Rᵀ [−p_y, p_x, 0] = p_x · row 1 − p_y · row 0.
+            core::array::from_fn(|i| {
+                p[0].clone() * r[1][i].clone() - p[1].clone() * r[0][i].clone()
+            })
+        });
         if k > 0 {
             tool_in_k = ring.t[k].compose(&tool_in_k);
         }
