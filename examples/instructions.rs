@@ -210,6 +210,26 @@ macro_rules! run {
                         dhgen::Arm::jacobian(&$m::Robot, &q),
                     )[(0, 1)]
                 }
+                // The kinematic Hessian (every ∂J/∂q_k) and the manipulability gradient, from
+                // the generated J or the runtime's.
+                ("kinematic_hessian", true) => {
+                    let j = $m::jacobian(q);
+                    dhgen::velocity::kinematic_hessian(&j).map(|h| h[(0, 1)]).sum()
+                }
+                ("kinematic_hessian", false) => {
+                    let j = robot.jacobian(q);
+                    dhgen::velocity::kinematic_hessian(&j).map(|h| h[(0, 1)]).sum()
+                }
+                ("manipulability_gradient", true) => {
+                    let j = $m::jacobian(q);
+                    dhgen::velocity::manipulability_gradient(&j, dhgen::velocity::Axes::All)
+                        .map_or(0.0, |(m, g)| m + g[1])
+                }
+                ("manipulability_gradient", false) => {
+                    let j = robot.jacobian(q);
+                    dhgen::velocity::manipulability_gradient(&j, dhgen::velocity::Axes::All)
+                        .map_or(0.0, |(m, g)| m + g[1])
+                }
                 ("mass_matrix", true) => $m::mass_matrix(q)[(1, 1)],
                 ("mass_matrix", false) => robot.mass_matrix(q)[(1, 1)],
                 ("christoffel", true) => $m::christoffel(q)[1][2][0],

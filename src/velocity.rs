@@ -1,6 +1,6 @@
 //! Velocity kinematics (chapter 5) for any [`Arm`]: the analytic Jacobian for ZYZ Euler
-//! angles, the Jacobian of any point on any link, `J̇(q, q̇)`, manipulability and condition
-//! number, singularity tests by SVD, the decoupled singularity conditions of spherical-wrist
+//! angles, the Jacobian of any point on any link, `J̇(q, q̇)`, the kinematic Hessian
+//! `∂J/∂q`, manipulability (and its gradient) and condition number, singularity tests by SVD, the decoupled singularity conditions of spherical-wrist
 //! arms, and inverse velocity and acceleration with a damped pseudo-inverse near
 //! singularities.
 //!
@@ -271,6 +271,191 @@ where
     DefaultAllocator: Allocator<U6, D>,
 {
     JacobianSvd::new(j).condition_number()
+}
+
+/// The kinematic Hessian of `j`, the world-axes Jacobian of [`Arm::jacobian`]: item k is
+/// `∂J/∂q_k`, a 6×n matrix (Pinocchio's `getKinematicHessian` in `LOCAL_WORLD_ALIGNED`, the
+/// Robotics Toolbox's `hessian0(q)[k]`). Second-order inverse kinematics, the gradient of
+/// manipulability ([`manipulability_gradient`]) and `J̇ = Σ_k ∂J/∂q_k q̇_k` are built on it.
+///
+/// It is a function of J alone. Write column i of J as `[v_i; ω_i]` (ω_i = 0 for a prismatic
+/// joint). Moving joint k turns (or shifts) everything after it rigidly, and moves the tool
+/// origin by `v_k`; so column i changes by
+/// - `[ω_k × v_i; ω_k × ω_i]` for k ≤ i (joint i's axis and the tool turn together about
+///   axis k, or shift together along a prismatic axis k, which changes nothing), and
+/// - `[ω_i × v_k; 0]` for k > i (only the tool origin moves, and `v_i = ω_i × (p − o_i)`).
+///
+/// The linear rows are the Hessian of the tool position, so `∂v_i/∂q_k = ∂v_k/∂q_i`.
+/// Allocation-free for generated robots; each item costs O(n).
+///
+/// ```
+/// use dhgen::nalgebra::{Matrix6, SVector};
+/// use dhgen::velocity::{jacobian_dot, kinematic_hessian};
+/// use dhgen::Arm;
+/// dhgen::robot!(mod puma = "robots/puma560.toml");
+///
+/// let q = SVector::<f64, 6>::new(0.2, -0.3, 0.4, 0.5, 0.6, 0.7);
+/// let j = puma::Robot.jacobian(&q);
+/// let h = 1e-6;
+/// let dq = SVector::<f64, 6>::new(0.0, 0.0, h, 0.0, 0.0, 0.0);
+/// let fd = (puma::Robot.jacobian(&(q + dq)) - puma::Robot.jacobian(&(q - dq))) / (2.0 * h);
+/// let d2 = kinematic_hessian(&j).nth(2).unwrap(); // ∂J/∂q_3
+/// assert!((d2 - fd).abs().max() < 1e-8);
+///
+/// // J̇ along q̇ is the Hessian contracted with q̇.
+/// let qd = SVector::<f64, 6>::new(0.5, -0.1, 0.3, 0.0, 0.2, -0.4);
+/// let jdot: Matrix6<f64> = kinematic_hessian(&j).zip(qd.iter()).map(|(hk, &v)| hk * v).sum();
+/// assert!((jdot - jacobian_dot(&puma::Robot, &q, &qd)).abs().max() < 1e-12);
+/// ```
+#[doc(alias = "hessian0")]
+#[doc(alias = "getKinematicHessian")]
+pub fn kinematic_hessian<D: Dim>(
+    j: &OMatrix<f64, U6, D>,
+) -> impl ExactSizeIterator<Item = OMatrix<f64, U6, D>> + '_
+where
+    DefaultAllocator: Allocator<U6, D>,
+{
+    let part = |j: &OMatrix<f64, U6, D>, c: usize, row: usize| {
+        Vector3::new(j[(row, c)], j[(row + 1, c)], j[(row + 2, c)])
+    };
+    (0..j.ncols()).map(move |k| {
+        let (vk, wk) = (part(j, k, 0), part(j, k, 3));
+        let mut out = OMatrix::<f64, U6, D>::zeros_generic(U6, j.shape_generic().1);
+        for i in 0..j.ncols() {
+            let (dv, dw) = hessian_column(k <= i, (vk, wk), (part(j, i, 0), part(j, i, 3)));
+            out.fixed_view_mut::<3, 1>(0, i).copy_from(&dv);
+            out.fixed_view_mut::<3, 1>(3, i).copy_from(&dw);
+        }
+        out
+    })
+}
+
+/// Column i of `∂J/∂q_k` from columns k and i of J, `(v, ω)` each; `after` when k ≤ i.
+/// Outside the generic bound (nalgebra's inference would take `Allocator<U6, D>` for the
+/// cross product's).
+fn hessian_column(
+    after: bool,
+    (vk, wk): (Vector3<f64>, Vector3<f64>),
+    (vi, wi): (Vector3<f64>, Vector3<f64>),
+) -> (Vector3<f64>, Vector3<f64>) {
+    if after {
+        (wk.cross(&vi), wk.cross(&wi))
+    } else {
+        (wi.cross(&vk), Vector3::zeros())
+    }
+}
+
+/// `∂(J q̇)/∂q`: how the tool's velocity `[v; ω]` (world axes, at the tool origin) changes with
+/// q at a fixed joint velocity q̇; column k is `(∂J/∂q_k) q̇` ([`kinematic_hessian`]). The
+/// first output of Pinocchio's `getFrameVelocityDerivatives` in `LOCAL_WORLD_ALIGNED` (its
+/// second is J): the linearisation of a Cartesian velocity constraint or cost for
+/// model-predictive control. Contracted with q̇ it gives `J̇ q̇` ([`Arm::jdot_qdot`]).
+///
+/// # Panics
+/// If `qd` does not have one entry per column of `j` (only possible on the runtime path).
+#[doc(alias = "getFrameVelocityDerivatives")]
+pub fn tool_velocity_partial<D: Dim>(
+    j: &OMatrix<f64, U6, D>,
+    qd: &OVector<f64, D>,
+) -> OMatrix<f64, U6, D>
+where
+    DefaultAllocator: Allocator<U6, D> + Allocator<D>,
+{
+    check_len("tool_velocity_partial", "qd", qd.len(), j.ncols());
+    let mut out = OMatrix::<f64, U6, D>::zeros_generic(U6, j.shape_generic().1);
+    for (k, hk) in kinematic_hessian(j).enumerate() {
+        out.set_column(k, &(hk * qd));
+    }
+    out
+}
+
+/// The rows of the Jacobian a manipulability measure reads (the Robotics Toolbox's `axes`):
+/// all six, the three of the tool's linear velocity, or the three of its angular velocity.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Axes {
+    /// `[v; ω]`: rows 0 to 5.
+    All,
+    /// `v`: rows 0 to 2.
+    Translation,
+    /// `ω`: rows 3 to 5.
+    Rotation,
+}
+
+impl Axes {
+    fn rows(self) -> core::ops::Range<usize> {
+        match self {
+            Axes::All => 0..6,
+            Axes::Translation => 0..3,
+            Axes::Rotation => 3..6,
+        }
+    }
+}
+
+/// Yoshikawa's manipulability `m` of the rows `axes` of `j` (the world-axes Jacobian of
+/// [`Arm::jacobian`]) and its gradient `∂m/∂q` (the Robotics Toolbox's `jacobm`): the
+/// secondary task that steers a redundant arm away from singularities (q̇ = J⁺ξ +
+/// (I − J⁺J) k ∂m/∂q, or a cost term of a quadratic-programming controller).
+///
+/// With J_a the selected rows and r = min(rows, n), m is the product of J_a's r largest
+/// singular values (`√det(J_a J_aᵀ)` when n ≥ rows; for `Axes::All`, [`manipulability`]), and
+/// `∂m/∂q_k = m ⟨(J_a⁺)ᵀ, ∂J_a/∂q_k⟩`, the Frobenius product with the pseudo-inverse from the
+/// SVD and the [`kinematic_hessian`]. `None` where J_a has lost rank (a singular value below
+/// 1e-12 of the largest): m is then 0 and not differentiable, as |x| is not at 0.
+///
+/// ```
+/// use dhgen::nalgebra::SVector;
+/// use dhgen::velocity::{manipulability, manipulability_gradient, Axes};
+/// use dhgen::Arm;
+/// dhgen::robot!(mod puma = "robots/puma560.toml");
+///
+/// let q = SVector::<f64, 6>::new(0.2, -0.3, 0.4, 0.5, 0.6, 0.7);
+/// let j = puma::Robot.jacobian(&q);
+/// let (m, grad) = manipulability_gradient(&j, Axes::All).unwrap();
+/// assert_eq!(m, manipulability(&j));
+/// let (h, dq) = (1e-6, SVector::<f64, 6>::new(0.0, 0.0, 0.0, 0.0, 1.0, 0.0));
+/// let m_at = |q: SVector<f64, 6>| manipulability(&puma::Robot.jacobian(&q));
+/// assert!((grad[4] - (m_at(q + dq * h) - m_at(q - dq * h)) / (2.0 * h)).abs() < 1e-8);
+///
+/// // At the wrist singularity (q5 = 0) J has lost rank: m = 0 has no gradient.
+/// let q = SVector::<f64, 6>::new(0.2, -0.3, 0.4, 0.5, 0.0, 0.7);
+/// assert!(manipulability_gradient(&puma::Robot.jacobian(&q), Axes::All).is_none());
+/// ```
+#[doc(alias = "jacobm")]
+pub fn manipulability_gradient<D: Dim>(
+    j: &OMatrix<f64, U6, D>,
+    axes: Axes,
+) -> Option<(f64, OVector<f64, D>)>
+where
+    DefaultAllocator: Allocator<U6, D> + Allocator<D>,
+{
+    let rows = axes.rows();
+    let mut selected = j.clone();
+    for r in (0..6).filter(|r| !rows.contains(r)) {
+        selected.row_mut(r).fill(0.0);
+    }
+    let svd = JacobianSvd::new(&selected);
+    let count = rows.len().min(j.ncols());
+    let sigma = &svd.sigma;
+    if count == 0 || sigma[count - 1] <= svd.cutoff() || sigma[count - 1] == 0.0 {
+        return None;
+    }
+    let m: f64 = sigma.iter().take(count).product();
+    // (J_a⁺)ᵀ = Σ_i u_i v_iᵀ / σ_i, with row i of `scaled_v` σ_i v_iᵀ. Its rows outside `axes`
+    // are zero, so the full Hessian may stand for J_a's.
+    let mut w = OMatrix::<f64, U6, D>::zeros_generic(U6, j.shape_generic().1);
+    for i in 0..count {
+        let factor = 1.0 / (sigma[i] * sigma[i]);
+        for c in 0..j.ncols() {
+            for r in 0..6 {
+                w[(r, c)] += factor * svd.u[(r, i)] * svd.scaled_v[(i, c)];
+            }
+        }
+    }
+    let mut grad = OVector::<f64, D>::zeros_generic(j.shape_generic().1, U1);
+    for (k, hk) in kinematic_hessian(j).enumerate() {
+        grad[k] = m * w.dot(&hk);
+    }
+    Some((m, grad))
 }
 
 /// Panics unless `len`, the length of the joint vector `arg` given to `function`, is the

@@ -18,6 +18,9 @@ pub struct Evaluation {
     jacobian: DMatrix<f64>,
     /// The same in the tool's own axes (`Arm::body_jacobian`).
     body_jacobian: DMatrix<f64>,
+    /// Yoshikawa's manipulability and its gradient ∂m/∂q
+    /// (`velocity::manipulability_gradient`); `None` where J has lost rank.
+    manipulability: Option<(f64, Vec<f64>)>,
     /// Present when the description has mass properties.
     dynamics: Option<Dynamics>,
 }
@@ -278,6 +281,8 @@ fn compute(
     let jacobian = DMatrix::from_column_slice(6, robot.dof(), j.as_slice());
     let jb = dhgen::Arm::body_jacobian(robot, &DVector::from_column_slice(&q));
     let body_jacobian = DMatrix::from_column_slice(6, robot.dof(), jb.as_slice());
+    let manipulability = dhgen::velocity::manipulability_gradient(&j, dhgen::velocity::Axes::All)
+        .map(|(m, grad)| (m, grad.as_slice().to_vec()));
     let dynamics = robot.has_dynamics().then(|| {
         let tau = robot.inverse_dynamics(&q, &qd, &qdd);
         let derivatives = derivatives.then(|| {
@@ -318,13 +323,15 @@ fn compute(
         pose,
         jacobian,
         body_jacobian,
+        manipulability,
         dynamics,
     }
 }
 
 impl Evaluation {
     /// The evaluation as JSON: vectors as arrays, matrices as arrays of rows; `T`, `J` and `Jb`
-    /// (the body Jacobian, tool axes) always; `D`, `C`, `g`,
+    /// (the body Jacobian, tool axes), `manipulability` and `manipulability_gradient` (null
+    /// where J has lost rank) always; `D`, `C`, `g`,
     /// `tau`, `kinetic_energy` and `potential_energy` (numbers) only when the robot has
     /// dynamics; with `--derivatives` also `dtau_dq`,
     /// `dtau_dqd` (entry `[k][m]` = ∂τ_k/∂x_m) and, unless D(q) is singular, `dqdd_dq`,
@@ -350,6 +357,8 @@ impl Evaluation {
             "T": rows(&pose),
             "J": rows(&self.jacobian),
             "Jb": rows(&self.body_jacobian),
+            "manipulability": self.manipulability.as_ref().map_or(0.0, |(m, _)| *m),
+            "manipulability_gradient": self.manipulability.as_ref().map(|(_, grad)| grad),
         });
         if let (Some(dynamics), Some(obj)) = (&self.dynamics, v.as_object_mut()) {
             for (_, key, m) in dynamics.named() {
@@ -396,6 +405,18 @@ impl Evaluation {
             "J_b: the same in the tool's own axes (body Jacobian, Pinocchio LOCAL, Toolbox jacobe)",
             &self.body_jacobian,
         );
+        let _ = match &self.manipulability {
+            Some((m, grad)) => writeln!(
+                out,
+                "\nmanipulability m = {} (product of the Jacobian's singular values), ∂m/∂q = {}",
+                trimmed(*m, 6),
+                list(grad)
+            ),
+            None => writeln!(
+                out,
+                "\nmanipulability m = 0: the Jacobian has lost rank (no gradient there)"
+            ),
+        };
         match &self.dynamics {
             Some(Dynamics {
                 d,

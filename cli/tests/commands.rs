@@ -233,6 +233,12 @@ fn eval_json_matches_the_runtime() {
     check("J", matrix("J"), &|r, c| j[(r, c)], (6, 6));
     let jb = dhgen::Arm::body_jacobian(&robot, &dhgen::nalgebra::DVector::from_column_slice(&q));
     check("Jb", matrix("Jb"), &|r, c| jb[(r, c)], (6, 6));
+    let (m, grad) =
+        dhgen::velocity::manipulability_gradient(&j, dhgen::velocity::Axes::All).unwrap();
+    assert!(m > 0.0 && close(v["manipulability"].as_f64().unwrap(), m));
+    for (i, x) in vector("manipulability_gradient").iter().enumerate() {
+        assert!(close(*x, grad[i]), "∂m/∂q_{i}: {x} vs {}", grad[i]);
+    }
     let d = robot.mass_matrix(&q);
     check("D", matrix("D"), &|r, c| d[(r, c)], (6, 6));
     let cm = robot.coriolis(&q, &qd);

@@ -1,11 +1,15 @@
-//! Generated velocity-kinematics extras: J̇q̇, the decoupled singularity determinants and
+//! Generated velocity-kinematics extras: J̇q̇, the kinematic Hessian and manipulability
+//! gradient, the decoupled singularity determinants and
 //! the per-robot closed-form inverse kinematics, against the generic implementations and
 //! finite differences.
 
 use crate::catalogue::{cylindrical, odd, panda, puma560, scara, stanford};
 use dhgen::ik::DecoupledIk;
 use dhgen::nalgebra::{SVector, Vector3};
-use dhgen::velocity::{decoupled_determinants, jdot_qdot_from_jacobian};
+use dhgen::velocity::{
+    Axes, decoupled_determinants, jacobian_dot, jdot_qdot_from_jacobian, kinematic_hessian,
+    manipulability, manipulability_gradient, tool_velocity_partial,
+};
 use proptest::prelude::*;
 
 macro_rules! jdot_matches {
@@ -44,6 +48,72 @@ jdot_matches!(stanford_jdot_qdot, stanford);
 jdot_matches!(panda_jdot_qdot, panda);
 jdot_matches!(scara_jdot_qdot, scara);
 jdot_matches!(odd_jdot_qdot, odd);
+
+/// The kinematic Hessian and what is built on it, on generated arms (prismatic joints:
+/// Stanford, SCARA, the odd fixture's modified table): each ∂J/∂q_k against central
+/// differences of the generated Jacobian; the position rows symmetric (Schwarz); contracted with
+/// q̇, J̇ of `jacobian_dot` (derived from the axes' motion, not from the Hessian) and the
+/// generated `jdot_qdot`; the manipulability gradient against differences of manipulability.
+macro_rules! hessian_matches {
+    ($test:ident, $m:ident) => {
+        proptest! {
+            #![proptest_config(ProptestConfig::with_cases(32))]
+            #[test]
+            fn $test(
+                q in proptest::array::uniform::<_, { $m::DOF }>(-3.0f64..3.0),
+                qd in proptest::array::uniform::<_, { $m::DOF }>(-2.0f64..2.0),
+            ) {
+                const N: usize = $m::DOF;
+                let (q, qd) = (SVector::<f64, N>::from(q), SVector::<f64, N>::from(qd));
+                let j = $m::jacobian(&q);
+                let slices: Vec<_> = kinematic_hessian(&j).collect();
+                prop_assert_eq!(slices.len(), N);
+                let h = 1e-6;
+                for (k, hk) in slices.iter().enumerate() {
+                    let e = SVector::<f64, N>::from_fn(|i, _| if i == k { h } else { 0.0 });
+                    let fd = ($m::jacobian(&(q + e)) - $m::jacobian(&(q - e))) / (2.0 * h);
+                    prop_assert!((hk - fd).amax() <= 1e-7 * (1.0 + fd.amax()),
+                        "∂J/∂q_{k} off finite differences by {:e}", (hk - fd).amax());
+                    for i in 0..N {
+                        for r in 0..3 {
+                            prop_assert!((hk[(r, i)] - slices[i][(r, k)]).abs() <= 1e-12,
+                                "∂v_{i}/∂q_{k} ≠ ∂v_{k}/∂q_{i} in row {r}");
+                        }
+                    }
+                }
+                let jdot = slices.iter().zip(qd.iter()).map(|(hk, &v)| hk * v)
+                    .fold(j * 0.0, |a, b| a + b);
+                let reference = jacobian_dot(&$m::Robot, &q, &qd);
+                prop_assert!((jdot - reference).amax() <= 1e-12 * (1.0 + reference.amax()));
+                let partial = tool_velocity_partial(&j, &qd);
+                let bias = $m::jdot_qdot(&q, &qd);
+                prop_assert!((partial * qd - bias).amax() <= 1e-12 * (1.0 + bias.amax()));
+                for axes in [Axes::All, Axes::Translation, Axes::Rotation] {
+                    let Some((m, grad)) = manipulability_gradient(&j, axes) else { continue };
+                    if axes == Axes::All {
+                        prop_assert_eq!(m, manipulability(&j));
+                    }
+                    let m_at = |q: SVector<f64, N>| {
+                        manipulability_gradient(&$m::jacobian(&q), axes).map_or(0.0, |(m, _)| m)
+                    };
+                    for k in 0..N {
+                        let e = SVector::<f64, N>::from_fn(|i, _| if i == k { h } else { 0.0 });
+                        let fd = (m_at(q + e) - m_at(q - e)) / (2.0 * h);
+                        prop_assert!((grad[k] - fd).abs() <= 1e-6 * (1.0 + grad.amax()),
+                            "{axes:?}: ∂m/∂q_{k} {} against finite differences {fd}", grad[k]);
+                    }
+                }
+            }
+        }
+    };
+}
+
+hessian_matches!(puma560_kinematic_hessian, puma560);
+hessian_matches!(stanford_kinematic_hessian, stanford);
+hessian_matches!(panda_kinematic_hessian, panda);
+hessian_matches!(scara_kinematic_hessian, scara);
+hessian_matches!(odd_kinematic_hessian, odd);
+hessian_matches!(cylindrical_kinematic_hessian, cylindrical);
 
 macro_rules! determinants_match {
     ($test:ident, $m:ident) => {

@@ -4,7 +4,9 @@
 //! tables, base and tool transforms, joints turning against their DH axis (Jaco and Mico, in
 //! the `urdf` convention) — each written as a dhgen description, on the runtime path against the
 //! Toolbox's T, J0 and, where the model has dynamics, D, g, C q̇ and τ at 5 seeded states (and
-//! the body Jacobian against its `jacobe`, tests/data/rtb_jacobe.json); and
+//! the body Jacobian against its `jacobe`, tests/data/rtb_jacobe.json; the kinematic Hessian
+//! and manipulability gradient against its `hessian0` and `jacobm`, tests/data/rtb_hessian.json);
+//! and
 //! the same robots converted to DH tables of both conventions (`convert::to_dh`). The
 //! Toolbox's data that is outside the format's ranges (IRB 140: a centre of mass 198 km away)
 //! must be rejected with an error naming the field.
@@ -92,38 +94,101 @@ fn toolbox_models_match_on_the_runtime_path() {
     );
 }
 
-/// Converted to a DH table of either convention (the flipped joints of Jaco and Mico get a z
-/// axis along the joint's turning direction, the frames around them change, q does not), each
-/// robot still matches the Toolbox.
-/// The body Jacobian (`Arm::body_jacobian`) against the Toolbox's `jacobe` at the same states
-/// (tests/data/rtb_jacobe.json, made by scripts/rtb_jacobe.py), on all 23 models.
-#[test]
-fn toolbox_models_body_jacobians_match_jacobe() {
-    let d = data();
-    let je = data_file("rtb_jacobe.json");
+/// Calls `each(name, robot, state, reference)` for every sample of every model, with the
+/// sample's entry in the reference file `file` (made at the same states, in the same order).
+fn with_reference(file: &str, mut each: impl FnMut(&str, &Robot, &Value, &Value)) {
+    let (d, reference) = (data(), data_file(file));
     let (robots, references) = (
         d["robots"].as_array().unwrap(),
-        je["robots"].as_array().unwrap(),
+        reference["robots"].as_array().unwrap(),
     );
     assert_eq!(robots.len(), references.len());
     for (r, reference) in robots.iter().zip(references) {
         let name = r["name"].as_str().unwrap();
         assert_eq!(reference["name"].as_str(), Some(name));
         let robot = Robot::from_toml_str(r["toml"].as_str().unwrap()).unwrap();
-        let n = robot.dof();
         let states = r["samples"].as_array().unwrap();
         let refs = reference["samples"].as_array().unwrap();
         assert_eq!(states.len(), refs.len(), "{name}");
         for (s, e) in states.iter().zip(refs) {
-            let q = column(&s["q"]);
-            let jb = dhgen::Arm::body_jacobian(&robot, &DVector::from_column_slice(&q));
-            let jb = DMatrix::from_fn(6, n, |a, b| jb[(a, b)]);
-            let w = error(&jb, &rows(&e["Je"]));
-            assert!(w < 1e-12, "{name}: body Jacobian off jacobe by {w:e}");
+            each(name, &robot, s, e);
         }
     }
 }
 
+/// The body Jacobian (`Arm::body_jacobian`) against the Toolbox's `jacobe` at the same states
+/// (tests/data/rtb_jacobe.json, made by scripts/rtb_jacobe.py), on all 23 models.
+#[test]
+fn toolbox_models_body_jacobians_match_jacobe() {
+    let mut compared = 0;
+    with_reference("rtb_jacobe.json", |name, robot, s, e| {
+        let q = column(&s["q"]);
+        let jb = dhgen::Arm::body_jacobian(robot, &DVector::from_column_slice(&q));
+        let jb = DMatrix::from_fn(6, robot.dof(), |a, b| jb[(a, b)]);
+        let w = error(&jb, &rows(&e["Je"]));
+        assert!(w < 1e-12, "{name}: body Jacobian off jacobe by {w:e}");
+        compared += 1;
+    });
+    assert_eq!(compared, 5 * 23);
+}
+
+/// The kinematic Hessian (`velocity::kinematic_hessian`) against the Toolbox's `hessian0`, and
+/// the manipulability and its gradient (`velocity::manipulability_gradient`) against its
+/// `manipulability` and `jacobm` for all, translational and rotational axes, at the same states
+/// (tests/data/rtb_hessian.json, made by scripts/rtb_hessian.py), on all 23 models. The
+/// Toolbox's `jacobm` inverts J Jᵀ, so it is compared where that is well conditioned (the
+/// script leaves the others null); there, both measures are the same product of singular
+/// values.
+#[test]
+fn toolbox_models_hessians_and_manipulability_gradients_match() {
+    use dhgen::velocity::{Axes, kinematic_hessian, manipulability_gradient};
+    let (mut hessians, mut gradients) = (0, 0);
+    with_reference("rtb_hessian.json", |name, robot, s, e| {
+        let n = robot.dof();
+        let q = DVector::from_column_slice(&column(&s["q"]));
+        let j = dhgen::Arm::jacobian(robot, &q);
+        if let Some(h0) = e.get("H0") {
+            let h0 = h0.as_array().unwrap();
+            assert_eq!(h0.len(), n, "{name}");
+            for (k, (ours, theirs)) in kinematic_hessian(&j).zip(h0).enumerate() {
+                let ours = DMatrix::from_fn(6, n, |a, b| ours[(a, b)]);
+                let w = error(&ours, &rows(theirs));
+                assert!(w < 1e-12, "{name}: ∂J/∂q_{k} off hessian0 by {w:e}");
+            }
+            hessians += 1;
+        }
+        for (key, axes) in [
+            ("all", Axes::All),
+            ("trans", Axes::Translation),
+            ("rot", Axes::Rotation),
+        ] {
+            if e["Jm"][key].is_null() {
+                continue;
+            }
+            let (m, grad) = manipulability_gradient(&j, axes)
+                .unwrap_or_else(|| panic!("{name} {key}: no gradient where jacobm has one"));
+            let theirs = e["m"][key].as_f64().unwrap();
+            assert!(
+                (m - theirs).abs() < 1e-12 * theirs.max(1.0),
+                "{name} {key}: m {m} vs {theirs}"
+            );
+            let grad = DMatrix::from_column_slice(n, 1, grad.as_slice());
+            let w = error(
+                &grad,
+                &DMatrix::from_column_slice(n, 1, &column(&e["Jm"][key])),
+            );
+            assert!(w < 1e-10, "{name} {key}: ∂m/∂q off jacobm by {w:e}");
+            gradients += 1;
+        }
+    });
+    // Two states per model, and most states' three measures (not the planar arms').
+    assert_eq!(hessians, 2 * 23);
+    assert!(gradients > 200, "{gradients} gradients compared");
+}
+
+/// Converted to a DH table of either convention (the flipped joints of Jaco and Mico get a z
+/// axis along the joint's turning direction, the frames around them change, q does not), each
+/// robot still matches the Toolbox.
 #[test]
 fn toolbox_models_converted_to_dh_still_match() {
     let d = data();
