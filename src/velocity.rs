@@ -346,14 +346,15 @@ fn hessian_column(
 }
 
 /// `∂(J q̇)/∂q`: how the tool's velocity `[v; ω]` (world axes, at the tool origin) changes with
-/// q at a fixed joint velocity q̇; column k is `(∂J/∂q_k) q̇` ([`kinematic_hessian`]). The
-/// first output of Pinocchio's `getFrameVelocityDerivatives` in `LOCAL_WORLD_ALIGNED` (its
-/// second is J): the linearisation of a Cartesian velocity constraint or cost for
-/// model-predictive control. Contracted with q̇ it gives `J̇ q̇` ([`Arm::jdot_qdot`]).
+/// q at a fixed joint velocity q̇; column k is `(∂J/∂q_k) q̇` ([`kinematic_hessian`]): the
+/// linearisation of a Cartesian velocity constraint or cost for model-predictive control.
+/// Contracted with q̇ it gives `J̇ q̇` ([`Arm::jdot_qdot`]). With Pinocchio one assembles it
+/// from `getFrameVelocityDerivatives` in `LOCAL`, `R ∂v_b/∂q_k + ω_k × (R v_b)` for both halves
+/// (its issue #1256); its `LOCAL_WORLD_ALIGNED` derivative is another quantity, not the
+/// partial derivative of the world-axes velocity.
 ///
 /// # Panics
 /// If `qd` does not have one entry per column of `j` (only possible on the runtime path).
-#[doc(alias = "getFrameVelocityDerivatives")]
 pub fn tool_velocity_partial<D: Dim>(
     j: &OMatrix<f64, U6, D>,
     qd: &OVector<f64, D>,

@@ -115,6 +115,80 @@ hessian_matches!(scara_kinematic_hessian, scara);
 hessian_matches!(odd_kinematic_hessian, odd);
 hessian_matches!(cylindrical_kinematic_hessian, cylindrical);
 
+/// Pinocchio 4.1.0's tool-frame kinematics on the PUMA 560 and the Panda
+/// (tests/data/pinocchio_kinematics.json, made by scripts/pinocchio_kinematics.py): the body
+/// Jacobian (`LOCAL` frame Jacobian), ∂(J q̇)/∂q and the kinematic Hessian (assembled by the
+/// script from `getFrameVelocityDerivatives`), generated and runtime, to 1e-12.
+#[test]
+fn tool_kinematics_match_pinocchio() {
+    use crate::support::runtime;
+    use crate::urdf::{matrix, vector};
+    use dhgen::Arm;
+    use dhgen::nalgebra::{DMatrix, DVector, Dim, OMatrix, U6};
+    fn dynamic<C: Dim>(m: &OMatrix<f64, U6, C>) -> DMatrix<f64>
+    where
+        dhgen::nalgebra::DefaultAllocator: dhgen::nalgebra::allocator::Allocator<U6, C>,
+    {
+        DMatrix::from_fn(6, m.ncols(), |r, c| m[(r, c)])
+    }
+    /// Each of `ours` (body Jacobian, ∂(J q̇)/∂q, then ∂J/∂q_k) against the sample.
+    fn compare(what: &str, ours: &[DMatrix<f64>], s: &serde_json::Value) {
+        let mut theirs = vec![matrix(&s["Jb"]), matrix(&s["dv_dq"])];
+        theirs.extend(s["H0"].as_array().unwrap().iter().map(matrix));
+        assert_eq!(ours.len(), theirs.len(), "{what}");
+        for (i, (a, b)) in ours.iter().zip(&theirs).enumerate() {
+            let e = (a - b).amax() / b.amax().max(1.0);
+            assert!(e < 1e-12, "{what}: matrix {i} off Pinocchio by {e:e}");
+        }
+    }
+    let path = format!(
+        "{}/tests/data/pinocchio_kinematics.json",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    let data: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
+    let mut compared = 0;
+    for name in ["puma560", "panda"] {
+        let robot = runtime(name);
+        let samples = data["robots"][name].as_array().unwrap();
+        assert_eq!(samples.len(), 10);
+        for s in samples {
+            let (q, qd) = (
+                DVector::from_vec(vector(&s["q"])),
+                DVector::from_vec(vector(&s["qd"])),
+            );
+            let j = robot.jacobian(q.as_slice());
+            let mut ours = vec![
+                dynamic(&robot.body_jacobian(&q)),
+                dynamic(&tool_velocity_partial(&j, &qd)),
+            ];
+            ours.extend(kinematic_hessian(&j).map(|h| dynamic(&h)));
+            compare(&format!("{name}, runtime"), &ours, s);
+            macro_rules! generated {
+                ($m:ident) => {{
+                    const N: usize = $m::DOF;
+                    let q = SVector::<f64, N>::from_column_slice(q.as_slice());
+                    let qd = SVector::<f64, N>::from_column_slice(qd.as_slice());
+                    let j = $m::jacobian(&q);
+                    let mut ours = vec![
+                        dynamic(&$m::body_jacobian(&q)),
+                        dynamic(&tool_velocity_partial(&j, &qd)),
+                    ];
+                    ours.extend(kinematic_hessian(&j).map(|h| dynamic(&h)));
+                    compare(&format!("{name}, generated"), &ours, s);
+                }};
+            }
+            if name == "puma560" {
+                generated!(puma560);
+            } else {
+                generated!(panda);
+            }
+            compared += 1;
+        }
+    }
+    assert_eq!(compared, 20);
+}
+
 macro_rules! determinants_match {
     ($test:ident, $m:ident) => {
         proptest! {
