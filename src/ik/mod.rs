@@ -11,7 +11,9 @@
 //!   at singular poses are documented in [`dhgen_model::closed_form`].
 //! - [`NumericIk`]: damped least squares (Levenberg–Marquardt) for any chain (redundant arms,
 //!   prismatic joints), generic over [`Arm`](crate::Arm), with joint limits, tolerances, an
-//!   iteration cap and a seed; allocation-free in its loop for generated robots.
+//!   iteration cap and a seed; allocation-free in its loop for generated robots. For a
+//!   redundant arm, [`NumericIk::solve_preferring`] moves the solution along the arm's
+//!   self-motion to the one nearest a posture or the most manipulable ([`Preference`]).
 //!
 //! Both measure the pose error with [`pose_error`].
 //!
@@ -35,11 +37,13 @@
 //! ```
 
 mod numeric;
+mod preference;
 
 pub use dhgen_model::closed_form::{
     ArmKind, DecoupledIk, Solutions, StructureError, VERIFY_TOLERANCE,
 };
 pub use numeric::{IkError, NumericIk, Solution};
+pub use preference::Preference;
 
 use nalgebra::Isometry3;
 #[cfg(not(feature = "std"))]

@@ -158,6 +158,21 @@ pub enum IkError {
         /// The joint, 0-based.
         joint: usize,
     },
+    /// The posture of [`Preference::Posture`](super::Preference::Posture) has length `len`,
+    /// not the arm's number of joints.
+    #[error("numeric IK: the posture has length {len}, expected {expected} (one entry per joint)")]
+    PostureLength {
+        /// Length given.
+        len: usize,
+        /// Number of joints.
+        expected: usize,
+    },
+    /// Posture entry `joint` (0-based) is NaN or infinite.
+    #[error("numeric IK: posture entry {joint} is not finite")]
+    NonFinitePosture {
+        /// The joint, 0-based.
+        joint: usize,
+    },
     /// The target pose has a NaN or infinite entry.
     #[error("numeric IK: the target pose is not finite")]
     NonFiniteTarget,
@@ -168,7 +183,7 @@ pub enum IkError {
 
 /// The error vector `[(p* − p)/length; log(R* Rᵀ)]` and the norms of its two parts, in metres
 /// and radians.
-fn pose_residual(
+pub(super) fn pose_residual(
     target: &Isometry3<f64>,
     pose: &Isometry3<f64>,
     length: f64,
@@ -193,7 +208,7 @@ fn pose_residual(
 /// the tool. Positions are measured in it, so that the damping and the weighting of position
 /// against orientation are the same for an arm and the same arm scaled (a 0.1 mm arm had
 /// converged on 0 to 5 % of poses its 1 m original solves).
-fn length_scale<A: Arm>(arm: &A, j: &OMatrix<f64, U6, A::Dof>) -> f64
+pub(super) fn length_scale<A: Arm>(arm: &A, j: &OMatrix<f64, U6, A::Dof>) -> f64
 where
     DefaultAllocator: ArmAllocator<A::Dof>,
 {
@@ -237,7 +252,7 @@ impl NumericIk {
         Ok(())
     }
 
-    fn clamp<A: Arm>(&self, arm: &A, q: &mut OVector<f64, A::Dof>)
+    pub(super) fn clamp<A: Arm>(&self, arm: &A, q: &mut OVector<f64, A::Dof>)
     where
         DefaultAllocator: ArmAllocator<A::Dof>,
     {

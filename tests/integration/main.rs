@@ -35,6 +35,7 @@ mod hostile_descriptions;
 mod hostile_urdf;
 mod ik_closed_form;
 mod ik_numeric;
+mod ik_preference;
 mod ik_random;
 mod non_finite;
 mod payload;
