@@ -271,6 +271,27 @@ fn a_posture_out_of_the_limits_leaves_the_solution_within_them() {
     assert!((s.q - posture).norm() < (q - posture).norm());
 }
 
+/// A posture at 1e300 rad (finite: accepted) overflows the squared distance: the iteration
+/// still ends within its budget, at a solution of the pose within the limits.
+#[test]
+fn a_huge_posture_ends_within_the_budget() {
+    let arm = panda::Robot;
+    let q = SVector::<f64, 7>::from([0.1, -0.4, 0.2, -1.8, 0.3, 1.5, 0.4]);
+    let target = arm.fk(&q);
+    let posture = SVector::<f64, 7>::repeat(1e300);
+    let ik = NumericIk::default();
+    let s = ik
+        .solve_preferring(&arm, &target, &q, Preference::Posture(&posture))
+        .unwrap();
+    assert!(s.iterations <= ik.max_iterations);
+    let (dp, dr) = pose_error(&arm.fk(&s.q), &target);
+    assert!(dp <= 1e-10 && dr <= 1e-10);
+    for k in 0..7 {
+        let [lo, hi] = arm.limits(k).unwrap();
+        assert!(s.q[k] >= lo && s.q[k] <= hi);
+    }
+}
+
 #[test]
 fn preferring_allocates_nothing_for_a_generated_arm() {
     let arm = panda::Robot;
