@@ -95,10 +95,10 @@ impl Dynamics {
     }
 }
 
-/// Reads joint positions: numbers (rad or m), and for revolute joints also the angle forms
-/// of the description format (`90deg`, `-pi/2`).
-pub fn positions(robot: &Robot, values: &[String]) -> Result<Vec<f64>, String> {
-    check_len(robot, "--q", values.len())?;
+/// Reads the joint positions of the list argument `flag` (`--q`): numbers (rad or m), and for
+/// revolute joints also the angle forms of the description format (`90deg`, `-pi/2`).
+pub fn positions(robot: &Robot, flag: &str, values: &[String]) -> Result<Vec<f64>, String> {
+    check_len(robot, flag, values.len())?;
     robot
         .model()
         .links
@@ -108,7 +108,7 @@ pub fn positions(robot: &Robot, values: &[String]) -> Result<Vec<f64>, String> {
         .map(|(i, (l, v))| match l.joint {
             JointKind::Revolute => Angle::parse(v)
                 .map(Angle::radians)
-                .map_err(|e| format!("--q, joint {}: {e}", i + 1)),
+                .map_err(|e| format!("{flag}, joint {}: {e}", i + 1)),
             JointKind::Prismatic => v
                 .trim()
                 .parse::<f64>()
@@ -116,7 +116,7 @@ pub fn positions(robot: &Robot, values: &[String]) -> Result<Vec<f64>, String> {
                 .filter(|x| x.is_finite())
                 .ok_or_else(|| {
                     format!(
-                        "--q, joint {}: cannot read {v:?}: the joint is prismatic, give metres as a number",
+                        "{flag}, joint {}: cannot read {v:?}: the joint is prismatic, give metres as a number",
                         i + 1
                     )
                 }),

@@ -4,6 +4,8 @@
 //! - `dhgen eval ROBOT.toml --q ... [--qd ...] [--qdd ...] [--json] [--derivatives]
 //!   [--task-space]`: T, J, J_b (tool axes), D, C, g, τ, the kinetic and potential energy
 //!   (and the derivatives of the dynamics, the tool's task-space dynamics) on the runtime path;
+//! - `dhgen ik ROBOT.toml (--position X,Y,Z [--rpy R,P,Y] | --at LIST) [--seed LIST]
+//!   [--nearest LIST | --most-manipulable] [--json]`: inverse kinematics, closed form and numeric;
 //! - `dhgen emit ROBOT.toml [-o FILE] [--name MOD] [--derivatives] [--regressor]`: the module `robot!`
 //!   generates, formatted;
 //! - `dhgen latex ROBOT.toml`: D(q), c_ijk, g(q) and P(q) as LaTeX equations;
@@ -17,6 +19,7 @@
 
 mod emit;
 mod eval;
+mod ik;
 mod info;
 mod table;
 
@@ -73,6 +76,56 @@ enum Command {
         /// are none (a kinematic singularity, fewer than six joints).
         #[arg(long)]
         task_space: bool,
+    },
+    /// Inverse kinematics on the runtime path: every closed-form solution where the arm has
+    /// them (six joints, a spherical wrist or three parallel axes), the numeric solution from
+    /// a seed, and for a redundant arm on request the one nearest a posture or the most
+    /// manipulable. The pose: `--position` and `--rpy`, or `--at` (where the tool is at those
+    /// joint values).
+    Ik {
+        #[command(flatten)]
+        robot: Source,
+        /// The tool's position in the world, m: `X,Y,Z`.
+        #[arg(
+            long,
+            allow_hyphen_values = true,
+            value_name = "X,Y,Z",
+            required_unless_present = "at",
+            conflicts_with = "at"
+        )]
+        position: Option<String>,
+        /// The tool's orientation: roll, pitch, yaw about the fixed x, y, z axes (radians, or
+        /// `90deg`, `pi/2`), applied in that order; 0 if omitted.
+        #[arg(
+            long,
+            allow_hyphen_values = true,
+            value_name = "R,P,Y",
+            conflicts_with = "at"
+        )]
+        rpy: Option<String>,
+        /// The pose of the tool at these joint values (a list like `eval`'s `--q`).
+        #[arg(long, allow_hyphen_values = true, value_name = "LIST")]
+        at: Option<String>,
+        /// The numeric solver's seed (a list like `eval`'s `--q`); 0 if omitted (each joint
+        /// clamped into its limits).
+        #[arg(long, allow_hyphen_values = true, value_name = "LIST")]
+        seed: Option<String>,
+        /// Also the solution nearest this posture (a list like `--seed`), moved along the
+        /// self-motion from the numeric one.
+        #[arg(
+            long,
+            allow_hyphen_values = true,
+            value_name = "LIST",
+            conflicts_with = "most_manipulable"
+        )]
+        nearest: Option<String>,
+        /// Also the most manipulable solution (Yoshikawa's measure), moved along the
+        /// self-motion from the numeric one.
+        #[arg(long)]
+        most_manipulable: bool,
+        /// Print JSON instead of text.
+        #[arg(long)]
+        json: bool,
     },
     /// Write the module `dhgen::robot!` generates for the description, formatted, as a Rust
     /// source file.
@@ -282,7 +335,7 @@ fn run(command: Command) -> Result<String, String> {
             task_space,
         } => {
             let r = load(&robot)?;
-            let q = eval::positions(&r, &eval::split("--q", &q)?)?;
+            let q = eval::positions(&r, "--q", &eval::split("--q", &q)?)?;
             let qd = eval::rates(&r, "--qd", qd.as_deref())?;
             let qdd = eval::rates(&r, "--qdd", qdd.as_deref())?;
             let e = eval::evaluate(&r, q, qd, qdd, derivatives, task_space)?;
@@ -291,6 +344,36 @@ fn run(command: Command) -> Result<String, String> {
             } else {
                 e.text(&r)
             })
+        }
+        Command::Ik {
+            robot,
+            position,
+            rpy,
+            at,
+            seed,
+            nearest,
+            most_manipulable,
+            json,
+        } => {
+            let r = load(&robot)?;
+            let target = match (at, position) {
+                (Some(at), _) => {
+                    let q = eval::positions(&r, "--at", &eval::split("--at", &at)?)?;
+                    r.fk(&q)
+                }
+                (None, Some(position)) => ik::pose(&position, rpy.as_deref())?,
+                (None, None) => return Err("give the pose: --position (and --rpy) or --at".into()),
+            };
+            let prefer = match (nearest, most_manipulable) {
+                (Some(list), _) => ik::Prefer::Posture(eval::positions(
+                    &r,
+                    "--nearest",
+                    &eval::split("--nearest", &list)?,
+                )?),
+                (None, true) => ik::Prefer::Manipulability,
+                (None, false) => ik::Prefer::Nothing,
+            };
+            ik::run(&r, &target, seed.as_deref(), prefer, json)
         }
         Command::Emit {
             robot,
@@ -510,7 +593,7 @@ fn main() -> ExitCode {
                 }
                 ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand => {
                     eprintln!(
-                        "dhgen: missing command: info, eval, emit, latex, ops, convert, params or random (see dhgen --help)"
+                        "dhgen: missing command: info, eval, ik, emit, latex, ops, convert, params or random (see dhgen --help)"
                     );
                     ExitCode::from(2)
                 }

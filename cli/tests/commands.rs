@@ -1353,3 +1353,167 @@ fn convert_blames_the_converted_description() {
         "{err}"
     );
 }
+
+/// The joint values of a solution in `dhgen ik --json`'s output.
+fn ik_q(v: &serde_json::Value) -> Vec<f64> {
+    v["q"]
+        .as_array()
+        .unwrap_or_else(|| panic!("no q in {v}"))
+        .iter()
+        .map(|x| x.as_f64().unwrap())
+        .collect()
+}
+
+/// Every closed-form solution of the PUMA 560 at the pose of a configuration puts the tool
+/// there, one of them is that configuration, and so does the numeric one.
+#[test]
+fn ik_finds_the_configuration_it_was_given_and_the_others() {
+    let robot = puma();
+    let q = [0.2, -0.3, 0.1, 0.4, 0.6, -0.5];
+    let list: Vec<String> = q.iter().map(|x| x.to_string()).collect();
+    let out = stdout(&[
+        "ik",
+        "robots/puma560.toml",
+        "--at",
+        &list.join(","),
+        "--json",
+    ]);
+    let v: serde_json::Value = serde_json::from_str(&out).expect("valid JSON");
+    let target = robot.fk(&q);
+    let at_target = |s: &[f64]| {
+        let (dp, dr) = dhgen::ik::pose_error(&robot.fk(s), &target);
+        dp < 1e-10 && dr < 1e-10
+    };
+    let solutions = v["closed_form"]["solutions"].as_array().expect("solutions");
+    assert_eq!(solutions.len(), 8);
+    for s in solutions {
+        assert!(at_target(&ik_q(s)), "{s}");
+    }
+    assert!(
+        solutions
+            .iter()
+            .any(|s| { ik_q(s).iter().zip(&q).all(|(a, b)| (a - b).abs() < 1e-9) })
+    );
+    assert!(at_target(&ik_q(&v["numeric"])));
+    assert!(v["preferred"].is_null());
+}
+
+/// On the Panda (no closed form), the pose given by position and roll-pitch-yaw (about the
+/// fixed axes: nalgebra's `from_euler_angles`) is reached, and the preferred solutions are
+/// more manipulable or nearer the posture than the numeric one they start from.
+#[test]
+fn ik_on_a_redundant_arm_prefers() {
+    let robot = Robot::from_toml_file(root().join("robots/panda.toml")).unwrap();
+    let (p, rpy) = ([0.4, 0.1, 0.5], [3.0, 0.2, -0.4]);
+    let target = dhgen::nalgebra::Isometry3::from_parts(
+        dhgen::nalgebra::Translation3::new(p[0], p[1], p[2]),
+        dhgen::nalgebra::UnitQuaternion::from_euler_angles(rpy[0], rpy[1], rpy[2]),
+    );
+    let seed = "0,0,0,-1.5,0,1.5,0";
+    let run = |extra: &[&str]| -> serde_json::Value {
+        let mut args = vec![
+            "ik",
+            "robots/panda.toml",
+            "--position",
+            "0.4,0.1,0.5",
+            "--rpy",
+            "3,0.2,-0.4",
+            "--seed",
+            seed,
+            "--json",
+        ];
+        args.extend_from_slice(extra);
+        serde_json::from_str(&stdout(&args)).expect("valid JSON")
+    };
+    let m = |q: &[f64]| dhgen::velocity::manipulability(&robot.jacobian(q));
+    let reached = |q: &[f64]| {
+        let (dp, dr) = dhgen::ik::pose_error(&robot.fk(q), &target);
+        assert!(dp < 1e-10 && dr < 1e-10, "{dp:e} {dr:e}");
+    };
+    let v = run(&["--most-manipulable"]);
+    assert!(v["closed_form"]["unavailable"].is_string());
+    let (first, most) = (ik_q(&v["numeric"]), ik_q(&v["preferred"]));
+    reached(&first);
+    reached(&most);
+    assert!(m(&most) >= m(&first));
+    assert_eq!(v["preferred"]["preference"], "most manipulable");
+    let posture = [0.0, -0.785, 0.0, -2.356, 0.0, 1.571, 0.785];
+    let list: Vec<String> = posture.iter().map(|x| x.to_string()).collect();
+    let v = run(&["--nearest", &list.join(",")]);
+    let (first, near) = (ik_q(&v["numeric"]), ik_q(&v["preferred"]));
+    reached(&near);
+    let distance = |q: &[f64]| {
+        q.iter()
+            .zip(&posture)
+            .map(|(a, b)| (a - b) * (a - b))
+            .sum::<f64>()
+    };
+    assert!(distance(&near) <= distance(&first));
+    // The text names each part.
+    let text = stdout(&[
+        "ik",
+        "robots/panda.toml",
+        "--position",
+        "0.4,0.1,0.5",
+        "--rpy",
+        "3,0.2,-0.4",
+        "--most-manipulable",
+    ]);
+    for part in [
+        "closed form: none",
+        "numeric, from the seed",
+        "most manipulable:",
+    ] {
+        assert!(text.contains(part), "{part} missing in\n{text}");
+    }
+}
+
+#[test]
+fn ik_reports_what_it_cannot_do() {
+    let err = failure(&["ik", "robots/puma560.toml", "--position", "5,0,0"]);
+    assert!(
+        err.contains("no solution for this pose") && err.contains("out of reach"),
+        "{err}"
+    );
+    let err = failure(&[
+        "ik",
+        "robots/puma560.toml",
+        "--position",
+        "0.5,0",
+        "--rpy",
+        "0,0,0",
+    ]);
+    assert!(err.contains("--position takes 3 values, not 2"), "{err}");
+    let err = failure(&[
+        "ik",
+        "robots/puma560.toml",
+        "--position",
+        "0.5,0,0.3",
+        "--rpy",
+        "0,x,0",
+    ]);
+    assert!(err.contains("--rpy, entry 2: cannot read \"x\""), "{err}");
+    let err = failure(&[
+        "ik",
+        "robots/panda.toml",
+        "--at",
+        "0,0,0,-1.5,0,1.5,0",
+        "--nearest",
+        "0,0",
+    ]);
+    assert!(
+        err.contains("--nearest has 2 values, but panda has 7 joints"),
+        "{err}"
+    );
+    let err = failure(&[
+        "ik",
+        "robots/puma560.toml",
+        "--at",
+        "0,0,0,0,0,0",
+        "--position",
+        "0,0,0",
+    ]);
+    assert!(err.contains("cannot be used with"), "{err}");
+    let err = failure(&["ik", "robots/puma560.toml"]);
+    assert!(err.contains("--position"), "{err}");
+}
