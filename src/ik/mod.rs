@@ -43,7 +43,7 @@ pub use dhgen_model::closed_form::{
     ArmKind, DecoupledIk, Solutions, StructureError, VERIFY_TOLERANCE,
 };
 pub use numeric::{IkError, NumericIk, Solution};
-pub use preference::Preference;
+pub use preference::{CostFunction, Preference};
 
 use nalgebra::Isometry3;
 #[cfg(not(feature = "std"))]

@@ -10,7 +10,7 @@ use nalgebra::{DefaultAllocator, Dim, Isometry3, OMatrix, OVector, U6};
 
 /// What a redundant arm's solution should prefer among the configurations that reach the
 /// pose; see [`NumericIk::solve_preferring`].
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy)]
 pub enum Preference<'a, D: Dim>
 where
     DefaultAllocator: nalgebra::allocator::Allocator<D>,
@@ -22,6 +22,57 @@ where
     /// The solution of the largest Yoshikawa manipulability of the rows `Axes` of the
     /// Jacobian (TRAC-IK's `Manip1` with [`Axes::All`]): farthest from singularities.
     Manipulability(Axes),
+    /// The solution of the least cost by your function, which returns the cost at `q` and its
+    /// gradient ∂cost/∂q (for example joint-limit avoidance, a weighted posture, a distance
+    /// to an obstacle, or a sum of these). A non-finite cost or gradient, or a gradient of
+    /// another length than `q`'s, ends the iteration where it is. The gain of a step is the difference of two costs, so near the optimum the
+    /// rounding of the cost, not of the step, sets how stationary the result is.
+    ///
+    /// ```
+    /// use dhgen::ik::{NumericIk, Preference};
+    /// use dhgen::nalgebra::SVector;
+    /// use dhgen::Arm;
+    /// dhgen::robot!(mod panda = "robots/panda.toml");
+    ///
+    /// // Away from the joint limits: Σ ((q − mid) / range)², and its gradient.
+    /// let arm = panda::Robot;
+    /// let away = |q: &SVector<f64, 7>| {
+    ///     let mut grad = SVector::<f64, 7>::zeros();
+    ///     let mut cost = 0.0;
+    ///     for k in 0..7 {
+    ///         let [lo, hi] = arm.limits(k).unwrap();
+    ///         let x = (q[k] - (lo + hi) / 2.0) / (hi - lo);
+    ///         cost += x * x;
+    ///         grad[k] = 2.0 * x / (hi - lo);
+    ///     }
+    ///     (cost, grad)
+    /// };
+    /// let target = arm.fk(&SVector::from([0.1, -0.4, 0.2, -1.8, 0.3, 1.5, 0.4]));
+    /// let seed = SVector::from([2.0, 1.0, -2.0, -0.5, 2.0, 3.0, -2.0]);
+    /// let ik = NumericIk::default();
+    /// let first = ik.solve(&arm, &target, &seed).unwrap();
+    /// let best = ik.solve_preferring(&arm, &target, &seed, Preference::Cost(&away)).unwrap();
+    /// assert!(away(&best.q).0 <= away(&first.q).0);
+    /// ```
+    Cost(&'a CostFunction<'a, D>),
+}
+
+/// A cost of the user's for [`Preference::Cost`]: at `q`, the cost and its gradient ∂cost/∂q.
+pub type CostFunction<'a, D> = dyn Fn(&OVector<f64, D>) -> (f64, OVector<f64, D>) + 'a;
+
+impl<D: Dim> core::fmt::Debug for Preference<'_, D>
+where
+    DefaultAllocator: nalgebra::allocator::Allocator<D>,
+{
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        match self {
+            Preference::Posture(p) => f.debug_tuple("Posture").field(p).finish(),
+            Preference::Manipulability(axes) => {
+                f.debug_tuple("Manipulability").field(axes).finish()
+            }
+            Preference::Cost(_) => f.write_str("Cost(..)"),
+        }
+    }
 }
 
 /// Largest step of the secondary objective on any joint, rad or m: the projection is a first-
@@ -49,8 +100,8 @@ where
     DefaultAllocator: nalgebra::allocator::Allocator<D>,
 {
     /// The objective's descent direction at `q`, where the (world-axes) Jacobian is `j`:
-    /// towards the posture, or up the manipulability's gradient; `None` where the
-    /// manipulability has none (J has lost rank).
+    /// towards the posture, up the manipulability's gradient, or down the cost's; `None` where
+    /// the manipulability has none (J has lost rank) or the cost is not finite.
     fn descent(&self, q: &OVector<f64, D>, j: &OMatrix<f64, U6, D>) -> Option<OVector<f64, D>>
     where
         DefaultAllocator: ArmAllocator<D>,
@@ -58,6 +109,11 @@ where
         match self {
             Preference::Posture(p) => Some(*p - q),
             Preference::Manipulability(axes) => Some(manipulability_gradient(j, *axes)?.1),
+            Preference::Cost(f) => {
+                let (c, grad) = f(q);
+                (c.is_finite() && grad.len() == q.len() && grad.iter().all(|x| x.is_finite()))
+                    .then(|| -grad)
+            }
         }
     }
 
@@ -75,6 +131,7 @@ where
             Preference::Manipulability(axes) => {
                 manipulability_gradient(&arm.jacobian(q), *axes).map_or(0.0, |(m, _)| -m)
             }
+            Preference::Cost(f) => f(q).0,
         }
     }
 
@@ -102,7 +159,7 @@ where
                     .sum();
                 (gain, cost - gain)
             }
-            Preference::Manipulability(_) => {
+            Preference::Manipulability(_) | Preference::Cost(_) => {
                 let c = self.cost(arm, to);
                 (cost - c, c)
             }
@@ -113,14 +170,14 @@ where
 impl NumericIk {
     /// Solves `arm.fk(q) = target` from `seed` as [`solve`](Self::solve) does, then moves the
     /// solution along the set of configurations that reach the pose to the one `preference`
-    /// prefers (a local optimum: the nearest to the posture, or the most manipulable, among
-    /// the solutions connected to the first one).
+    /// prefers (a local optimum: the nearest to the posture, the most manipulable, or the least
+    /// costly by your function, among the solutions connected to the first one).
     ///
     /// # Method
     /// [`NumericIk::solve`] first finds one solution, and undamped Gauss–Newton steps polish it
     /// to the rounding of the forward kinematics. Then, at each iteration, the descent
-    /// direction `g` of the objective (towards the posture, or up the manipulability gradient
-    /// [`manipulability_gradient`]) is projected onto the null space of the Jacobian,
+    /// direction `g` of the objective (towards the posture, up the manipulability gradient
+    /// [`manipulability_gradient`], or down your cost's gradient) is projected onto the null space of the Jacobian,
     /// `d = (I − J⁺J) g`: the joint motions that, to first order, leave the tool where it is.
     /// Joints on a limit that the objective pushes further out are held (taken out of J and of
     /// `g`, an active set: each joint `d` would push out is held, each held one that released
@@ -209,11 +266,12 @@ impl NumericIk {
             (best.q.clone(), best.q.clone(), false);
         // The posture's quadratic is minimised along d by t = 1 to first order (a step of
         // sequential quadratic programming that leaves out the curvature of the self-motion);
-        // the manipulability has no such scale: its steps start at MAX_STEP. Both then adapt,
+        // the manipulability and a cost of yours have no such scale: their steps start at
+        // MAX_STEP. All then adapt,
         // doubling after a step that is kept.
         let mut scale = match preference {
             Preference::Posture(_) => 1.0,
-            Preference::Manipulability(_) => f64::INFINITY,
+            Preference::Manipulability(_) | Preference::Cost(_) => f64::INFINITY,
         };
         while best.iterations < self.max_iterations {
             best.iterations += 1;

@@ -33,6 +33,7 @@ where
     match preference {
         Preference::Posture(p) => 0.5 * (*p - q).norm_squared(),
         Preference::Manipulability(_) => -manipulability(&arm.jacobian(q)),
+        Preference::Cost(f) => f(q).0,
     }
 }
 
@@ -50,6 +51,7 @@ where
         Preference::Manipulability(axes) => {
             manipulability_gradient(&arm.jacobian(q), *axes).unwrap().1
         }
+        Preference::Cost(f) => -f(q).1,
     }
 }
 
@@ -224,6 +226,68 @@ fn snake17_nearest_posture() {
         let what = format!("snake17 case {case}");
         check_preferred(&arm, &target, &seed, Preference::Posture(&posture), &what);
     }
+}
+
+/// Joint-limit avoidance, a cost of the user's: Σ ((q_k − mid_k) / range_k)⁴, which grows
+/// steeply towards either limit (Liégeois' criterion, with a fourth power). Its optimum on the
+/// self-motion meets the same conditions as the built-in objectives', on the Panda (generated)
+/// and on a general 9-joint arm given limits (runtime).
+#[test]
+fn a_cost_of_ones_own_is_minimised_along_the_self_motion() {
+    fn limit_avoidance<A: Arm>(arm: &A, q: &OVector<f64, A::Dof>) -> (f64, OVector<f64, A::Dof>)
+    where
+        DefaultAllocator: ArmAllocator<A::Dof>,
+    {
+        let mut grad = q.clone();
+        let mut cost = 0.0;
+        for k in 0..arm.dof() {
+            let [lo, hi] = arm.limits(k).unwrap();
+            let (mid, range) = ((lo + hi) / 2.0, hi - lo);
+            let x = (q[k] - mid) / range;
+            cost += x.powi(4);
+            grad[k] = 4.0 * x.powi(3) / range;
+        }
+        (cost, grad)
+    }
+    let arm = panda::Robot;
+    let cost = |q: &SVector<f64, 7>| limit_avoidance(&arm, q);
+    let mut rng = StdRng::seed_from_u64(72);
+    for case in 0..20 {
+        let target = arm.fk(&random_q(&arm, &mut rng));
+        let seed = random_q(&arm, &mut rng);
+        let what = format!("panda limit avoidance case {case}");
+        check_preferred(&arm, &target, &seed, Preference::Cost(&cost), &what);
+    }
+    let mut model = random_arm(9, ArmStyle::General, 5);
+    for link in &mut model.links {
+        link.limits = Some([-2.5, 2.0]);
+    }
+    let arm = dhgen::Robot::from_model(model);
+    let cost = |q: &DVector<f64>| limit_avoidance(&arm, q);
+    for case in 0..8 {
+        let target = Arm::fk(&arm, &random_q(&arm, &mut rng));
+        let seed = random_q(&arm, &mut rng);
+        let what = format!("general 9 limit avoidance case {case}");
+        check_preferred(&arm, &target, &seed, Preference::Cost(&cost), &what);
+    }
+}
+
+/// A cost that is not finite ends the iteration at once: the first solution, polished.
+#[test]
+fn a_cost_that_is_not_finite_keeps_the_first_solution() {
+    let arm = panda::Robot;
+    let q = SVector::<f64, 7>::from([0.1, -0.4, 0.2, -1.8, 0.3, 1.5, 0.4]);
+    let target = arm.fk(&q);
+    let seed = SVector::<f64, 7>::from([0.0, 0.0, 0.0, -1.5, 0.0, 1.5, 0.0]);
+    let ik = NumericIk::default();
+    let first = ik.solve(&arm, &target, &seed).unwrap();
+    let nan = |q: &SVector<f64, 7>| (f64::NAN, *q);
+    let s = ik
+        .solve_preferring(&arm, &target, &seed, Preference::Cost(&nan))
+        .unwrap();
+    assert!((s.q - first.q).amax() < 1e-8);
+    let (dp, dr) = pose_error(&arm.fk(&s.q), &target);
+    assert!(dp <= 1e-10 && dr <= 1e-10);
 }
 
 #[test]
