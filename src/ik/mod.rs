@@ -13,7 +13,8 @@
 //!   prismatic joints), generic over [`Arm`](crate::Arm), with joint limits, tolerances, an
 //!   iteration cap and a seed; allocation-free in its loop for generated robots. For a
 //!   redundant arm, [`NumericIk::solve_preferring`] moves the solution along the arm's
-//!   self-motion to the one nearest a posture or the most manipulable ([`Preference`]).
+//!   self-motion to the one nearest a posture, the most manipulable, or the least costly by
+//!   a function of yours ([`Preference`]).
 //!
 //! Both measure the pose error with [`pose_error`].
 //!
