@@ -5,13 +5,14 @@
 
 use crate::eval::{positions, split};
 use crate::table::trimmed;
-use dhgen::ik::{DecoupledIk, NumericIk, Preference, pose_error};
-use dhgen::nalgebra::{DVector, Isometry3, Translation3, UnitQuaternion};
+use dhgen::ik::{DecoupledIk, NumericIk, Preference, Task};
+use dhgen::nalgebra::{DVector, Isometry3, Translation3, Unit, UnitQuaternion, Vector3};
 use dhgen::rotation::Rpy;
 use dhgen::velocity::JacobianSvd;
 use dhgen::{Arm, Robot};
 use dhgen_model::Angle;
 use serde_json::{Value, json};
+use std::f64::consts::PI;
 use std::fmt::Write as _;
 
 /// What to prefer among a redundant arm's solutions.
@@ -24,9 +25,15 @@ pub enum Prefer {
     Manipulability,
 }
 
-/// The tool pose from `--position X,Y,Z` (m) and `--rpy R,P,Y` (roll, pitch, yaw about the
-/// fixed x, y, z axes: radians or the angle forms of the description format; 0 if omitted).
-pub fn pose(position: &str, rpy: Option<&str>) -> Result<Isometry3<f64>, String> {
+/// The target and the task from `--position X,Y,Z` (m) with `--rpy R,P,Y` (roll, pitch, yaw
+/// about the fixed x, y, z axes: radians or the angle forms of the description format; the
+/// whole pose), `--axis X,Y,Z` (the tool's z axis: the position and that axis), or neither
+/// (the position alone).
+pub fn target(
+    position: &str,
+    rpy: Option<&str>,
+    axis: Option<&str>,
+) -> Result<(Isometry3<f64>, Task), String> {
     let three = |flag: &str, list: &str, read: &dyn Fn(&str) -> Option<f64>| {
         let values = split(flag, list)?;
         if values.len() != 3 {
@@ -40,17 +47,31 @@ pub fn pose(position: &str, rpy: Option<&str>) -> Result<Isometry3<f64>, String>
             })
             .collect::<Result<Vec<f64>, String>>()
     };
-    let metres = |v: &str| v.parse::<f64>().ok().filter(|x| x.is_finite());
+    let number = |v: &str| v.parse::<f64>().ok().filter(|x| x.is_finite());
     let angle = |v: &str| Angle::parse(v).ok().map(Angle::radians);
-    let p = three("--position", position, &metres)?;
-    let r = match rpy {
-        Some(list) => three("--rpy", list, &angle)?,
-        None => vec![0.0; 3],
+    let p = three("--position", position, &number)?;
+    let (rotation, task) = match (rpy, axis) {
+        (Some(list), _) => {
+            let r = three("--rpy", list, &angle)?;
+            let rotation = Rpy::new(r[0], r[1], r[2]).to_rotation();
+            (UnitQuaternion::from_rotation_matrix(&rotation), Task::Pose)
+        }
+        (None, Some(list)) => {
+            let a = three("--axis", list, &number)?;
+            let a = Vector3::new(a[0], a[1], a[2]);
+            let Some(a) = Unit::try_new(a, 0.0).filter(|a| a.iter().all(|x| x.is_finite())) else {
+                return Err("--axis must be a non-zero direction".into());
+            };
+            // A rotation taking z to the axis (a half turn about x where they are opposite).
+            let rotation = UnitQuaternion::rotation_between_axis(&Vector3::z_axis(), &a)
+                .unwrap_or_else(|| UnitQuaternion::from_axis_angle(&Vector3::x_axis(), PI));
+            (rotation, Task::PositionAndAxis)
+        }
+        (None, None) => (UnitQuaternion::identity(), Task::Position),
     };
-    let rotation = Rpy::new(r[0], r[1], r[2]).to_rotation();
-    Ok(Isometry3::from_parts(
-        Translation3::new(p[0], p[1], p[2]),
-        UnitQuaternion::from_rotation_matrix(&rotation),
+    Ok((
+        Isometry3::from_parts(Translation3::new(p[0], p[1], p[2]), rotation),
+        task,
     ))
 }
 
@@ -65,8 +86,14 @@ struct Found {
 }
 
 impl Found {
-    fn new(robot: &Robot, target: &Isometry3<f64>, q: &[f64], iterations: Option<usize>) -> Self {
-        let (position_error, orientation_error) = pose_error(&robot.fk(q), target);
+    fn new(
+        robot: &Robot,
+        target: &Isometry3<f64>,
+        task: Task,
+        q: &[f64],
+        iterations: Option<usize>,
+    ) -> Self {
+        let (position_error, orientation_error) = task.errors(&robot.fk(q), target);
         let outside = (0..robot.dof())
             .filter(|&k| {
                 robot
@@ -118,6 +145,7 @@ impl Found {
 pub fn run(
     robot: &Robot,
     target: &Isometry3<f64>,
+    task: Task,
     seed: Option<&str>,
     prefer: Prefer,
     json: bool,
@@ -127,16 +155,25 @@ pub fn run(
         Some(list) => positions(robot, "--seed", &split("--seed", list)?)?,
         None => vec![0.0; n],
     };
-    let closed = DecoupledIk::from_chain(robot.chain()).map(|ik| {
-        ik.solve(target)
-            .iter()
-            .map(|q| Found::new(robot, target, q.as_slice(), None))
-            .collect::<Vec<_>>()
-    });
-    let ik = NumericIk::default();
+    // The closed form solves whole poses.
+    let closed = match task {
+        Task::Pose => DecoupledIk::from_chain(robot.chain())
+            .map(|ik| {
+                ik.solve(target)
+                    .iter()
+                    .map(|q| Found::new(robot, target, task, q.as_slice(), None))
+                    .collect::<Vec<_>>()
+            })
+            .map_err(|e| e.to_string()),
+        _ => Err("it needs the whole pose: give --rpy".to_string()),
+    };
+    let ik = NumericIk {
+        task,
+        ..NumericIk::default()
+    };
     let seed_v = DVector::from_vec(seed.clone());
     let found = |s: Result<dhgen::ik::Solution<dhgen::nalgebra::Dyn>, _>| {
-        s.map(|s| Found::new(robot, target, s.q.as_slice(), Some(s.iterations)))
+        s.map(|s| Found::new(robot, target, task, s.q.as_slice(), Some(s.iterations)))
             .map_err(|e: dhgen::ik::IkError| e.to_string())
     };
     let numeric = found(ik.solve(robot, target, &seed_v));
@@ -176,10 +213,16 @@ pub fn run(
         };
         let out = json!({
             "position": target.translation.vector.as_slice(),
-            "rpy": rpy_of(target),
+            "task": match task {
+                Task::Position => "position",
+                Task::PositionAndAxis => "position and axis",
+                _ => "pose",
+            },
+            "rpy": (task == Task::Pose).then(|| rpy_of(target)),
+            "axis": (task == Task::PositionAndAxis).then(|| axis_of(target)),
             "closed_form": match &closed {
                 Ok(list) => json!({ "solutions": list.iter().map(Found::json).collect::<Vec<_>>() }),
-                Err(e) => json!({ "unavailable": e.to_string() }),
+                Err(e) => json!({ "unavailable": e }),
             },
             "seed": seed,
             "numeric": result(&numeric),
@@ -193,17 +236,17 @@ pub fn run(
     }
     let mut out = String::new();
     let t = &target.translation.vector;
-    let r = rpy_of(target);
+    let listed = |v: [f64; 3]| v.map(|x| trimmed(x, 6)).join(", ");
+    let orientation = match task {
+        Task::Position => "any orientation".to_string(),
+        Task::PositionAndAxis => format!("z axis along ({})", listed(axis_of(target))),
+        _ => format!("roll-pitch-yaw ({}) rad", listed(rpy_of(target))),
+    };
     writeln!(
         out,
-        "{}: tool at ({}, {}, {}) m, roll-pitch-yaw ({}, {}, {}) rad",
+        "{}: tool at ({}) m, {orientation}",
         robot.model().name,
-        trimmed(t.x, 6),
-        trimmed(t.y, 6),
-        trimmed(t.z, 6),
-        trimmed(r[0], 6),
-        trimmed(r[1], 6),
-        trimmed(r[2], 6)
+        listed([t.x, t.y, t.z]),
     )
     .unwrap();
     match &closed {
@@ -242,6 +285,12 @@ pub fn run(
         writeln!(out, "{}", line(p)).unwrap();
     }
     Ok(out)
+}
+
+/// The pose's z axis in the world.
+fn axis_of(pose: &Isometry3<f64>) -> [f64; 3] {
+    let a = pose.rotation * Vector3::z();
+    [a.x, a.y, a.z]
 }
 
 /// Roll, pitch, yaw of the pose (the |pitch| ≤ π/2 branch).

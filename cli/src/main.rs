@@ -26,6 +26,7 @@ mod table;
 use clap::error::ErrorKind;
 use clap::{Parser, Subcommand};
 use dhgen::Robot;
+use dhgen::ik::Task;
 use dhgen_codegen::latex::{Style, dynamics_equations};
 use std::io::Write as _;
 use std::path::{Path, PathBuf};
@@ -95,14 +96,25 @@ enum Command {
         )]
         position: Option<String>,
         /// The tool's orientation: roll, pitch, yaw about the fixed x, y, z axes (radians, or
-        /// `90deg`, `pi/2`), applied in that order; 0 if omitted.
+        /// `90deg`, `pi/2`), applied in that order. Without it (and without `--axis`) only the
+        /// position is solved for, the orientation left free.
         #[arg(
             long,
             allow_hyphen_values = true,
             value_name = "R,P,Y",
-            conflicts_with = "at"
+            conflicts_with_all = ["at", "axis"]
         )]
         rpy: Option<String>,
+        /// The direction of the tool's z axis in the world, `X,Y,Z` (any length but zero): the
+        /// position and this axis are solved for, the turn about the axis left free (a
+        /// five-joint arm, a tool symmetric about its axis).
+        #[arg(
+            long,
+            allow_hyphen_values = true,
+            value_name = "X,Y,Z",
+            conflicts_with = "at"
+        )]
+        axis: Option<String>,
         /// The pose of the tool at these joint values (a list like `eval`'s `--q`).
         #[arg(long, allow_hyphen_values = true, value_name = "LIST")]
         at: Option<String>,
@@ -349,6 +361,7 @@ fn run(command: Command) -> Result<String, String> {
             robot,
             position,
             rpy,
+            axis,
             at,
             seed,
             nearest,
@@ -356,13 +369,15 @@ fn run(command: Command) -> Result<String, String> {
             json,
         } => {
             let r = load(&robot)?;
-            let target = match (at, position) {
+            let (target, task) = match (at, position) {
                 (Some(at), _) => {
                     let q = eval::positions(&r, "--at", &eval::split("--at", &at)?)?;
-                    r.fk(&q)
+                    (r.fk(&q), Task::Pose)
                 }
-                (None, Some(position)) => ik::pose(&position, rpy.as_deref())?,
-                (None, None) => return Err("give the pose: --position (and --rpy) or --at".into()),
+                (None, Some(position)) => ik::target(&position, rpy.as_deref(), axis.as_deref())?,
+                (None, None) => {
+                    return Err("give the pose: --position (with --rpy or --axis) or --at".into());
+                }
             };
             let prefer = match (nearest, most_manipulable) {
                 (Some(list), _) => ik::Prefer::Posture(eval::positions(
@@ -373,7 +388,7 @@ fn run(command: Command) -> Result<String, String> {
                 (None, true) => ik::Prefer::Manipulability,
                 (None, false) => ik::Prefer::Nothing,
             };
-            ik::run(&r, &target, seed.as_deref(), prefer, json)
+            ik::run(&r, &target, task, seed.as_deref(), prefer, json)
         }
         Command::Emit {
             robot,

@@ -1468,13 +1468,124 @@ fn ik_on_a_redundant_arm_prefers() {
     }
 }
 
+/// Part of a pose: a position alone (`--position` without `--rpy`) on a planar two-joint arm,
+/// which cannot orient its tool at will, and a position with the tool's z axis (`--axis`) on
+/// the Panda and, with the most manipulable solution, on the SCARA; each checked by the
+/// robot's forward kinematics.
+#[test]
+fn ik_solves_part_of_a_pose() {
+    let planar = Robot::from_toml_file(root().join("robots/planar_elbow.toml")).unwrap();
+    let run = |args: &[&str]| -> serde_json::Value {
+        serde_json::from_str(&stdout(args)).expect("valid JSON")
+    };
+    let v = run(&[
+        "ik",
+        "robots/planar_elbow.toml",
+        "--position",
+        "1,0.5,0",
+        "--json",
+    ]);
+    assert_eq!(v["task"], "position");
+    assert!(v["closed_form"]["unavailable"].is_string());
+    let p = planar.fk(&ik_q(&v["numeric"])).translation.vector;
+    assert!(
+        (p - dhgen::nalgebra::Vector3::new(1.0, 0.5, 0.0)).norm() < 1e-10,
+        "{p}"
+    );
+    assert_eq!(v["numeric"]["orientation_error"], 0.0);
+    for (file, position, axis, extra) in [
+        ("panda", [0.5, 0.1, 0.3], [0.0, 0.6, -0.8], None),
+        (
+            "scara",
+            [0.3, 0.2, 0.25],
+            [0.0, 0.0, -1.0],
+            Some("--most-manipulable"),
+        ),
+    ] {
+        let robot = Robot::from_toml_file(root().join(format!("robots/{file}.toml"))).unwrap();
+        let list = |v: [f64; 3]| v.map(|x| x.to_string()).join(",");
+        let (position_list, axis_list) = (list(position), list(axis));
+        let mut args = vec![
+            "ik".to_string(),
+            format!("robots/{file}.toml"),
+            "--position".into(),
+            position_list,
+            "--axis".into(),
+            axis_list,
+            "--json".into(),
+        ];
+        args.extend(extra.map(String::from));
+        let args: Vec<&str> = args.iter().map(String::as_str).collect();
+        let v = run(&args);
+        assert_eq!(v["task"], "position and axis");
+        let mut solutions = vec![ik_q(&v["numeric"])];
+        if extra.is_some() {
+            solutions.push(ik_q(&v["preferred"]));
+        }
+        for q in solutions {
+            let pose = robot.fk(&q);
+            let p = pose.translation.vector - dhgen::nalgebra::Vector3::from(position);
+            let z = pose.rotation * dhgen::nalgebra::Vector3::new(0.0, 0.0, 1.0);
+            let a = dhgen::nalgebra::Vector3::from(axis);
+            assert!(
+                p.norm() < 1e-10 && (z - a).norm() < 1e-10,
+                "{file}: {p} {z}"
+            );
+        }
+    }
+    let text = stdout(&[
+        "ik",
+        "robots/scara.toml",
+        "--position",
+        "0.3,0.2,0.25",
+        "--axis",
+        "0,0,-1",
+    ]);
+    assert!(text.contains("z axis along (0, 0, -1)"), "{text}");
+}
+
 #[test]
 fn ik_reports_what_it_cannot_do() {
-    let err = failure(&["ik", "robots/puma560.toml", "--position", "5,0,0"]);
+    let err = failure(&[
+        "ik",
+        "robots/puma560.toml",
+        "--position",
+        "5,0,0",
+        "--rpy",
+        "0,0,0",
+    ]);
     assert!(
         err.contains("no solution for this pose") && err.contains("out of reach"),
         "{err}"
     );
+    // A position alone: no closed form, and the numeric solver says where it stopped.
+    let err = failure(&["ik", "robots/puma560.toml", "--position", "5,0,0"]);
+    assert!(
+        err.contains("no solution for this pose")
+            && err.contains("it needs the whole pose: give --rpy")
+            && err.contains("numeric IK stalled"),
+        "{err}"
+    );
+    let err = failure(&[
+        "ik",
+        "robots/panda.toml",
+        "--position",
+        "0.5,0,0.3",
+        "--axis",
+        "0,0,0",
+    ]);
+    assert!(err.contains("--axis must be a non-zero direction"), "{err}");
+    let err = failure(&[
+        "ik",
+        "robots/panda.toml",
+        "--position",
+        "0.5,0,0.3",
+        "--axis",
+        "0,0,1",
+        "--rpy",
+        "0,0,0",
+    ]);
+    assert!(err.contains("cannot be used with"), "{err}");
     let err = failure(&[
         "ik",
         "robots/puma560.toml",

@@ -11,12 +11,14 @@
 //!   at singular poses are documented in [`dhgen_model::closed_form`].
 //! - [`NumericIk`]: damped least squares (Levenberg–Marquardt) for any chain (redundant arms,
 //!   prismatic joints), generic over [`Arm`](crate::Arm), with joint limits, tolerances, an
-//!   iteration cap and a seed; allocation-free in its loop for generated robots. For a
+//!   iteration cap and a seed; allocation-free in its loop for generated robots. It reaches
+//!   the whole pose or part of it ([`Task`]: the position alone, or the position and the
+//!   tool's z axis), so arms of fewer than six joints have targets they can reach. For a
 //!   redundant arm, [`NumericIk::solve_preferring`] moves the solution along the arm's
 //!   self-motion to the one nearest a posture, the most manipulable, or the least costly by
 //!   a function of yours ([`Preference`]).
 //!
-//! Both measure the pose error with [`pose_error`].
+//! Both measure the pose error with [`pose_error`] ([`Task::errors`] for part of a pose).
 //!
 //! ```
 //! use dhgen::ik::{DecoupledIk, NumericIk};
@@ -39,12 +41,14 @@
 
 mod numeric;
 mod preference;
+mod task;
 
 pub use dhgen_model::closed_form::{
     ArmKind, DecoupledIk, Solutions, StructureError, VERIFY_TOLERANCE,
 };
 pub use numeric::{IkError, NumericIk, Solution};
 pub use preference::{CostFunction, Preference};
+pub use task::Task;
 
 use nalgebra::Isometry3;
 #[cfg(not(feature = "std"))]

@@ -7,7 +7,10 @@
 //! `[v/L; ω]` of [`Arm::jacobian`]), with `L` the arm's length scale at the seed: the largest
 //! distance of the tool from a revolute joint's axis (1 without one). Measured so, the
 //! iteration is the same for an arm and the same arm scaled to any size; the tolerances stay
-//! in metres and radians. Each iteration takes the step
+//! in metres and radians. For part of a pose ([`NumericIk::task`]) the rotation part and the
+//! Jacobian's rotation rows are those of the [`Task`]: zero for the position alone; for the
+//! position and the tool's z axis `a`, the shortest turn taking `a` to the target's and the
+//! rows `(I − a aᵀ) J_ω` (a turn about `a` does not move it). Each iteration takes the step
 //! `Δq = Jᵀ (J Jᵀ + λ² I)⁻¹ e` (a 6×6 Cholesky solve, whatever the number of joints) and
 //! keeps it only if `|e|` decreases: then λ is divided by 3 (towards Gauss–Newton, quadratic
 //! convergence near the solution); otherwise λ is multiplied by 4 and the step retried. Near
@@ -30,14 +33,12 @@
 //! nothing. For the runtime [`Robot`](crate::Robot) the Jacobian and joint vectors are heap
 //! vectors.
 
-use crate::rotation::rotation_vector;
+use super::Task;
 use crate::velocity::JacobianSvd;
 use crate::{Arm, ArmAllocator};
 #[cfg(not(feature = "std"))]
 use nalgebra::ComplexField as _;
-use nalgebra::{
-    DefaultAllocator, Dim, Isometry3, Matrix6, OMatrix, OVector, Rotation3, U6, Vector6,
-};
+use nalgebra::{DefaultAllocator, Dim, Isometry3, Matrix6, OMatrix, OVector, U6, Vector6};
 
 /// Settings of the numeric solver. [`Default`] gives the values listed per field.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -59,6 +60,9 @@ pub struct NumericIk {
     /// configuration within the limits. All attempts share `max_iterations`. 0 runs from the
     /// seed only. Default 50.
     pub restarts: usize,
+    /// What of the target pose to reach: the whole pose, the position, or the position and
+    /// the tool's z axis ([`Task`]). Default [`Task::Pose`].
+    pub task: Task,
 }
 
 impl Default for NumericIk {
@@ -70,6 +74,7 @@ impl Default for NumericIk {
             initial_damping: 1e-2,
             respect_limits: true,
             restarts: 50,
+            task: Task::Pose,
         }
     }
 }
@@ -86,9 +91,11 @@ where
     pub iterations: usize,
     /// Restarts used (0: converged from the seed).
     pub restarts: usize,
-    /// Final position error, m.
+    /// Final position error, m ([`Task::errors`]).
     pub position_error: f64,
-    /// Final orientation error, rad.
+    /// Final orientation error, rad, as the [`Task`] measures it: the rotation angle to the
+    /// target for the pose, 0 for the position alone, the angle between the tool's z axis
+    /// and the target's for the position and axis.
     pub orientation_error: f64,
 }
 
@@ -111,7 +118,7 @@ pub enum IkError {
         orientation_error: f64,
     },
     /// Every attempt (the seed and all restarts) stalled, the last at a configuration where the
-    /// Jacobian is singular (smallest singular value below 1e-6): typically a pose out of
+    /// task's Jacobian is singular (smallest singular value below 1e-6): typically a pose out of
     /// reach that the arm stretches towards. The errors are those of the best configuration.
     #[error(
         "numeric IK stalled at a singular configuration after {iterations} iterations \
@@ -125,7 +132,8 @@ pub enum IkError {
         position_error: f64,
         /// Orientation error at the end, rad.
         orientation_error: f64,
-        /// The smallest singular value of J there.
+        /// The smallest singular value of J there (of the rows its [`Task`] constrains: the
+        /// `min(constraints, joints)`-th largest).
         sigma_min: f64,
     },
     /// Every attempt (the seed and all restarts) stalled in a local minimum with a regular
@@ -179,28 +187,6 @@ pub enum IkError {
     /// A setting is out of range; the text names it.
     #[error("numeric IK: invalid settings: {0}")]
     InvalidSettings(&'static str),
-}
-
-/// The error vector `[(p* − p)/length; log(R* Rᵀ)]` and the norms of its two parts, in metres
-/// and radians.
-pub(super) fn pose_residual(
-    target: &Isometry3<f64>,
-    pose: &Isometry3<f64>,
-    length: f64,
-) -> (Vector6<f64>, f64, f64) {
-    let dp = target.translation.vector - pose.translation.vector;
-    let rt: Rotation3<f64> = target.rotation.to_rotation_matrix();
-    let r: Rotation3<f64> = pose.rotation.to_rotation_matrix();
-    let dw = rotation_vector(&(rt * r.inverse()));
-    let e = Vector6::new(
-        dp.x / length,
-        dp.y / length,
-        dp.z / length,
-        dw.x,
-        dw.y,
-        dw.z,
-    );
-    (e, dp.norm(), dw.norm())
 }
 
 /// The arm's length scale at `q`: the largest distance of the tool from a revolute joint's
@@ -340,7 +326,8 @@ impl NumericIk {
         // The lowest error seen, reported on failure.
         let mut best = (f64::INFINITY, f64::INFINITY, f64::INFINITY);
         loop {
-            let (mut e, mut dp, mut dr) = pose_residual(target, &arm.fk(&q), length);
+            let mut pose = arm.fk(&q);
+            let (mut e, mut dp, mut dr) = self.task.residual(target, &pose, length);
             let mut cost = e.norm_squared();
             let mut lambda = self.initial_damping;
             let mut window = (cost, iterations);
@@ -365,17 +352,20 @@ impl NumericIk {
                     });
                 }
                 iterations += 1;
-                let j = first.take().unwrap_or_else(|| scaled(arm.jacobian(&q)));
+                let mut j = first.take().unwrap_or_else(|| scaled(arm.jacobian(&q)));
+                self.task.rows(&mut j, &pose);
                 let mut accepted = false;
                 while lambda <= MAX_DAMPING {
                     if !self.step(arm, &j, &e, &q, lambda, &mut free, &mut trial) {
                         lambda = (lambda * 4.0).max(MIN_DAMPING);
                         continue;
                     }
-                    let (e_new, dp_new, dr_new) = pose_residual(target, &arm.fk(&trial), length);
+                    let pose_new = arm.fk(&trial);
+                    let (e_new, dp_new, dr_new) = self.task.residual(target, &pose_new, length);
                     let cost_new = e_new.norm_squared();
                     if cost_new < cost {
                         core::mem::swap(&mut q, &mut trial);
+                        pose = pose_new;
                         (e, dp, dr, cost) = (e_new, dp_new, dr_new, cost_new);
                         lambda = (lambda / 3.0).max(MIN_DAMPING);
                         accepted = true;
@@ -394,7 +384,9 @@ impl NumericIk {
                 };
                 if stalled {
                     // Classified by the Jacobian where the attempt stalled.
-                    let sigma_min = JacobianSvd::new(&j).min_singular_value();
+                    // The smallest of the singular values the task's rows can have.
+                    let sigma = JacobianSvd::new(&j).singular_values();
+                    let sigma_min = sigma[self.task.constraints().min(n).max(1) - 1];
                     break Some(sigma_min).filter(|&s| s < SINGULAR_SIGMA);
                 }
             };

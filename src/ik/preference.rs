@@ -3,7 +3,7 @@
 //!
 //! See [`NumericIk::solve_preferring`].
 
-use super::numeric::{IkError, NumericIk, Solution, length_scale, pose_residual};
+use super::numeric::{IkError, NumericIk, Solution, length_scale};
 use crate::velocity::{Axes, JacobianSvd, manipulability_gradient};
 use crate::{Arm, ArmAllocator};
 use nalgebra::{DefaultAllocator, Dim, Isometry3, OMatrix, OVector, U6};
@@ -282,6 +282,7 @@ impl NumericIk {
             let length = length_scale(arm, &j);
             let mut scaled = j;
             scaled.fixed_rows_mut::<3>(0).unscale_mut(length);
+            self.task.rows(&mut scaled, &arm.fk(&best.q));
             let svd = JacobianSvd::new(&scaled);
             let (d, reduced) = self.null_space_direction(arm, &best.q, &scaled, &svd, &g);
             let svd = reduced.unwrap_or(svd);
@@ -366,13 +367,13 @@ impl NumericIk {
     where
         DefaultAllocator: ArmAllocator<A::Dof>,
     {
-        let (mut e, mut dp, mut dr) = pose_residual(target, &arm.fk(trial), length);
+        let (mut e, mut dp, mut dr) = self.task.residual(target, &arm.fk(trial), length);
         let mut error = e.norm_squared();
         for _ in 0..CHORD_STEPS {
             next.copy_from(trial);
             *next += svd.solve(&e, 0.0);
             self.clamp(arm, next);
-            let (e_new, dp_new, dr_new) = pose_residual(target, &arm.fk(next), length);
+            let (e_new, dp_new, dr_new) = self.task.residual(target, &arm.fk(next), length);
             let error_new = e_new.norm_squared();
             let better = error_new < error;
             if !better {
@@ -446,7 +447,9 @@ impl NumericIk {
             let mut j = arm.jacobian(&s.q);
             let length = length_scale(arm, &j);
             j.fixed_rows_mut::<3>(0).unscale_mut(length);
-            let (e, _, _) = pose_residual(target, &arm.fk(&s.q), length);
+            let pose = arm.fk(&s.q);
+            self.task.rows(&mut j, &pose);
+            let (e, _, _) = self.task.residual(target, &pose, length);
             let error = e.norm_squared();
             if error == 0.0 {
                 return;
@@ -454,7 +457,7 @@ impl NumericIk {
             trial.copy_from(&s.q);
             *trial += JacobianSvd::new(&j).solve(&e, 0.0);
             self.clamp(arm, trial);
-            let (e_new, dp, dr) = pose_residual(target, &arm.fk(trial), length);
+            let (e_new, dp, dr) = self.task.residual(target, &arm.fk(trial), length);
             let better = e_new.norm_squared() < error;
             if !better {
                 return;

@@ -7,7 +7,7 @@
 //! non-redundant arm; no allocation for a generated arm; bad postures are errors.
 
 use crate::catalogue::{panda, puma560, snake17};
-use crate::support::{allocations_during, runtime};
+use crate::support::{allocations_during, random_q, runtime};
 use dhgen::ik::{IkError, NumericIk, Preference, pose_error};
 use dhgen::model::random::{ArmStyle, random_arm};
 use dhgen::nalgebra::{DVector, DefaultAllocator, Isometry3, OVector, SVector, U1};
@@ -15,16 +15,6 @@ use dhgen::velocity::{Axes, JacobianSvd, manipulability, manipulability_gradient
 use dhgen::{Arm, ArmAllocator};
 use rand::rngs::StdRng;
 use rand::{RngExt, SeedableRng};
-
-fn random_q<A: Arm>(arm: &A, rng: &mut StdRng) -> OVector<f64, A::Dof>
-where
-    DefaultAllocator: ArmAllocator<A::Dof>,
-{
-    OVector::<f64, A::Dof>::from_fn_generic(arm.dim(), U1, |j, _| {
-        let [lo, hi] = arm.limits(j).unwrap_or([-3.0, 3.0]);
-        rng.random_range(lo..=hi)
-    })
-}
 
 fn cost<A: Arm>(arm: &A, q: &OVector<f64, A::Dof>, preference: &Preference<'_, A::Dof>) -> f64
 where

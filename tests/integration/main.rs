@@ -37,6 +37,7 @@ mod ik_closed_form;
 mod ik_numeric;
 mod ik_preference;
 mod ik_random;
+mod ik_task;
 mod non_finite;
 mod payload;
 mod planar_elbow;

@@ -111,6 +111,25 @@ unsafe impl GlobalAlloc for CountingAllocator {
 #[global_allocator]
 static GLOBAL: CountingAllocator = CountingAllocator;
 
+/// A configuration drawn uniformly within the joint limits ([−3, 3] for a joint without).
+pub fn random_q<A: dhgen::Arm>(
+    arm: &A,
+    rng: &mut rand::rngs::StdRng,
+) -> dhgen::nalgebra::OVector<f64, A::Dof>
+where
+    dhgen::nalgebra::DefaultAllocator: dhgen::ArmAllocator<A::Dof>,
+{
+    use rand::RngExt;
+    dhgen::nalgebra::OVector::<f64, A::Dof>::from_fn_generic(
+        arm.dim(),
+        dhgen::nalgebra::U1,
+        |j, _| {
+            let [lo, hi] = arm.limits(j).unwrap_or([-3.0, 3.0]);
+            rng.random_range(lo..=hi)
+        },
+    )
+}
+
 /// Runs `f` and returns how many allocations it made on this thread.
 pub fn allocations_during(f: impl FnOnce()) -> usize {
     let before = ALLOCATIONS.with(Cell::get);
