@@ -10,13 +10,18 @@ models of scripts/pinocchio_derivatives.py) and writes, at the files' first 10 s
          `tool_velocity_partial`): R dvb/dq_k + w_k x (R vb), both halves, w_k the world axis of
          joint k (0 for a prismatic joint), since dR/dq_k = [w_k x] R;
   H0     the kinematic Hessian, H0[k] = dJ0/dq_k (6 x n): column i of H0[k] is column k of dv_dq
-         at qd = e_i (joint i alone moving at unit speed).
+         at qd = e_i (joint i alone moving at unit speed);
+  Jb_dot_qd getFrameJacobianTimeVariation(tool, LOCAL) @ qd after
+         computeJointJacobiansTimeVariation(q, qd): the rate of the body velocity at zero joint
+         acceleration (dhgen's `body_jdot_qdot`).
 Pinocchio's LOCAL_WORLD_ALIGNED velocity derivative is not used: it is not the partial derivative
 of the world-axes velocity at fixed qd (it differs from the finite differences below by 1.4 on
 the PUMA 560).
 
 Checks (the script fails loudly if one does not hold): Jb against R^T J0 of the file; dv_dq and
-every column of H0 against central finite differences of J0(q) qd.
+every column of H0 against central finite differences of J0(q) qd; Jb_dot_qd against
+getFrameAcceleration(tool, LOCAL) at zero joint acceleration and against central finite
+differences of Jb(q + t qd) qd in t.
 
     pip install pin        # Pinocchio 3.x or 4.x
     python3 scripts/pinocchio_kinematics.py
@@ -49,6 +54,7 @@ def main():
             "dvb_dq": "getFrameVelocityDerivatives(tool, LOCAL)[0] at (q, qd)",
             "dv_dq": "d(J0 qd)/dq, world axes at the tool origin, from dvb_dq (see the script)",
             "H0": "H0[k] = dJ0/dq_k, rows [v; w], from dv_dq at qd = e_i",
+            "Jb_dot_qd": "getFrameJacobianTimeVariation(tool, LOCAL) @ qd at (q, qd)",
         },
         "robots": {},
     }
@@ -104,9 +110,23 @@ def main():
                 if e > 1e-8:
                     fail(f"{name}: H0[{k}] differs from finite differences by {e:.1e}")
                 worst_fd = max(worst_fd, e)
+            pin.computeJointJacobiansTimeVariation(model, data, q, qd)
+            pin.updateFramePlacements(model, data)
+            jb_dot_qd = pin.getFrameJacobianTimeVariation(model, data, tool, LOCAL) @ qd
+            pin.forwardKinematics(model, data, q, qd, np.zeros(n))
+            acc = pin.getFrameAcceleration(model, data, tool, LOCAL).vector
+            e = np.abs(acc - jb_dot_qd).max()
+            if e > 1e-12 * max(1.0, np.abs(acc).max()):
+                fail(f"{name}: Jb_dot_qd differs from the LOCAL frame acceleration by {e:.1e}")
+            fd = (jacobian(q + h * qd, LOCAL) - jacobian(q - h * qd, LOCAL)) @ qd / (2 * h)
+            e = np.abs(jb_dot_qd - fd).max()
+            if e > 1e-8:
+                fail(f"{name}: Jb_dot_qd differs from finite differences by {e:.1e}")
+            worst_fd = max(worst_fd, e)
             samples.append({"q": q.tolist(), "qd": qd.tolist(), "Jb": rows(jb),
                             "dvb_dq": rows(dvb_dq), "dv_dq": rows(dv_dq),
-                            "H0": [rows(m) for m in hessian]})
+                            "H0": [rows(m) for m in hessian],
+                            "Jb_dot_qd": jb_dot_qd.tolist()})
         out["robots"][name] = samples
         print(f"{name}: {len(samples)} samples")
     (DATA / "pinocchio_kinematics.json").write_text(json.dumps(out) + "\n")

@@ -136,6 +136,41 @@ where
     fn body_jacobian(&self, q: &OVector<f64, Self::Dof>) -> OMatrix<f64, U6, Self::Dof> {
         crate::velocity::body_jacobian_from_jacobian(&self.fk(q), self.jacobian(q))
     }
+
+    /// `J̇_b(q, q̇) q̇`: the rate of the tool's velocity in its own axes at zero joint
+    /// acceleration, as in `d/dt (J_b q̇) = J_b q̈ + J̇_b q̇` with
+    /// [`body_jacobian`](Self::body_jacobian) `J_b`; what a task-space controller working in
+    /// tool axes needs beside `J_b` (Pinocchio's `getFrameJacobianTimeVariation(LOCAL)` times
+    /// q̇, its `getFrameAcceleration(LOCAL)` at q̈ = 0). From the world-axes terms `[v; ω] = J q̇` and
+    /// `[a; α] = J̇ q̇` ([`jdot_qdot`](Self::jdot_qdot)): `[Rᵀ a − ω_b × v_b; Rᵀ α]`, with
+    /// `v_b = Rᵀ v`, `ω_b = Rᵀ ω` (the tool axes turn with ω, which adds `−ω_b × v_b` to the
+    /// linear part; the classical acceleration of the tool origin in tool axes is `Rᵀ a`).
+    ///
+    /// ```
+    /// use dhgen::Arm;
+    /// use dhgen::nalgebra::SVector;
+    /// dhgen::robot!(mod puma = "robots/puma560.toml");
+    ///
+    /// let (q, qd) = (SVector::<f64, 6>::repeat(0.3), SVector::<f64, 6>::repeat(0.5));
+    /// // Against the central difference of J_b q̇ along q(t) = q + t q̇ (q̈ = 0).
+    /// let h = 1e-5;
+    /// let fd = (puma::Robot.body_jacobian(&(q + qd * h)) * qd
+    ///     - puma::Robot.body_jacobian(&(q - qd * h)) * qd)
+    ///     / (2.0 * h);
+    /// assert!((puma::Robot.body_jdot_qdot(&q, &qd) - fd).amax() < 1e-8);
+    /// ```
+    #[doc(alias = "getFrameJacobianTimeVariation")]
+    fn body_jdot_qdot(
+        &self,
+        q: &OVector<f64, Self::Dof>,
+        qd: &OVector<f64, Self::Dof>,
+    ) -> Vector6<f64> {
+        crate::velocity::body_jdot_qdot_from(
+            &self.fk(q),
+            &(self.jacobian(q) * qd),
+            &self.jdot_qdot(q, qd),
+        )
+    }
 }
 
 /// Rigid-body dynamics of a serial arm (`τ = D q̈ + C q̇ + g`, plus motor inertia and

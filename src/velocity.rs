@@ -743,6 +743,21 @@ where
     j
 }
 
+/// `J̇_b q̇` ([`Arm::body_jdot_qdot`]) from the tool pose, the tool's velocity `[v; ω] = J q̇`
+/// and `[a; α] = J̇ q̇`, all in world axes: `[Rᵀ a − ω_b × v_b; Rᵀ α]` with `v_b = Rᵀ v`,
+/// `ω_b = Rᵀ ω`.
+pub fn body_jdot_qdot_from(
+    tool: &nalgebra::Isometry3<f64>,
+    velocity: &Vector6<f64>,
+    jdot_qdot: &Vector6<f64>,
+) -> Vector6<f64> {
+    let rt = tool.rotation.to_rotation_matrix().transpose();
+    let part = |x: &Vector6<f64>, at: usize| rt * x.fixed_rows::<3>(at);
+    let (v, w) = (part(velocity, 0), part(velocity, 3));
+    let (a, alpha) = (part(jdot_qdot, 0) - w.cross(&v), part(jdot_qdot, 3));
+    Vector6::new(a.x, a.y, a.z, alpha.x, alpha.y, alpha.z)
+}
+
 /// `J̇(q, q̇) q̇` from the Jacobian `j` at q: the tool acceleration `[a; α]` at zero joint
 /// acceleration, as in `ẍ = J q̈ + J̇ q̇`. Same derivation as [`jacobian_dot`], summed on the
 /// fly (no n×6 temporary). What [`Arm::jdot_qdot`] computes for arms without a generated

@@ -1,4 +1,4 @@
-//! Generated velocity-kinematics extras: J̇q̇, the kinematic Hessian and manipulability
+//! Generated velocity-kinematics extras: J̇q̇ (also in tool axes), the kinematic Hessian and manipulability
 //! gradient, the decoupled singularity determinants and
 //! the per-robot closed-form inverse kinematics, against the generic implementations and
 //! finite differences.
@@ -38,6 +38,11 @@ macro_rules! jdot_matches {
                     prop_assert!((generated[r] - fd[r]).abs() <= 1e-6 * (1.0 + fd.amax()),
                         "row {r}: generated {}, finite differences {}", generated[r], fd[r]);
                 }
+                // In tool axes: J̇_b q̇ against the differences of the body Jacobian along q̇.
+                let body = dhgen::Arm::body_jdot_qdot(&$m::Robot, &SVector::from(q), &SVector::from(qd));
+                let fd = ($m::body_jacobian(&qp) - $m::body_jacobian(&qm)) / (2.0 * h) * SVector::from(qd);
+                prop_assert!((body - fd).amax() <= 1e-6 * (1.0 + fd.amax()),
+                    "J̇_b q̇ {body} against finite differences {fd}");
             }
         }
     };
@@ -118,7 +123,8 @@ hessian_matches!(cylindrical_kinematic_hessian, cylindrical);
 /// Pinocchio 4.1.0's tool-frame kinematics on the PUMA 560 and the Panda
 /// (tests/data/pinocchio_kinematics.json, made by scripts/pinocchio_kinematics.py): the body
 /// Jacobian (`LOCAL` frame Jacobian), ∂(J q̇)/∂q and the kinematic Hessian (assembled by the
-/// script from `getFrameVelocityDerivatives`), generated and runtime, to 1e-12.
+/// script from `getFrameVelocityDerivatives`), and J̇_b q̇ (`getFrameJacobianTimeVariation(LOCAL)`
+/// times q̇), generated and runtime, to 1e-12.
 #[test]
 fn tool_kinematics_match_pinocchio() {
     use crate::support::runtime;
@@ -131,10 +137,12 @@ fn tool_kinematics_match_pinocchio() {
     {
         DMatrix::from_fn(6, m.ncols(), |r, c| m[(r, c)])
     }
-    /// Each of `ours` (body Jacobian, ∂(J q̇)/∂q, then ∂J/∂q_k) against the sample.
+    /// Each of `ours` (body Jacobian, ∂(J q̇)/∂q, then ∂J/∂q_k, then J̇_b q̇ as a column)
+    /// against the sample.
     fn compare(what: &str, ours: &[DMatrix<f64>], s: &serde_json::Value) {
         let mut theirs = vec![matrix(&s["Jb"]), matrix(&s["dv_dq"])];
         theirs.extend(s["H0"].as_array().unwrap().iter().map(matrix));
+        theirs.push(DMatrix::from_vec(6, 1, vector(&s["Jb_dot_qd"])));
         assert_eq!(ours.len(), theirs.len(), "{what}");
         for (i, (a, b)) in ours.iter().zip(&theirs).enumerate() {
             let e = (a - b).amax() / b.amax().max(1.0);
@@ -163,6 +171,11 @@ fn tool_kinematics_match_pinocchio() {
                 dynamic(&tool_velocity_partial(&j, &qd)),
             ];
             ours.extend(kinematic_hessian(&j).map(|h| dynamic(&h)));
+            ours.push(DMatrix::from_column_slice(
+                6,
+                1,
+                robot.body_jdot_qdot(&q, &qd).as_slice(),
+            ));
             compare(&format!("{name}, runtime"), &ours, s);
             macro_rules! generated {
                 ($m:ident) => {{
@@ -175,6 +188,8 @@ fn tool_kinematics_match_pinocchio() {
                         dynamic(&tool_velocity_partial(&j, &qd)),
                     ];
                     ours.extend(kinematic_hessian(&j).map(|h| dynamic(&h)));
+                    let body = $m::Robot.body_jdot_qdot(&q, &qd);
+                    ours.push(DMatrix::from_column_slice(6, 1, body.as_slice()));
                     compare(&format!("{name}, generated"), &ours, s);
                 }};
             }
