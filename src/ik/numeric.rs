@@ -353,7 +353,7 @@ impl NumericIk {
                 }
                 iterations += 1;
                 let mut j = first.take().unwrap_or_else(|| scaled(arm.jacobian(&q)));
-                self.task.rows(&mut j, &pose);
+                self.task.rows(&mut j, || pose);
                 let mut accepted = false;
                 while lambda <= MAX_DAMPING {
                     if !self.step(arm, &j, &e, &q, lambda, &mut free, &mut trial) {

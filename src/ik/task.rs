@@ -79,17 +79,11 @@ impl Task {
     /// assert!((Task::Pose.errors(&a, &b).1 - 0.3).abs() < 1e-15);
     /// ```
     pub fn errors(self, pose: &Isometry3<f64>, target: &Isometry3<f64>) -> (f64, f64) {
+        let dp = (pose.translation.vector - target.translation.vector).norm();
         match self {
             Task::Pose => super::pose_error(pose, target),
-            Task::Position => (
-                (pose.translation.vector - target.translation.vector).norm(),
-                0.0,
-            ),
-            Task::PositionAndAxis => {
-                let (a, b) = (pose * Vector3::z(), target * Vector3::z());
-                let dp = (pose.translation.vector - target.translation.vector).norm();
-                (dp, a.cross(&b).norm().atan2(a.dot(&b)))
-            }
+            Task::Position => (dp, 0.0),
+            Task::PositionAndAxis => (dp, shortest_turn(pose, target).1),
         }
     }
 
@@ -105,16 +99,15 @@ impl Task {
         length: f64,
     ) -> (Vector6<f64>, f64, f64) {
         let dp = target.translation.vector - pose.translation.vector;
-        let dw = match self {
+        let (dw, dr) = match self {
             Task::Pose => {
                 let rt: Rotation3<f64> = target.rotation.to_rotation_matrix();
                 let r: Rotation3<f64> = pose.rotation.to_rotation_matrix();
-                rotation_vector(&(rt * r.inverse()))
+                let dw = rotation_vector(&(rt * r.inverse()));
+                (dw, dw.norm())
             }
-            Task::Position => Vector3::zeros(),
-            Task::PositionAndAxis => {
-                shortest_turn(&(pose * Vector3::z()), &(target * Vector3::z()), pose)
-            }
+            Task::Position => (Vector3::zeros(), 0.0),
+            Task::PositionAndAxis => shortest_turn(pose, target),
         };
         let e = Vector6::new(
             dp.x / length,
@@ -124,22 +117,26 @@ impl Task {
             dw.y,
             dw.z,
         );
-        (e, dp.norm(), dw.norm())
+        (e, dp.norm(), dr)
     }
 
     /// The rows of the (scaled) Jacobian `j` at `pose` that this task constrains, in place: all
     /// six for the pose; the rotation rows zeroed for the position; for the axis, the rotation
     /// rows' components along the tool's z axis `a` removed (`(I − a aᵀ) J_ω`: turning about
-    /// the axis does not move it).
-    pub(super) fn rows<D: Dim>(self, j: &mut OMatrix<f64, U6, D>, pose: &Isometry3<f64>)
-    where
+    /// the axis does not move it). `pose` is called only for the axis, the one task that
+    /// reads it.
+    pub(super) fn rows<D: Dim>(
+        self,
+        j: &mut OMatrix<f64, U6, D>,
+        pose: impl FnOnce() -> Isometry3<f64>,
+    ) where
         nalgebra::DefaultAllocator: nalgebra::allocator::Allocator<U6, D>,
     {
         match self {
             Task::Pose => {}
             Task::Position => j.fixed_rows_mut::<3>(3).fill(0.0),
             Task::PositionAndAxis => {
-                let a = pose * Vector3::z();
+                let a = pose() * Vector3::z();
                 for mut column in j.column_iter_mut() {
                     let w = column.fixed_rows::<3>(3).into_owned();
                     column.fixed_rows_mut::<3>(3).axpy(-a.dot(&w), &a, 1.0);
@@ -149,18 +146,20 @@ impl Task {
     }
 }
 
-/// The rotation vector of the shortest turn taking the unit vector `a` to the unit vector `b`
-/// (perpendicular to both); for opposite vectors, a half turn about the x axis of `pose`
-/// (perpendicular to `a`, its z axis).
-fn shortest_turn(a: &Vector3<f64>, b: &Vector3<f64>, pose: &Isometry3<f64>) -> Vector3<f64> {
-    let u = a.cross(b);
-    let (s, c) = (u.norm(), a.dot(b));
+/// The rotation vector of the shortest turn taking the z axis `a` of `pose` to the z axis `b`
+/// of `target` (perpendicular to both), and its angle `atan2(|a × b|, a·b)`; for opposite
+/// axes, a half turn about the x axis of `pose` (perpendicular to `a`).
+fn shortest_turn(pose: &Isometry3<f64>, target: &Isometry3<f64>) -> (Vector3<f64>, f64) {
+    let (a, b) = (pose * Vector3::z(), target * Vector3::z());
+    let u = a.cross(&b);
+    let (s, c) = (u.norm(), a.dot(&b));
     let angle = s.atan2(c);
-    if s > 0.0 {
+    let turn = if s > 0.0 {
         u * (angle / s)
     } else if c >= 0.0 {
         Vector3::zeros()
     } else {
         (pose * Vector3::x()) * core::f64::consts::PI
-    }
+    };
+    (turn, angle)
 }
