@@ -5,7 +5,8 @@
 //! `cargo bench --bench runtime -- --warm-up-time 1 --measurement-time 2`
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use dhgen::Robot;
+use dhgen::nalgebra::DVector;
+use dhgen::{Arm, Robot};
 use rand::rngs::StdRng;
 use rand::{RngExt, SeedableRng};
 use std::f64::consts::PI;
@@ -19,6 +20,9 @@ struct State {
     qd: Vec<f64>,
     qdd: Vec<f64>,
     tau: Vec<f64>,
+    /// `q` and `qd` as the `Arm` trait takes them.
+    q_vector: DVector<f64>,
+    qd_vector: DVector<f64>,
 }
 
 fn states(robot: &Robot, seed: u64) -> Vec<State> {
@@ -41,7 +45,16 @@ fn states(robot: &Robot, seed: u64) -> Vec<State> {
                 .map(|_| rng.random_range(-5.0..5.0))
                 .collect();
             let tau = robot.inverse_dynamics(&q, &qd, &qdd).as_slice().to_vec();
-            State { q, qd, qdd, tau }
+            let (q_vector, qd_vector) =
+                (DVector::from_vec(q.clone()), DVector::from_vec(qd.clone()));
+            State {
+                q,
+                qd,
+                qdd,
+                tau,
+                q_vector,
+                qd_vector,
+            }
         })
         .collect()
 }
@@ -65,6 +78,12 @@ fn bench_robot(c: &mut Criterion, name: &str) {
     cycle(c, name, "fk", &states, |s| robot.fk(&s.q));
     cycle(c, name, "frames", &states, |s| robot.frames(&s.q));
     cycle(c, name, "jacobian", &states, |s| robot.jacobian(&s.q));
+    cycle(c, name, "body_jacobian", &states, |s| {
+        Arm::body_jacobian(&robot, &s.q_vector)
+    });
+    cycle(c, name, "body_jdot_qdot", &states, |s| {
+        Arm::body_jdot_qdot(&robot, &s.q_vector, &s.qd_vector)
+    });
     cycle(c, name, "mass_matrix", &states, |s| robot.mass_matrix(&s.q));
     cycle(c, name, "christoffel", &states, |s| robot.christoffel(&s.q));
     cycle(c, name, "coriolis", &states, |s| {

@@ -202,6 +202,17 @@ macro_rules! run {
                     dhgen::Arm::body_jacobian(&robot, &dhgen::nalgebra::DVector::from_row_slice(q))
                         [(0, 1)]
                 }
+                ("body_jdot_qdot", true) => {
+                    let (q, qd) = (dhgen::nalgebra::SVector::from(*q), dhgen::nalgebra::SVector::from(*qd));
+                    dhgen::Arm::body_jdot_qdot(&$m::Robot, &q, &qd)[1]
+                }
+                ("body_jdot_qdot", false) => {
+                    let (q, qd) = (
+                        dhgen::nalgebra::DVector::from_row_slice(q),
+                        dhgen::nalgebra::DVector::from_row_slice(qd),
+                    );
+                    dhgen::Arm::body_jdot_qdot(&robot, &q, &qd)[1]
+                }
                 // The trait's default (fk, then J rotated into tool axes) on the generated arm.
                 ("body_jacobian_default", true) => {
                     let q = dhgen::nalgebra::SVector::from(*q);

@@ -119,7 +119,8 @@ where
     /// ([`body_jacobian_from_jacobian`](crate::velocity::body_jacobian_from_jacobian));
     /// generated modules override it with straight-line code walked back from the tool, which
     /// never computes the base's joints' frames (PUMA 560: 730 instructions, as many as
-    /// `jacobian`, against 1,916 for this default on the same arm).
+    /// `jacobian`, against 1,916 for this default on the same arm), and
+    /// [`Robot`](crate::Robot) takes the tool's rotation from its Jacobian's walk of the chain.
     ///
     /// ```
     /// use dhgen::Arm;
@@ -145,6 +146,7 @@ where
     /// `[a; α] = J̇ q̇` ([`jdot_qdot`](Self::jdot_qdot)): `[Rᵀ a − ω_b × v_b; Rᵀ α]`, with
     /// `v_b = Rᵀ v`, `ω_b = Rᵀ ω` (the tool axes turn with ω, which adds `−ω_b × v_b` to the
     /// linear part; the classical acceleration of the tool origin in tool axes is `Rᵀ a`).
+    /// [`Robot`](crate::Robot) computes all three from one walk of the chain.
     ///
     /// ```
     /// use dhgen::Arm;
@@ -340,7 +342,7 @@ mod runtime {
     use super::{Arm, ArmDynamics};
     use crate::Robot;
     use dhgen_model::ChainRef;
-    use nalgebra::{DMatrix, DVector, Dyn, Isometry3, Matrix6xX};
+    use nalgebra::{DMatrix, DVector, Dyn, Isometry3, Matrix6xX, Vector6};
 
     impl Arm for Robot {
         type Dof = Dyn;
@@ -369,6 +371,14 @@ mod runtime {
 
         fn jacobian(&self, q: &DVector<f64>) -> Matrix6xX<f64> {
             Robot::jacobian(self, q)
+        }
+
+        fn body_jacobian(&self, q: &DVector<f64>) -> Matrix6xX<f64> {
+            Robot::body_jacobian(self, q)
+        }
+
+        fn body_jdot_qdot(&self, q: &DVector<f64>, qd: &DVector<f64>) -> Vector6<f64> {
+            Robot::body_jdot_qdot(self, q, qd)
         }
     }
 

@@ -3,7 +3,7 @@
 use crate::Joints;
 use crate::robot::{Rigid, Robot};
 use dhgen_model::JointKind;
-use nalgebra::{Isometry3, Matrix6xX};
+use nalgebra::{Isometry3, Matrix6xX, Vector6};
 
 impl Robot {
     /// Walks the chain base to tip, calling `visit(i, frame)` with the world pose of each
@@ -83,6 +83,41 @@ impl Robot {
     /// If `q.len() != self.dof()`.
     pub fn jacobian(&self, q: &(impl Joints<f64> + ?Sized)) -> Matrix6xX<f64> {
         let q = self.check_len("jacobian", "q", q);
+        self.jacobian_and_tool(q).0
+    }
+
+    /// The body Jacobian `J_b = diag(Rᵀ, Rᵀ) J` ([`crate::Arm::body_jacobian`]): the tool
+    /// origin's velocity and the tool's angular velocity in the tool's own axes, from one walk
+    /// of the chain (the Jacobian's, whose last frame gives the tool's rotation `R`).
+    ///
+    /// # Panics
+    /// If `q.len() != self.dof()`.
+    pub fn body_jacobian(&self, q: &(impl Joints<f64> + ?Sized)) -> Matrix6xX<f64> {
+        let q = self.check_len("body_jacobian", "q", q);
+        let (j, tool) = self.jacobian_and_tool(q);
+        crate::velocity::turn_jacobian(&tool.r.transpose(), j)
+    }
+
+    /// `J̇_b q̇` in the tool's own axes ([`crate::Arm::body_jdot_qdot`]), from one walk of the
+    /// chain: the Jacobian and the tool's rotation, then `J q̇` and `J̇ q̇` from the Jacobian.
+    ///
+    /// # Panics
+    /// If `q.len()` or `qd.len()` is not `self.dof()`.
+    pub fn body_jdot_qdot(
+        &self,
+        q: &(impl Joints<f64> + ?Sized),
+        qd: &(impl Joints<f64> + ?Sized),
+    ) -> Vector6<f64> {
+        let q = self.check_len("body_jdot_qdot", "q", q);
+        let qd = nalgebra::DVector::from_column_slice(self.check_len("body_jdot_qdot", "qd", qd));
+        let (j, tool) = self.jacobian_and_tool(q);
+        let jdot_qdot = crate::velocity::jdot_qdot_from_jacobian(self, &j, &qd);
+        crate::velocity::turn_jdot_qdot(&tool.r.transpose(), &(j * qd), &jdot_qdot)
+    }
+
+    /// The Jacobian (as [`jacobian`](Self::jacobian)) and the tool frame's world pose, from one
+    /// walk. The caller has checked the length of `q`.
+    fn jacobian_and_tool(&self, q: &[f64]) -> (Matrix6xX<f64>, Rigid) {
         let mut j = Matrix6xX::zeros(self.dof());
         // p_e is only known at the end of the walk, so a revolute column first holds
         // p_z × z = −z × p_z, and z × p_e is added afterwards.
@@ -97,14 +132,14 @@ impl Robot {
                 JointKind::Prismatic => col.fixed_rows_mut::<3>(0).copy_from(&z),
             }
         });
-        let p_e = last.r * self.tool.p + last.p;
+        let tool = last.compose(&self.tool);
         for (i, body) in self.bodies.iter().enumerate() {
             if body.joint == JointKind::Revolute {
                 let z = j.fixed_view::<3, 1>(3, i).into_owned();
                 let mut v = j.fixed_view_mut::<3, 1>(0, i);
-                v += z.cross(&p_e);
+                v += z.cross(&tool.p);
             }
         }
-        j
+        (j, tool)
     }
 }

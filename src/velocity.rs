@@ -729,12 +729,22 @@ where
 /// without a generated `body_jacobian`.
 pub fn body_jacobian_from_jacobian<D: Dim>(
     tool: &nalgebra::Isometry3<f64>,
+    j: OMatrix<f64, U6, D>,
+) -> OMatrix<f64, U6, D>
+where
+    DefaultAllocator: Allocator<U6, D>,
+{
+    turn_jacobian(tool.rotation.to_rotation_matrix().transpose().matrix(), j)
+}
+
+/// Each column's `v` and `ω` of `j` turned by `rt`: `diag(rt, rt) j`.
+pub(crate) fn turn_jacobian<D: Dim>(
+    rt: &nalgebra::Matrix3<f64>,
     mut j: OMatrix<f64, U6, D>,
 ) -> OMatrix<f64, U6, D>
 where
     DefaultAllocator: Allocator<U6, D>,
 {
-    let rt = tool.rotation.to_rotation_matrix().transpose();
     for mut c in j.column_iter_mut() {
         let v = rt * nalgebra::Vector3::new(c[0], c[1], c[2]);
         let w = rt * nalgebra::Vector3::new(c[3], c[4], c[5]);
@@ -752,6 +762,15 @@ pub fn body_jdot_qdot_from(
     jdot_qdot: &Vector6<f64>,
 ) -> Vector6<f64> {
     let rt = tool.rotation.to_rotation_matrix().transpose();
+    turn_jdot_qdot(rt.matrix(), velocity, jdot_qdot)
+}
+
+/// [`body_jdot_qdot_from`] with the tool's rotation given transposed, `rt = Rᵀ`.
+pub(crate) fn turn_jdot_qdot(
+    rt: &nalgebra::Matrix3<f64>,
+    velocity: &Vector6<f64>,
+    jdot_qdot: &Vector6<f64>,
+) -> Vector6<f64> {
     let part = |x: &Vector6<f64>, at: usize| rt * x.fixed_rows::<3>(at);
     let (v, w) = (part(velocity, 0), part(velocity, 3));
     let (a, alpha) = (part(jdot_qdot, 0) - w.cross(&v), part(jdot_qdot, 3));

@@ -208,6 +208,47 @@ fn body_jacobian_matches_finite_differences_in_tool_axes() {
 }
 
 #[test]
+fn runtime_body_jdot_qdot_matches_finite_differences_and_the_trait_formula() {
+    // `Robot::body_jdot_qdot` walks the chain once; checked against central differences of
+    // `J_b q̇` along q(t) = q + t q̇, and against the trait's default formula from `fk`,
+    // `J q̇` and `J̇ q̇` computed separately. Fixtures with prismatic joints (gantry, odd),
+    // modified DH, base and tool (odd), and the Panda.
+    let mut rng = StdRng::seed_from_u64(31);
+    let h = 1e-5;
+    for (name, arm) in [
+        ("odd", crate::support::fixture("odd")),
+        ("gantry", crate::support::fixture("gantry")),
+        ("panda", runtime("panda")),
+    ] {
+        for _ in 0..20 {
+            let (q, qd) = (random_q(&arm, &mut rng), random_qd(&arm, &mut rng));
+            let got = arm.body_jdot_qdot(&q, &qd);
+            let fd = (arm.body_jacobian(&(&q + &qd * h)) - arm.body_jacobian(&(&q - &qd * h)))
+                * &qd
+                / (2.0 * h);
+            let scale = fd.norm().max(1.0);
+            assert!(
+                (got - fd).norm() < 1e-7 * scale,
+                "{name}: J̇_b q̇ off central differences by {:e}",
+                (got - fd).norm()
+            );
+            let formula = dhgen::velocity::body_jdot_qdot_from(
+                &arm.fk(&q),
+                &(arm.jacobian(&q) * &qd),
+                &Arm::jdot_qdot(&arm, &q, &qd),
+            );
+            assert!(
+                (got - formula).norm() < 1e-12 * scale,
+                "{name}: one walk and the trait's formula differ by {:e}",
+                (got - formula).norm()
+            );
+            let jb = dhgen::velocity::body_jacobian_from_jacobian(&arm.fk(&q), arm.jacobian(&q));
+            assert!((arm.body_jacobian(&q) - jb).amax() < 1e-13, "{name}: J_b");
+        }
+    }
+}
+
+#[test]
 fn body_jacobian_does_not_depend_on_the_base() {
     // The odd fixture with the base of another fixture: world Jacobians differ, body
     // Jacobians agree.
