@@ -146,7 +146,10 @@ where
     /// `[a; α] = J̇ q̇` ([`jdot_qdot`](Self::jdot_qdot)): `[Rᵀ a − ω_b × v_b; Rᵀ α]`, with
     /// `v_b = Rᵀ v`, `ω_b = Rᵀ ω` (the tool axes turn with ω, which adds `−ω_b × v_b` to the
     /// linear part; the classical acceleration of the tool origin in tool axes is `Rᵀ a`).
-    /// [`Robot`](crate::Robot) computes all three from one walk of the chain.
+    /// [`Robot`](crate::Robot) computes all three from one walk of the chain; generated
+    /// modules override it with straight-line code from the outward pass in joint frames, which
+    /// never carries a frame to the base (PUMA 560: 175 operations, against 234 for
+    /// `jdot_qdot` alone).
     ///
     /// ```
     /// use dhgen::Arm;

@@ -18,6 +18,10 @@ pub struct Evaluation {
     jacobian: DMatrix<f64>,
     /// The same in the tool's own axes (`Arm::body_jacobian`).
     body_jacobian: DMatrix<f64>,
+    /// `J̇ q̇` (world axes, `Arm::jdot_qdot`) and `J̇_b q̇` (tool axes, `Arm::body_jdot_qdot`):
+    /// the tool's acceleration at q̈ = 0, as 1 × 6 rows.
+    jdot_qdot: DMatrix<f64>,
+    body_jdot_qdot: DMatrix<f64>,
     /// Yoshikawa's manipulability and its gradient ∂m/∂q
     /// (`velocity::manipulability_gradient`); `None` where J has lost rank.
     manipulability: Option<(f64, Vec<f64>)>,
@@ -230,10 +234,12 @@ pub fn evaluate(
         }
     }
     let e = compute(robot, q, qd, qdd, derivatives, task_space);
-    let matrices: [(&str, DMatrix<f64>); 3] = [
+    let matrices: [(&str, DMatrix<f64>); 5] = [
         ("T", DMatrix::from_fn(4, 4, |r, c| e.pose[(r, c)])),
         ("J", e.jacobian.clone()),
         ("Jb", e.body_jacobian.clone()),
+        ("J̇q̇", e.jdot_qdot.clone()),
+        ("J̇_b q̇", e.body_jdot_qdot.clone()),
     ];
     let dynamics = e
         .dynamics
@@ -279,8 +285,15 @@ fn compute(
     let pose = robot.fk(&q).to_homogeneous();
     let j = robot.jacobian(&q);
     let jacobian = DMatrix::from_column_slice(6, robot.dof(), j.as_slice());
-    let jb = dhgen::Arm::body_jacobian(robot, &DVector::from_column_slice(&q));
+    let (qv, qdv) = (
+        DVector::from_column_slice(&q),
+        DVector::from_column_slice(&qd),
+    );
+    let jb = dhgen::Arm::body_jacobian(robot, &qv);
     let body_jacobian = DMatrix::from_column_slice(6, robot.dof(), jb.as_slice());
+    let row = |v: dhgen::nalgebra::Vector6<f64>| DMatrix::from_row_slice(1, 6, v.as_slice());
+    let jdot_qdot = row(dhgen::Arm::jdot_qdot(robot, &qv, &qdv));
+    let body_jdot_qdot = row(dhgen::Arm::body_jdot_qdot(robot, &qv, &qdv));
     let manipulability = dhgen::velocity::manipulability_gradient(&j, dhgen::velocity::Axes::All)
         .map(|(m, grad)| (m, grad.as_slice().to_vec()));
     let dynamics = robot.has_dynamics().then(|| {
@@ -323,6 +336,8 @@ fn compute(
         pose,
         jacobian,
         body_jacobian,
+        jdot_qdot,
+        body_jdot_qdot,
         manipulability,
         dynamics,
     }
@@ -330,7 +345,8 @@ fn compute(
 
 impl Evaluation {
     /// The evaluation as JSON: vectors as arrays, matrices as arrays of rows; `T`, `J` and `Jb`
-    /// (the body Jacobian, tool axes), `manipulability` and `manipulability_gradient` (null
+    /// (the body Jacobian, tool axes), `Jdot_qd` and `Jb_dot_qd` (J̇ q̇ in world axes and
+    /// J̇_b q̇ in tool axes, 6 numbers each), `manipulability` and `manipulability_gradient` (null
     /// where J has lost rank) always; `D`, `C`, `g`,
     /// `tau`, `kinetic_energy` and `potential_energy` (numbers) only when the robot has
     /// dynamics; with `--derivatives` also `dtau_dq`,
@@ -357,6 +373,8 @@ impl Evaluation {
             "T": rows(&pose),
             "J": rows(&self.jacobian),
             "Jb": rows(&self.body_jacobian),
+            "Jdot_qd": self.jdot_qdot.as_slice(),
+            "Jb_dot_qd": self.body_jdot_qdot.as_slice(),
             "manipulability": self.manipulability.as_ref().map_or(0.0, |(m, _)| *m),
             "manipulability_gradient": self.manipulability.as_ref().map(|(_, grad)| grad),
         });
@@ -404,6 +422,13 @@ impl Evaluation {
             &mut out,
             "J_b: the same in the tool's own axes (body Jacobian, Pinocchio LOCAL, Toolbox jacobe)",
             &self.body_jacobian,
+        );
+        let _ = writeln!(
+            out,
+            "\nJ̇q̇ (the tool's acceleration at q̈ = 0, world axes) = {}\nJ̇_b q̇ (the same in tool \
+             axes, Pinocchio getFrameJacobianTimeVariation(LOCAL) q̇) = {}",
+            list(self.jdot_qdot.as_slice()),
+            list(self.body_jdot_qdot.as_slice())
         );
         let _ = match &self.manipulability {
             Some((m, grad)) => writeln!(

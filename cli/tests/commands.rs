@@ -182,6 +182,60 @@ fn eval_text_matches_the_runtime_at_zero() {
 }
 
 #[test]
+fn eval_gives_the_tools_acceleration_at_zero_joint_acceleration() {
+    // J̇_b q̇ against Pinocchio 4.1.0 (tests/data/pinocchio_kinematics.json, made by
+    // scripts/pinocchio_kinematics.py), and J̇ q̇ against the runtime path, at its states.
+    let data: serde_json::Value = serde_json::from_str(
+        &std::fs::read_to_string(root().join("tests/data/pinocchio_kinematics.json")).unwrap(),
+    )
+    .unwrap();
+    let numbers = |v: &serde_json::Value| -> Vec<f64> {
+        v.as_array()
+            .unwrap()
+            .iter()
+            .map(|x| x.as_f64().unwrap())
+            .collect()
+    };
+    for name in ["puma560", "panda"] {
+        let file = format!("robots/{name}.toml");
+        let robot = Robot::from_toml_file(root().join(&file)).unwrap();
+        for sample in data["robots"][name].as_array().unwrap().iter().take(3) {
+            let (q, qd) = (numbers(&sample["q"]), numbers(&sample["qd"]));
+            let out = stdout(&as_strs(&eval_json(&file, &q, &qd, &vec![0.0; q.len()])));
+            let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+            let (body, want) = (numbers(&v["Jb_dot_qd"]), numbers(&sample["Jb_dot_qd"]));
+            let world = numbers(&v["Jdot_qd"]);
+            let runtime = dhgen::Arm::jdot_qdot(
+                &robot,
+                &DVector::from_vec(q.clone()),
+                &DVector::from_vec(qd.clone()),
+            );
+            assert_eq!((body.len(), world.len()), (6, 6), "{out}");
+            for i in 0..6 {
+                assert!(
+                    (body[i] - want[i]).abs() <= 1e-10,
+                    "{name} J̇_b q̇[{i}]: {out}"
+                );
+                assert!(
+                    (world[i] - runtime[i]).abs() <= 1e-12,
+                    "{name} J̇ q̇[{i}]: {out}"
+                );
+            }
+        }
+    }
+    // The text output names both.
+    let text = stdout(&[
+        "eval",
+        "robots/puma560.toml",
+        "--q",
+        "0,0.2,0,0,0.3,0",
+        "--qd",
+        "1,1,1,1,1,1",
+    ]);
+    assert!(text.contains("J̇q̇ (") && text.contains("J̇_b q̇ ("), "{text}");
+}
+
+#[test]
 fn eval_json_matches_the_runtime() {
     let q = [0.1, -0.6, 0.4, 0.3, 0.8, -0.2];
     let qd = [0.5, -0.3, 0.2, 1.0, -0.7, 0.4];
@@ -1200,7 +1254,9 @@ fn eval_refuses_out_of_range_input_and_warns_outside_limits() {
     ] {
         let err = failure(args);
         assert!(
-            err.contains("the result is not finite: τ entry 1 is NaN")
+            // The first quantity evaluated that overflows: the tool's acceleration at q̈ = 0
+            // (before J̇q̇ was printed, τ, whose entry 1 was NaN).
+            err.contains("the result is not finite: J̇q̇ entry 1 is -inf")
                 && err.contains("largest |q̇| 1e200"),
             "{err}"
         );

@@ -651,6 +651,44 @@ impl<'c, R: Ring> RingChain<'c, R> {
         ]
     }
 
+    /// `J̇_b(q, q̇) q̇` of the frame `tip` (placed in the last joint frame): the rate of that
+    /// frame's velocity in its own axes at `q̈ = 0`, `[Rᵀ a − ω_b × v_b; Rᵀ ω̇]`, where `a`
+    /// and `ω̇` are the tip's classical and angular accelerations, `v_b` and `ω_b` its
+    /// velocities in its own axes and `R` its rotation. Everything stays in the joint frames
+    /// of the outward pass; no frame is carried to the root.
+    pub fn body_jdot_qdot(&self, qd: &[R], tip: &Frame<R>) -> [R; 6] {
+        let n = self.dof();
+        let z = || k::<R>(0.0);
+        let zeros: Vec<R> = (0..n).map(|_| z()).collect();
+        let motions = self.outward(qd, &zeros, [z(), z(), z()]);
+        // The velocity of the last joint frame's origin, outward in local coordinates.
+        let mut v: V3<R> = [z(), z(), z()];
+        let mut w_parent: V3<R> = [z(), z(), z()];
+        for (j, (t, (w, _, _))) in self.t.iter().zip(&motions).enumerate() {
+            v = rot_t(t, &add3(&v, &cross(&w_parent, &t.p)));
+            if self.kinds[j] == JointKind::Prismatic {
+                v = add3(&v, &[z(), z(), qd[j].clone()]);
+            }
+            w_parent = w.clone();
+        }
+        let (w, wd, a) = motions.last().expect("validated models have links");
+        let p = &tip.p;
+        let a_tip = add3(&add3(a, &cross(wd, p)), &cross(w, &cross(w, p)));
+        let v_tip = add3(&v, &cross(w, p));
+        let (w_b, v_b) = (rot_t(tip, w), rot_t(tip, &v_tip));
+        let turning = cross(&w_b, &v_b);
+        let linear = rot_t(tip, &a_tip);
+        let angular = rot_t(tip, wd);
+        [
+            linear[0].clone() - turning[0].clone(),
+            linear[1].clone() - turning[1].clone(),
+            linear[2].clone() - turning[2].clone(),
+            angular[0].clone(),
+            angular[1].clone(),
+            angular[2].clone(),
+        ]
+    }
+
     /// Recursive Newton-Euler: `τ = D q̈ + C q̇ + g` (gravity included when `with_gravity`).
     pub fn rnea(&self, qd: &[R], qdd: &[R], with_gravity: bool) -> Vec<R> {
         let forces = self

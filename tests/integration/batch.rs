@@ -182,7 +182,8 @@ macro_rules! kinematics {
                 frames_matrix(),
                 jacobian(),
                 body_jacobian(),
-                jdot_qdot(qd)
+                jdot_qdot(qd),
+                body_jdot_qdot(qd)
             ]
         )
     };

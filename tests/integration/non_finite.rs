@@ -93,6 +93,10 @@ where
         ("jacobian", values(j.as_slice())),
         ("body_jacobian", values(arm.body_jacobian(q).as_slice())),
         ("jdot_qdot", values(arm.jdot_qdot(q, qd).as_slice())),
+        (
+            "body_jdot_qdot",
+            values(arm.body_jdot_qdot(q, qd).as_slice()),
+        ),
         ("jacobian_dot", values(jacobian_dot(arm, q, qd).as_slice())),
         (
             "inverse_velocity",

@@ -233,6 +233,25 @@ pub mod one_joint {
             out[5] = ::dhgen::nalgebra::convert::<f64, T>(0f64);
             out
         }
+        ///J̇_b(q, q̇) q̇ in the tool's own axes, rows [v; ω]: the rate of the tool's body velocity (`body_jacobian` times q̇) at q̈ = 0, from the outward pass in joint frames.
+        #[doc(alias = "getFrameJacobianTimeVariation")]
+        #[must_use]
+        pub fn body_jdot_qdot(
+            &self,
+            qd: &impl ::dhgen::JointArray<T, DOF>,
+        ) -> na::SVector<T, 6> {
+            let _ = qd;
+            let mut out: na::SVector<T, 6> = na::Matrix::from_data(
+                na::ArrayStorage([[T::zero(); 6]; 1]),
+            );
+            out[0] = ::dhgen::nalgebra::convert::<f64, T>(0f64);
+            out[1] = ::dhgen::nalgebra::convert::<f64, T>(0f64);
+            out[2] = ::dhgen::nalgebra::convert::<f64, T>(0f64);
+            out[3] = ::dhgen::nalgebra::convert::<f64, T>(0f64);
+            out[4] = ::dhgen::nalgebra::convert::<f64, T>(0f64);
+            out[5] = ::dhgen::nalgebra::convert::<f64, T>(0f64);
+            out
+        }
         ///Joint-space inertia matrix D(q), armature (reflected motor inertia) included.
         #[doc(alias = "crba")]
         #[doc(alias = "inertia")]
@@ -1135,6 +1154,14 @@ pub mod one_joint {
             State { c, s, d }
         }
         #[inline]
+        fn for_body_jdot_qdot(q: &impl ::dhgen::JointArray<T, DOF>) -> Self {
+            let _ = q;
+            let c = [T::zero(); DOF];
+            let s = [T::zero(); DOF];
+            let d = [T::zero(); DOF];
+            State { c, s, d }
+        }
+        #[inline]
         fn for_mass_matrix(q: &impl ::dhgen::JointArray<T, DOF>) -> Self {
             let _ = q;
             let c = [T::zero(); DOF];
@@ -1489,6 +1516,15 @@ pub mod one_joint {
         qd: &impl ::dhgen::JointArray<T, DOF>,
     ) -> na::SVector<T, 6> {
         State::for_jdot_qdot(q).jdot_qdot(qd)
+    }
+    ///J̇_b(q, q̇) q̇ in the tool's own axes, rows [v; ω]: the rate of the tool's body velocity (`body_jacobian` times q̇) at q̈ = 0, from the outward pass in joint frames.
+    #[doc(alias = "getFrameJacobianTimeVariation")]
+    #[must_use]
+    pub fn body_jdot_qdot<T: ::dhgen::Real>(
+        q: &impl ::dhgen::JointArray<T, DOF>,
+        qd: &impl ::dhgen::JointArray<T, DOF>,
+    ) -> na::SVector<T, 6> {
+        State::for_body_jdot_qdot(q).body_jdot_qdot(qd)
     }
     ///Joint-space inertia matrix D(q), armature (reflected motor inertia) included.
     #[doc(alias = "crba")]
@@ -1891,6 +1927,17 @@ pub mod one_joint {
             out: &mut [na::SVector<T, 6>],
         ) -> Result<(), ::dhgen::batch::LengthMismatch> {
             ::dhgen::batch::run([q, qd], out, |[q, qd]| super::jdot_qdot(q, qd))
+        }
+        /// [`body_jdot_qdot`](super::body_jdot_qdot) for each configuration: `out[c]` from `q[c]`, `qd[c]`, four `f64` or eight `f32` configurations per call (`dhgen::batch`).
+        ///
+        /// # Errors
+        /// `LengthMismatch` (nothing written) unless every slice has `out.len()` entries.
+        pub fn body_jdot_qdot<T: ::dhgen::batch::Lanes>(
+            q: &[[T; DOF]],
+            qd: &[[T; DOF]],
+            out: &mut [na::SVector<T, 6>],
+        ) -> Result<(), ::dhgen::batch::LengthMismatch> {
+            ::dhgen::batch::run([q, qd], out, |[q, qd]| super::body_jdot_qdot(q, qd))
         }
         /// [`mass_matrix`](super::mass_matrix) for each configuration: `out[c]` from `q[c]`, four `f64` or eight `f32` configurations per call (`dhgen::batch`).
         ///
@@ -2416,6 +2463,13 @@ pub mod one_joint {
             qd: &na::SVector<f64, DOF>,
         ) -> na::SVector<f64, 6> {
             State::for_jdot_qdot(q).jdot_qdot(qd)
+        }
+        fn body_jdot_qdot(
+            &self,
+            q: &na::SVector<f64, DOF>,
+            qd: &na::SVector<f64, DOF>,
+        ) -> na::SVector<f64, 6> {
+            State::for_body_jdot_qdot(q).body_jdot_qdot(qd)
         }
     }
     impl ::dhgen::ArmDynamics for Robot {

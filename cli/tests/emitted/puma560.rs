@@ -1036,6 +1036,175 @@ pub mod puma560 {
             out[5] = t388;
             out
         }
+        ///J̇_b(q, q̇) q̇ in the tool's own axes, rows [v; ω]: the rate of the tool's body velocity (`body_jacobian` times q̇) at q̈ = 0, from the outward pass in joint frames.
+        #[doc(alias = "getFrameJacobianTimeVariation")]
+        #[must_use]
+        pub fn body_jdot_qdot(
+            &self,
+            qd: &impl ::dhgen::JointArray<T, DOF>,
+        ) -> na::SVector<T, 6> {
+            let qd = &qd.to_array();
+            let mut out: na::SVector<T, 6> = na::Matrix::from_data(
+                na::ArrayStorage([[T::zero(); 6]; 1]),
+            );
+            let c2: T = self.c[1];
+            let s2: T = self.s[1];
+            let c3: T = self.c[2];
+            let s3: T = self.s[2];
+            let c4: T = self.c[3];
+            let s4: T = self.s[3];
+            let c5: T = self.c[4];
+            let s5: T = self.s[4];
+            let c6: T = self.c[5];
+            let s6: T = self.s[5];
+            let k51: T = ::dhgen::nalgebra::convert::<f64, T>(0.15005f64);
+            let k56: T = ::dhgen::nalgebra::convert::<f64, T>(0.4318f64);
+            let k109: T = ::dhgen::nalgebra::convert::<f64, T>(0.0203f64);
+            let qd1: T = qd[0];
+            let t30: T = c2 * qd1;
+            let t59: T = t30 * k51;
+            let qd2: T = qd[1];
+            let t70: T = qd2 * t59;
+            let t29: T = s2 * qd1;
+            let t63: T = t30 * k56;
+            let t73: T = ::dhgen::Real::mul_add_fast(t29, t63, t70);
+            let t31: T = qd2 * t30;
+            let t54: T = t31 * k51;
+            let t79: T = t73 - t54;
+            let t83: T = s3 * t79;
+            let t32: T = qd2 * t29;
+            let t52: T = t32 * k51;
+            let t65: T = t30 * t63;
+            let t60: T = qd2 * k56;
+            let t62: T = ::dhgen::Real::mul_add_fast(-t29, k51, t60);
+            let t68: T = ::dhgen::Real::mul_add_fast(qd2, t62, t65);
+            let t77: T = t52 + t68;
+            let t84: T = ::dhgen::Real::mul_add_fast(-c3, t77, t83);
+            let t39: T = c3 * t30;
+            let t40: T = ::dhgen::Real::mul_add_fast(-s3, t29, t39);
+            let t34: T = c3 * t29;
+            let t36: T = ::dhgen::Real::mul_add_fast(s3, t30, t34);
+            let t117: T = t36 * k56;
+            let t119: T = ::dhgen::Real::mul_add_fast(-t40, k109, t117);
+            let t120: T = t40 * t119;
+            let qd3: T = qd[2];
+            let t88: T = qd2 + qd3;
+            let t116: T = t88 * k109;
+            let t122: T = ::dhgen::Real::mul_add_fast(-t88, t116, t120);
+            let t132: T = t84 + t122;
+            let t135: T = c4 * t132;
+            let t57: T = t32 * k56;
+            let t74: T = t29 * t62;
+            let t76: T = ::dhgen::Real::mul_add_fast(-t30, t59, t74);
+            let t80: T = t57 + t76;
+            let t41: T = c3 * t31;
+            let t44: T = ::dhgen::Real::mul_add_fast(-s3, t32, t41);
+            let t89: T = qd3 * t40;
+            let t92: T = t44 + t89;
+            let t108: T = k56 * t92;
+            let t45: T = s3 * t31;
+            let t49: T = ::dhgen::Real::mul_add_fast(c3, t32, t45);
+            let t90: T = qd3 * t36;
+            let t93: T = t49 + t90;
+            let t112: T = ::dhgen::Real::mul_add_fast(t93, k109, t108);
+            let t113: T = t80 + t112;
+            let t128: T = t36 * t116;
+            let t114: T = k56 * t88;
+            let t131: T = ::dhgen::Real::mul_add_fast(t40, t114, t128);
+            let t134: T = t113 + t131;
+            let t138: T = ::dhgen::Real::mul_add_fast(-s4, t134, t135);
+            let t170: T = c5 * t138;
+            let t85: T = s3 * t77;
+            let t87: T = ::dhgen::Real::mul_add_fast(c3, t79, t85);
+            let t123: T = t88 * t114;
+            let t126: T = ::dhgen::Real::mul_add_fast(t36, t119, t123);
+            let t133: T = t87 - t126;
+            let t172: T = ::dhgen::Real::mul_add_fast(s5, t133, t170);
+            let t204: T = c6 * t172;
+            let t139: T = s4 * t132;
+            let t143: T = ::dhgen::Real::mul_add_fast(c4, t134, t139);
+            let t207: T = ::dhgen::Real::mul_add_fast(-s6, t143, t204);
+            let qd4: T = qd[3];
+            let t145: T = qd4 + t40;
+            let t158: T = c5 * t145;
+            let t95: T = c4 * t36;
+            let t98: T = ::dhgen::Real::mul_add_fast(-s4, t88, t95);
+            let t159: T = ::dhgen::Real::mul_add_fast(-s5, t98, t158);
+            let qd6: T = qd[5];
+            let t214: T = qd6 + t159;
+            let t222: T = c3 * t59;
+            let t224: T = ::dhgen::Real::mul_add_fast(s3, t62, t222);
+            let t229: T = t224 - t114;
+            let t232: T = c4 * t229;
+            let t231: T = t119 - t63;
+            let t235: T = ::dhgen::Real::mul_add_fast(-s4, t231, t232);
+            let t242: T = c5 * t235;
+            let t227: T = c3 * t62;
+            let t228: T = ::dhgen::Real::mul_add_fast(-s3, t59, t227);
+            let t230: T = t116 + t228;
+            let t244: T = ::dhgen::Real::mul_add_fast(s5, t230, t242);
+            let t253: T = s6 * t244;
+            let t236: T = s4 * t229;
+            let t240: T = ::dhgen::Real::mul_add_fast(c4, t231, t236);
+            let t257: T = ::dhgen::Real::mul_add_fast(c6, t240, t253);
+            let t261: T = t214 * t257;
+            let t153: T = c5 * t98;
+            let t155: T = ::dhgen::Real::mul_add_fast(s5, t145, t153);
+            let t188: T = s6 * t155;
+            let t99: T = s4 * t36;
+            let t103: T = ::dhgen::Real::mul_add_fast(c4, t88, t99);
+            let qd5: T = qd[4];
+            let t177: T = qd5 + t103;
+            let t192: T = ::dhgen::Real::mul_add_fast(c6, t177, t188);
+            let t247: T = c5 * t230;
+            let t248: T = ::dhgen::Real::mul_add_fast(-s5, t235, t247);
+            let t263: T = ::dhgen::Real::mul_add_fast(-t192, t248, t261);
+            let t272: T = t207 - t263;
+            out[0] = t272;
+            let t208: T = s6 * t172;
+            let t212: T = ::dhgen::Real::mul_add_fast(c6, t143, t208);
+            let t249: T = c6 * t244;
+            let t252: T = ::dhgen::Real::mul_add_fast(-s6, t240, t249);
+            let t264: T = t214 * t252;
+            let t184: T = c6 * t155;
+            let t187: T = ::dhgen::Real::mul_add_fast(-s6, t177, t184);
+            let t266: T = ::dhgen::Real::mul_add_fast(-t187, t248, t264);
+            let t273: T = t212 + t266;
+            let t274: T = -t273;
+            out[1] = t274;
+            let t175: T = c5 * t133;
+            let t176: T = ::dhgen::Real::mul_add_fast(-s5, t138, t175);
+            let t269: T = t192 * t252;
+            let t271: T = ::dhgen::Real::mul_add_fast(-t187, t257, t269);
+            let t275: T = t176 - t271;
+            out[2] = t275;
+            let t105: T = c4 * t92;
+            let t150: T = ::dhgen::Real::mul_add_fast(-qd4, t103, t105);
+            let t160: T = c5 * t150;
+            let t163: T = ::dhgen::Real::mul_add_fast(-s5, t93, t160);
+            let t178: T = qd5 * t159;
+            let t181: T = t163 + t178;
+            let t194: T = c6 * t181;
+            let t106: T = s4 * t92;
+            let t151: T = ::dhgen::Real::mul_add_fast(qd4, t98, t106);
+            let t197: T = ::dhgen::Real::mul_add_fast(-s6, t151, t194);
+            let t215: T = qd6 * t192;
+            let t219: T = t197 - t215;
+            out[3] = t219;
+            let t198: T = s6 * t181;
+            let t202: T = ::dhgen::Real::mul_add_fast(c6, t151, t198);
+            let t217: T = qd6 * t187;
+            let t220: T = t202 + t217;
+            let t221: T = -t220;
+            out[4] = t221;
+            let t164: T = s5 * t150;
+            let t168: T = ::dhgen::Real::mul_add_fast(c5, t93, t164);
+            let t179: T = qd5 * t155;
+            let t182: T = t168 + t179;
+            let t183: T = -t182;
+            out[5] = t183;
+            out
+        }
         ///det J11 (the Jacobian about the wrist centre): zero at arm singularities (section 5.6.1).
         #[must_use]
         pub fn det_j11(&self) -> T {
@@ -6954,6 +7123,25 @@ pub mod puma560 {
             State { c, s, d }
         }
         #[inline]
+        fn for_body_jdot_qdot(q: &impl ::dhgen::JointArray<T, DOF>) -> Self {
+            let q = q.to_array();
+            let mut c = [T::zero(); DOF];
+            let mut s = [T::zero(); DOF];
+            let d = [T::zero(); DOF];
+            let (sa, ca) = ::dhgen::Real::sincos_array([q[1], q[2], q[3], q[4], q[5]]);
+            s[1] = sa[0];
+            c[1] = ca[0];
+            s[2] = sa[1];
+            c[2] = ca[1];
+            s[3] = sa[2];
+            c[3] = ca[2];
+            s[4] = sa[3];
+            c[4] = ca[3];
+            s[5] = sa[4];
+            c[5] = ca[4];
+            State { c, s, d }
+        }
+        #[inline]
         fn for_det_j11(q: &impl ::dhgen::JointArray<T, DOF>) -> Self {
             let q = q.to_array();
             let mut c = [T::zero(); DOF];
@@ -7439,6 +7627,15 @@ pub mod puma560 {
     ) -> na::SVector<T, 6> {
         State::for_jdot_qdot(q).jdot_qdot(qd)
     }
+    ///J̇_b(q, q̇) q̇ in the tool's own axes, rows [v; ω]: the rate of the tool's body velocity (`body_jacobian` times q̇) at q̈ = 0, from the outward pass in joint frames.
+    #[doc(alias = "getFrameJacobianTimeVariation")]
+    #[must_use]
+    pub fn body_jdot_qdot<T: ::dhgen::Real>(
+        q: &impl ::dhgen::JointArray<T, DOF>,
+        qd: &impl ::dhgen::JointArray<T, DOF>,
+    ) -> na::SVector<T, 6> {
+        State::for_body_jdot_qdot(q).body_jdot_qdot(qd)
+    }
     ///det J11 (the Jacobian about the wrist centre): zero at arm singularities (section 5.6.1).
     #[must_use]
     pub fn det_j11<T: ::dhgen::Real>(q: &impl ::dhgen::JointArray<T, DOF>) -> T {
@@ -7721,6 +7918,17 @@ pub mod puma560 {
             out: &mut [na::SVector<T, 6>],
         ) -> Result<(), ::dhgen::batch::LengthMismatch> {
             ::dhgen::batch::run([q, qd], out, |[q, qd]| super::jdot_qdot(q, qd))
+        }
+        /// [`body_jdot_qdot`](super::body_jdot_qdot) for each configuration: `out[c]` from `q[c]`, `qd[c]`, four `f64` or eight `f32` configurations per call (`dhgen::batch`).
+        ///
+        /// # Errors
+        /// `LengthMismatch` (nothing written) unless every slice has `out.len()` entries.
+        pub fn body_jdot_qdot<T: ::dhgen::batch::Lanes>(
+            q: &[[T; DOF]],
+            qd: &[[T; DOF]],
+            out: &mut [na::SVector<T, 6>],
+        ) -> Result<(), ::dhgen::batch::LengthMismatch> {
+            ::dhgen::batch::run([q, qd], out, |[q, qd]| super::body_jdot_qdot(q, qd))
         }
         /// [`det_j11`](super::det_j11) for each configuration: `out[c]` from `q[c]`, four `f64` or eight `f32` configurations per call (`dhgen::batch`).
         ///
@@ -8173,6 +8381,13 @@ pub mod puma560 {
             qd: &na::SVector<f64, DOF>,
         ) -> na::SVector<f64, 6> {
             State::for_jdot_qdot(q).jdot_qdot(qd)
+        }
+        fn body_jdot_qdot(
+            &self,
+            q: &na::SVector<f64, DOF>,
+            qd: &na::SVector<f64, DOF>,
+        ) -> na::SVector<f64, 6> {
+            State::for_body_jdot_qdot(q).body_jdot_qdot(qd)
         }
     }
     impl ::dhgen::ArmDynamics for Robot {

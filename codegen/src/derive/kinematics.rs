@@ -156,3 +156,13 @@ pub fn jdot_qdot(chain: ChainRef<'_>, graph: &SharedGraph) -> [E; 6] {
         w[2].clone(),
     ]
 }
+
+/// `J̇_b(q, q̇) q̇` of the tool frame in the tool's own axes, rows `[v; ω]`
+/// ([`RingChain::body_jdot_qdot`](crate::chain::RingChain::body_jdot_qdot)).
+pub fn body_jdot_qdot(chain: ChainRef<'_>, graph: &SharedGraph) -> [E; 6] {
+    let ring = super::graph_chain(chain, graph);
+    let qd: Vec<E> = (0..chain.dof())
+        .map(|i| E::sym(graph, crate::graph::Sym::Qd(i)))
+        .collect();
+    ring.body_jdot_qdot(&qd, &chain.placements[chain.dof()].to_ring())
+}

@@ -518,6 +518,22 @@ pub const QUANTITIES: &[Quantity] = &[
         arm: Some(ArmMethod::Arm),
     },
     Quantity {
+        name: "body_jdot_qdot",
+        doc: "J̇_b(q, q̇) q̇ in the tool's own axes, rows [v; ω]: the rate of the tool's body \
+              velocity (`body_jacobian` times q̇) at q̈ = 0, from the outward pass in joint frames.",
+        aliases: &["getFrameJacobianTimeVariation"],
+        inputs: &[Input::Qd],
+        shape: Shape::Vector6,
+        available: Availability::Always,
+        public: true,
+        make: |cx| {
+            let graph = SharedGraph::default();
+            let acc = kinematics::body_jdot_qdot(cx.chain, &graph);
+            derived(graph, acc.to_vec())
+        },
+        arm: Some(ArmMethod::Arm),
+    },
+    Quantity {
         name: "det_j11",
         doc: "det J11 (the Jacobian about the wrist centre): zero at arm singularities \
               (section 5.6.1).",
