@@ -83,7 +83,7 @@ impl Robot {
     /// If `q.len() != self.dof()`.
     pub fn jacobian(&self, q: &(impl Joints<f64> + ?Sized)) -> Matrix6xX<f64> {
         let q = self.check_len("jacobian", "q", q);
-        self.jacobian_and_tool(q).0
+        self.jacobian_and_last_frame(q).0
     }
 
     /// The body Jacobian `J_b = diag(Rᵀ, Rᵀ) J` ([`crate::Arm::body_jacobian`]): the tool
@@ -94,7 +94,8 @@ impl Robot {
     /// If `q.len() != self.dof()`.
     pub fn body_jacobian(&self, q: &(impl Joints<f64> + ?Sized)) -> Matrix6xX<f64> {
         let q = self.check_len("body_jacobian", "q", q);
-        let (j, tool) = self.jacobian_and_tool(q);
+        let (j, last) = self.jacobian_and_last_frame(q);
+        let tool = last.compose(&self.tool);
         crate::velocity::turn_jacobian(&tool.r.transpose(), j)
     }
 
@@ -110,14 +111,16 @@ impl Robot {
     ) -> Vector6<f64> {
         let q = self.check_len("body_jdot_qdot", "q", q);
         let qd = nalgebra::DVector::from_column_slice(self.check_len("body_jdot_qdot", "qd", qd));
-        let (j, tool) = self.jacobian_and_tool(q);
+        let (j, last) = self.jacobian_and_last_frame(q);
+        let tool = last.compose(&self.tool);
         let jdot_qdot = crate::velocity::jdot_qdot_from_jacobian(self, &j, &qd);
         crate::velocity::turn_jdot_qdot(&tool.r.transpose(), &(j * qd), &jdot_qdot)
     }
 
-    /// The Jacobian (as [`jacobian`](Self::jacobian)) and the tool frame's world pose, from one
-    /// walk. The caller has checked the length of `q`.
-    fn jacobian_and_tool(&self, q: &[f64]) -> (Matrix6xX<f64>, Rigid) {
+    /// The Jacobian (as [`jacobian`](Self::jacobian)) and the last joint frame's world pose
+    /// (the tool's, less the tool placement), from one walk. The caller has checked the length
+    /// of `q`.
+    fn jacobian_and_last_frame(&self, q: &[f64]) -> (Matrix6xX<f64>, Rigid) {
         let mut j = Matrix6xX::zeros(self.dof());
         // p_e is only known at the end of the walk, so a revolute column first holds
         // p_z × z = −z × p_z, and z × p_e is added afterwards.
@@ -132,14 +135,14 @@ impl Robot {
                 JointKind::Prismatic => col.fixed_rows_mut::<3>(0).copy_from(&z),
             }
         });
-        let tool = last.compose(&self.tool);
+        let p_e = last.r * self.tool.p + last.p;
         for (i, body) in self.bodies.iter().enumerate() {
             if body.joint == JointKind::Revolute {
                 let z = j.fixed_view::<3, 1>(3, i).into_owned();
                 let mut v = j.fixed_view_mut::<3, 1>(0, i);
-                v += z.cross(&tool.p);
+                v += z.cross(&p_e);
             }
         }
-        (j, tool)
+        (j, last)
     }
 }
