@@ -3,7 +3,9 @@
 
 For each file the sweep asks `dhgen info` which chain it takes without --tip, then evaluates a
 set of chains with `dhgen eval --json --derivatives` at seeded random states and compares T, J, D,
-C, g and tau with Pinocchio's, and the derivatives of the dynamics with Pinocchio's
+C, g and tau with Pinocchio's (and, since 2026-12-05, the tool's Jacobian in its own axes, Jb,
+with getFrameJacobian(LOCAL) and J̇_b q̇, Jb_dot_qd, with getFrameJacobianTimeVariation(LOCAL)
+times qd; the scale of J̇_b q̇'s error also |Jb| |qd|²), and the derivatives of the dynamics with Pinocchio's
 computeRNEADerivatives and computeABADerivatives. The chains of a file are: the one dhgen takes by default (when it takes one),
 up to 6 root-to-leaf chains (the longest, then other joint sets), one leaf whose chain holds a
 <mimic> joint and one with no movable joint (both must be refused), and two --base chains on
@@ -125,7 +127,7 @@ FORWARD = ("dqdd_dq", "dqdd_dqd", "Minv")
 SINGULAR = 1e-12  # D's smallest eigenvalue over its largest, at or below which D is singular
 CONDITIONED = 1e-14  # the forward derivatives' tolerance per unit of D's condition number
 DYNAMICS = ("D", "C", "g", "tau") + DERIVATIVES
-QUANTITIES = ("T", "J") + DYNAMICS
+QUANTITIES = ("T", "J", "Jb", "Jb_dot_qd") + DYNAMICS
 
 sys.dont_write_bytecode = True  # no __pycache__ in the repository
 _spec = importlib.util.spec_from_file_location("pinocchio_urdf",
@@ -383,6 +385,12 @@ class Reference:
         T = data.oMf[self.tip].homogeneous.copy()
         J = pin.getFrameJacobian(model, data, self.tip, pin.ReferenceFrame.LOCAL_WORLD_ALIGNED)
         J = np.asarray(J).reshape(6, n)  # eigenpy returns a 6x1 Jacobian as a flat (6,) array
+        # The tool's Jacobian in its own axes and J̇_b q̇ (neither depends on the base).
+        Jb = np.asarray(pin.getFrameJacobian(model, data, self.tip, pin.ReferenceFrame.LOCAL))
+        Jb = Jb.reshape(6, n)
+        pin.computeJointJacobiansTimeVariation(model, data, qp, qd)
+        Jb_dot = pin.getFrameJacobianTimeVariation(model, data, self.tip, pin.ReferenceFrame.LOCAL)
+        Jb_dot_qd = np.asarray(Jb_dot).reshape(6, n) @ qd
         if self.base is not None:
             Tb = data.oMf[self.base].homogeneous.copy()
             T = np.linalg.inv(Tb) @ T
@@ -403,7 +411,7 @@ class Reference:
         dqdd_dq, dqdd_dv, minv = (np.array(m) for m in
                                   pin.computeABADerivatives(model, data, qp, qd, tau_pin))
         minv = pu.sym(minv)
-        return {"T": T, "J": J, "D": D, "C": C, "g": g, "tau": tau, "qd": qd, "qdd": qdd,
+        return {"T": T, "J": J, "Jb": Jb, "Jb_dot_qd": Jb_dot_qd, "D": D, "C": C, "g": g, "tau": tau, "qd": qd, "qdd": qdd,
                 "static": self.static, "dtau_dq": dtau_dq, "dtau_dqd": dtau_dv + viscous,
                 "dqdd_dq": dqdd_dq, "dqdd_dqd": dqdd_dv - minv @ viscous, "Minv": minv}
 
@@ -428,7 +436,7 @@ def scales(r):
     dq = max(amax(r["dtau_dq"]), torques)
     dqd = max(amax(r["dtau_dqd"]), amax(r["D"]) * amax(r["qd"]))
     minv = amax(r["Minv"])
-    return {"g": r["static"], "C": amax(r["D"]) * amax(r["qd"]), "dtau_dq": dq, "dtau_dqd": dqd,
+    return {"Jb_dot_qd": amax(r["Jb"]) * amax(r["qd"]) ** 2, "g": r["static"], "C": amax(r["D"]) * amax(r["qd"]), "dtau_dq": dq, "dtau_dqd": dqd,
             "dqdd_dq": minv * dq, "dqdd_dqd": minv * dqd}
 
 
