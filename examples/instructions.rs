@@ -126,6 +126,8 @@ macro_rules! run {
                         "none" => 0.0,
                         "fk" => lane($m::fk(&q).translation.x),
                         "fk_matrix" => lane($m::fk_matrix(&q)[(0, 3)]),
+                        "frames" => lane($m::frames(&q)[2].translation.x),
+                        "frames_matrix" => lane($m::frames_matrix(&q)[2][(0, 3)]),
                         "jacobian" => lane($m::jacobian(&q)[(0, 1)]),
                         "mass_matrix" => lane($m::mass_matrix(&q)[(1, 1)]),
                         "gravity" => lane($m::gravity(&q)[1]),
@@ -195,6 +197,8 @@ macro_rules! run {
                 ("fk", false) => robot.fk(q).translation.x,
                 // The pose as a matrix (no rotation-to-quaternion conversion).
                 ("fk_matrix", true) => $m::fk_matrix(q)[(0, 3)],
+                ("frames", true) => $m::frames(q)[2].translation.x,
+                ("frames_matrix", true) => $m::frames_matrix(q)[2][(0, 3)],
                 ("jacobian", true) => $m::jacobian(q)[(0, 1)],
                 ("jacobian", false) => robot.jacobian(q)[(0, 1)],
                 ("body_jacobian", true) => $m::body_jacobian(q)[(0, 1)],
