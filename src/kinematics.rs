@@ -95,8 +95,7 @@ impl Robot {
     pub fn body_jacobian(&self, q: &(impl Joints<f64> + ?Sized)) -> Matrix6xX<f64> {
         let q = self.check_len("body_jacobian", "q", q);
         let (j, last) = self.jacobian_and_last_frame(q);
-        let tool = last.compose(&self.tool);
-        crate::velocity::turn_jacobian(&tool.r.transpose(), j)
+        crate::velocity::turn_jacobian(&self.tool_rotation_t(&last), j)
     }
 
     /// `J̇_b q̇` in the tool's own axes ([`crate::Arm::body_jdot_qdot`]), from one walk of the
@@ -112,9 +111,14 @@ impl Robot {
         let q = self.check_len("body_jdot_qdot", "q", q);
         let qd = nalgebra::DVector::from_column_slice(self.check_len("body_jdot_qdot", "qd", qd));
         let (j, last) = self.jacobian_and_last_frame(q);
-        let tool = last.compose(&self.tool);
         let jdot_qdot = crate::velocity::jdot_qdot_from_jacobian(self, &j, &qd);
-        crate::velocity::turn_jdot_qdot(&tool.r.transpose(), &(j * qd), &jdot_qdot)
+        crate::velocity::turn_jdot_qdot(&self.tool_rotation_t(&last), &(j * qd), &jdot_qdot)
+    }
+
+    /// `Rᵀ` for the tool's world rotation `R`, from the last joint frame's pose (the tool's
+    /// position is not needed by the body quantities).
+    fn tool_rotation_t(&self, last: &Rigid) -> nalgebra::Matrix3<f64> {
+        (last.r * self.tool.r).transpose()
     }
 
     /// The Jacobian (as [`jacobian`](Self::jacobian)) and the last joint frame's world pose

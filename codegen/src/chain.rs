@@ -31,6 +31,12 @@ fn add3<R: Ring>(a: &V3<R>, b: &V3<R>) -> V3<R> {
     core::array::from_fn(|i| a[i].clone() + b[i].clone())
 }
 
+/// The acceleration of the point `p` of a frame whose origin accelerates by `a` and which
+/// turns with `w` and `wd` (all in the frame's axes): `a + ω̇ × p + ω × (ω × p)`.
+fn point_acceleration<R: Ring>(a: &V3<R>, wd: &V3<R>, w: &V3<R>, p: &V3<R>) -> V3<R> {
+    add3(&add3(a, &cross(wd, p)), &cross(w, &cross(w, p)))
+}
+
 fn scale3<R: Ring>(s: &R, a: &V3<R>) -> V3<R> {
     core::array::from_fn(|i| s.clone() * a[i].clone())
 }
@@ -598,7 +604,7 @@ impl<'c, R: Ring> RingChain<'c, R> {
             let wr = rot_t(t, &w);
             let wdr = rot_t(t, &wd);
             // Acceleration of K_j's origin from the parent's motion.
-            let ap = add3(&add3(&a, &cross(&wd, &t.p)), &cross(&w, &cross(&w, &t.p)));
+            let ap = point_acceleration(&a, &wd, &w, &t.p);
             let mut aj = rot_t(t, &ap);
             let axis_rate = [z(), z(), qd[j].clone()];
             match self.kinds[j] {
@@ -635,7 +641,7 @@ impl<'c, R: Ring> RingChain<'c, R> {
             .outward(qd, &zeros, [z(), z(), z()])
             .pop()
             .expect("validated models have links");
-        let at = add3(&add3(&a, &cross(&wd, tip)), &cross(&w, &cross(&w, tip)));
+        let at = point_acceleration(&a, &wd, &w, tip);
         let frame = self
             .joint_frames()
             .pop()
@@ -657,28 +663,25 @@ impl<'c, R: Ring> RingChain<'c, R> {
     /// velocities in its own axes and `R` its rotation. Everything stays in the joint frames
     /// of the outward pass; no frame is carried to the root.
     pub fn body_jdot_qdot(&self, qd: &[R], tip: &Frame<R>) -> [R; 6] {
-        let n = self.dof();
         let z = || k::<R>(0.0);
-        let zeros: Vec<R> = (0..n).map(|_| z()).collect();
-        let motions = self.outward(qd, &zeros, [z(), z(), z()]);
-        // The velocity of the last joint frame's origin, outward in local coordinates.
-        let mut v: V3<R> = [z(), z(), z()];
-        let mut w_parent: V3<R> = [z(), z(), z()];
-        for (j, (t, (w, _, _))) in self.t.iter().zip(&motions).enumerate() {
-            v = rot_t(t, &add3(&v, &cross(&w_parent, &t.p)));
-            if self.kinds[j] == JointKind::Prismatic {
-                v = add3(&v, &[z(), z(), qd[j].clone()]);
-            }
-            w_parent = w.clone();
-        }
-        let (w, wd, a) = motions.last().expect("validated models have links");
+        let zeros: Vec<R> = (0..self.dof()).map(|_| z()).collect();
+        let (w, wd, a) = self
+            .outward(qd, &zeros, [z(), z(), z()])
+            .pop()
+            .expect("validated models have links");
+        // The last joint frame's origin's velocity (its ω is the outward pass's, the same
+        // nodes in a shared graph).
+        let (_, v) = self
+            .velocities(qd)
+            .pop()
+            .expect("validated models have links");
         let p = &tip.p;
-        let a_tip = add3(&add3(a, &cross(wd, p)), &cross(w, &cross(w, p)));
-        let v_tip = add3(&v, &cross(w, p));
-        let (w_b, v_b) = (rot_t(tip, w), rot_t(tip, &v_tip));
+        let a_tip = point_acceleration(&a, &wd, &w, p);
+        let v_tip = add3(&v, &cross(&w, p));
+        let (w_b, v_b) = (rot_t(tip, &w), rot_t(tip, &v_tip));
         let turning = cross(&w_b, &v_b);
         let linear = rot_t(tip, &a_tip);
-        let angular = rot_t(tip, wd);
+        let angular = rot_t(tip, &wd);
         [
             linear[0].clone() - turning[0].clone(),
             linear[1].clone() - turning[1].clone(),
