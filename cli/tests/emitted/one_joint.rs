@@ -166,8 +166,11 @@ pub mod one_joint {
         #[doc(alias = "updateFramePlacements")]
         #[must_use]
         pub fn frames(&self) -> [na::Isometry3<T>; DOF] {
-            let m = self.frames_matrix();
-            ::core::array::from_fn(|i| isometry(&m[i]))
+            let mut out = [na::Isometry3::identity(); DOF];
+            for (o, m) in out.iter_mut().zip(&self.frames_matrix()) {
+                *o = isometry(m);
+            }
+            out
         }
         ///Geometric Jacobian of the tool frame origin in world axes, rows [v; ω].
         #[doc(alias = "jacob0")]
