@@ -12,8 +12,9 @@
 //! - [`NumericIk`]: damped least squares (Levenberg–Marquardt) for any chain (redundant arms,
 //!   prismatic joints), generic over [`Arm`](crate::Arm), with joint limits, tolerances, an
 //!   iteration cap and a seed; allocation-free in its loop for generated robots. It reaches
-//!   the whole pose or part of it ([`Task`]: the position alone, or the position and the
-//!   tool's z axis), so arms of fewer than six joints have targets they can reach. For a
+//!   the whole pose or part of it ([`Task`]: the position alone, the position and the
+//!   tool's z axis, or the components of a mask in world axes, such as a pose up to a turn
+//!   about the vertical), so arms of fewer than six joints have targets they can reach. For a
 //!   redundant arm, [`NumericIk::solve_preferring`] moves the solution along the arm's
 //!   self-motion to the one nearest a posture, the most manipulable, or the least costly by
 //!   a function of yours ([`Preference`]).

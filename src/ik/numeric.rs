@@ -10,7 +10,9 @@
 //! in metres and radians. For part of a pose ([`NumericIk::task`]) the rotation part and the
 //! Jacobian's rotation rows are those of the [`Task`]: zero for the position alone; for the
 //! position and the tool's z axis `a`, the shortest turn taking `a` to the target's and the
-//! rows `(I − a aᵀ) J_ω` (a turn about `a` does not move it). Each iteration takes the step
+//! rows `(I − a aᵀ) J_ω` (a turn about `a` does not move it); for a mask of world-axis
+//! components, the position rows left out zeroed and the orientation's as [`Task::Mask`]
+//! says. Each iteration takes the step
 //! `Δq = Jᵀ (J Jᵀ + λ² I)⁻¹ e` (a 6×6 Cholesky solve, whatever the number of joints) and
 //! keeps it only if `|e|` decreases: then λ is divided by 3 (towards Gauss–Newton, quadratic
 //! convergence near the solution); otherwise λ is multiplied by 4 and the step retried. Near
@@ -60,8 +62,9 @@ pub struct NumericIk {
     /// configuration within the limits. All attempts share `max_iterations`. 0 runs from the
     /// seed only. Default 50.
     pub restarts: usize,
-    /// What of the target pose to reach: the whole pose, the position, or the position and
-    /// the tool's z axis ([`Task`]). Default [`Task::Pose`].
+    /// What of the target pose to reach: the whole pose, the position, the position and the
+    /// tool's z axis, or the components a mask counts in world axes ([`Task`]). Default
+    /// [`Task::Pose`].
     pub task: Task,
 }
 
@@ -235,6 +238,13 @@ impl NumericIk {
                 "initial_damping must be finite and >= 0",
             ));
         }
+        if let Task::Mask(mask) = self.task
+            && super::task::free_turn(&mask).is_none()
+        {
+            return Err(IkError::InvalidSettings(
+                "task: a mask counts none, two or all three of the rotation components",
+            ));
+        }
         Ok(())
     }
 
@@ -353,7 +363,7 @@ impl NumericIk {
                 }
                 iterations += 1;
                 let mut j = first.take().unwrap_or_else(|| scaled(arm.jacobian(&q)));
-                self.task.rows(&mut j, || pose);
+                self.task.rows(&mut j, || pose, target);
                 let mut accepted = false;
                 while lambda <= MAX_DAMPING {
                     if !self.step(arm, &j, &e, &q, lambda, &mut free, &mut trial) {

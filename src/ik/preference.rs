@@ -282,7 +282,7 @@ impl NumericIk {
             let length = length_scale(arm, &j);
             let mut scaled = j;
             scaled.fixed_rows_mut::<3>(0).unscale_mut(length);
-            self.task.rows(&mut scaled, || arm.fk(&best.q));
+            self.task.rows(&mut scaled, || arm.fk(&best.q), target);
             let svd = JacobianSvd::new(&scaled);
             let (d, reduced) = self.null_space_direction(arm, &best.q, &scaled, &svd, &g);
             let svd = reduced.unwrap_or(svd);
@@ -448,7 +448,7 @@ impl NumericIk {
             let length = length_scale(arm, &j);
             j.fixed_rows_mut::<3>(0).unscale_mut(length);
             let pose = arm.fk(&s.q);
-            self.task.rows(&mut j, || pose);
+            self.task.rows(&mut j, || pose, target);
             let (e, _, _) = self.task.residual(target, &pose, length);
             let error = e.norm_squared();
             if error == 0.0 {

@@ -1,5 +1,6 @@
-//! What of a target pose the numeric solver reaches: the whole pose, the tool's position, or
-//! its position and the direction of its z axis ([`Task`]).
+//! What of a target pose the numeric solver reaches: the whole pose, the tool's position, its
+//! position and the direction of its z axis, or the components a mask counts in world axes
+//! ([`Task`]).
 
 use crate::rotation::rotation_vector;
 #[cfg(not(feature = "std"))]
@@ -46,6 +47,41 @@ pub enum Task {
     /// five-joint arm). The orientation error is the angle between the tool's z axis and the
     /// target's.
     PositionAndAxis,
+    /// The components of the target pose that count, in world axes, `[x, y, z, rx, ry, rz]`
+    /// (the Robotics Toolbox's `mask` with weights 0 and 1). A position component left out
+    /// is free: `[true, true, false, true, true, true]` reaches a pose at any height. Of the
+    /// orientation, count all three components (the whole orientation), none (any), or two:
+    /// the orientation up to a turn about the world axis left out (`[true, true, true, true,
+    /// true, false]`: a pose up to a turn about the vertical, for a gripper symmetric about
+    /// a vertical axis). A mask counting one rotation component is refused
+    /// ([`IkError::InvalidSettings`](super::IkError::InvalidSettings)): turns about two
+    /// world axes are not a set of orientations that one could reach.
+    ///
+    /// The errors are the norm of the counted position components, and the angle of the
+    /// rotation still to make (the whole orientation), 0 (none), or the angle between the
+    /// world axis `u` left out and where the tool turns the direction that the target's
+    /// orientation holds along `u` (`R R*ᵀ u`; it is `u` exactly when the orientations differ
+    /// by a turn about `u`). The solver handles that direction as [`PositionAndAxis`]
+    /// handles the tool's z axis.
+    ///
+    /// [`PositionAndAxis`]: Task::PositionAndAxis
+    ///
+    /// ```
+    /// use dhgen::ik::Task;
+    /// use dhgen::nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
+    /// let a = Isometry3::new(Vector3::new(0.3, 0.1, 0.0), Vector3::new(0.2, -0.4, 0.1));
+    /// // 2 m higher and turned by 0.3 rad about the vertical.
+    /// let up = UnitQuaternion::from_axis_angle(&Vector3::z_axis(), 0.3);
+    /// let b = Isometry3::from_parts(Translation3::new(0.3, 0.1, 2.0), up * a.rotation);
+    /// let free_height_and_turn = Task::Mask([true, true, false, true, true, false]);
+    /// assert_eq!(free_height_and_turn.constraints(), 4);
+    /// let (dp, dr) = free_height_and_turn.errors(&a, &b);
+    /// assert!(dp == 0.0 && dr < 1e-15);
+    /// // Counted, the turn is the whole difference in orientation.
+    /// let (_, dr) = Task::Mask([true; 6]).errors(&a, &b);
+    /// assert!((dr - 0.3).abs() < 1e-15);
+    /// ```
+    Mask([bool; 6]),
 }
 
 impl Task {
@@ -59,6 +95,7 @@ impl Task {
             Task::Pose => 6,
             Task::Position => 3,
             Task::PositionAndAxis => 5,
+            Task::Mask(mask) => mask.iter().filter(|&&m| m).count(),
         }
     }
 
@@ -84,6 +121,10 @@ impl Task {
             Task::Pose => super::pose_error(pose, target),
             Task::Position => (dp, 0.0),
             Task::PositionAndAxis => (dp, shortest_turn(pose, target).1),
+            Task::Mask(mask) => {
+                let (_, dp, dr) = masked(&mask, pose, target, 1.0);
+                (dp, dr)
+            }
         }
     }
 
@@ -91,13 +132,18 @@ impl Task {
     /// two parts in metres and radians: δ is `log(R* Rᵀ)` for the pose, 0 for the position,
     /// and for the axis the rotation vector of the shortest turn taking the tool's z axis to
     /// the target's (perpendicular to the tool's axis, as [`rows`](Task::rows) leaves the
-    /// rotation rows).
+    /// rotation rows); for a mask, the position components left out set to 0 and δ that of
+    /// the whole orientation, none, or of the turn about the world axis left out
+    /// ([`Task::Mask`]), as the axis'.
     pub(super) fn residual(
         self,
         target: &Isometry3<f64>,
         pose: &Isometry3<f64>,
         length: f64,
     ) -> (Vector6<f64>, f64, f64) {
+        if let Task::Mask(mask) = self {
+            return masked(&mask, pose, target, length);
+        }
         let dp = target.translation.vector - pose.translation.vector;
         let (dw, dr) = match self {
             Task::Pose => {
@@ -106,7 +152,7 @@ impl Task {
                 let dw = rotation_vector(&(rt * r.inverse()));
                 (dw, dw.norm())
             }
-            Task::Position => (Vector3::zeros(), 0.0),
+            Task::Position | Task::Mask(_) => (Vector3::zeros(), 0.0),
             Task::PositionAndAxis => shortest_turn(pose, target),
         };
         let e = Vector6::new(
@@ -123,43 +169,132 @@ impl Task {
     /// The rows of the (scaled) Jacobian `j` at `pose` that this task constrains, in place: all
     /// six for the pose; the rotation rows zeroed for the position; for the axis, the rotation
     /// rows' components along the tool's z axis `a` removed (`(I − a aᵀ) J_ω`: turning about
-    /// the axis does not move it). `pose` is called only for the axis, the one task that
-    /// reads it.
+    /// the axis does not move it); for a mask, the position rows left out zeroed and the
+    /// rotation rows as for the whole pose, none, or as for the axis with the direction
+    /// `R R*ᵀ u` ([`Task::Mask`]). `pose` is called only where the rows depend on it.
     pub(super) fn rows<D: Dim>(
         self,
         j: &mut OMatrix<f64, U6, D>,
         pose: impl FnOnce() -> Isometry3<f64>,
+        target: &Isometry3<f64>,
     ) where
         nalgebra::DefaultAllocator: nalgebra::allocator::Allocator<U6, D>,
     {
+        // A turn about the tool-fixed direction `a` does not move it.
+        let about = |j: &mut OMatrix<f64, U6, D>, a: Vector3<f64>| {
+            for mut column in j.column_iter_mut() {
+                let w = column.fixed_rows::<3>(3).into_owned();
+                column.fixed_rows_mut::<3>(3).axpy(-a.dot(&w), &a, 1.0);
+            }
+        };
         match self {
             Task::Pose => {}
             Task::Position => j.fixed_rows_mut::<3>(3).fill(0.0),
-            Task::PositionAndAxis => {
-                let a = pose() * Vector3::z();
-                for mut column in j.column_iter_mut() {
-                    let w = column.fixed_rows::<3>(3).into_owned();
-                    column.fixed_rows_mut::<3>(3).axpy(-a.dot(&w), &a, 1.0);
+            Task::PositionAndAxis => about(j, pose() * Vector3::z()),
+            Task::Mask(mask) => {
+                for r in (0..3).filter(|&r| !mask[r]) {
+                    j.row_mut(r).fill(0.0);
+                }
+                match free_turn(&mask) {
+                    Some(FreeTurn::All) => j.fixed_rows_mut::<3>(3).fill(0.0),
+                    Some(FreeTurn::About(u)) => {
+                        let (a, _) = held_direction(&pose(), target, u);
+                        about(j, a);
+                    }
+                    Some(FreeTurn::None) | None => {}
                 }
             }
         }
     }
 }
 
+/// What a mask leaves free of the orientation: every turn, none, or the turns about world
+/// axis `u` (0, 1, 2); `None` for a mask counting one rotation component.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) enum FreeTurn {
+    All,
+    None,
+    About(usize),
+}
+
+/// [`FreeTurn`] of `mask`.
+pub(super) fn free_turn(mask: &[bool; 6]) -> Option<FreeTurn> {
+    let free: [bool; 3] = core::array::from_fn(|k| !mask[3 + k]);
+    match free.iter().filter(|&&f| f).count() {
+        3 => Some(FreeTurn::All),
+        0 => Some(FreeTurn::None),
+        1 => free.iter().position(|&f| f).map(FreeTurn::About),
+        _ => None,
+    }
+}
+
+/// For a mask leaving the turns about world axis `u` free: the direction `R R*ᵀ e_u` in which
+/// the tool holds what the target's orientation holds along `e_u` (it is `e_u` exactly when
+/// the orientations differ by a turn about `e_u`), and a direction perpendicular to it, the
+/// same map of the next world axis.
+fn held_direction(
+    pose: &Isometry3<f64>,
+    target: &Isometry3<f64>,
+    u: usize,
+) -> (Vector3<f64>, Vector3<f64>) {
+    let axis = |k: usize| Vector3::from_fn(|i, _| if i == k { 1.0 } else { 0.0 });
+    let held = |k: usize| pose.rotation * (target.rotation.inverse() * axis(k));
+    (held(u), held((u + 1) % 3))
+}
+
+/// [`Task::residual`] and [`Task::errors`] for a mask: `[(p* − p)/length; δ]` with the
+/// position components left out set to 0 and δ as [`Task::Mask`] says (0 for a mask counting
+/// one rotation component, which the solver refuses), and the two errors.
+fn masked(
+    mask: &[bool; 6],
+    pose: &Isometry3<f64>,
+    target: &Isometry3<f64>,
+    length: f64,
+) -> (Vector6<f64>, f64, f64) {
+    let dp = target.translation.vector - pose.translation.vector;
+    let p = Vector3::from_fn(|k, _| if mask[k] { dp[k] } else { 0.0 });
+    let (w, dr) = match free_turn(mask) {
+        Some(FreeTurn::None) => {
+            let rt: Rotation3<f64> = target.rotation.to_rotation_matrix();
+            let r: Rotation3<f64> = pose.rotation.to_rotation_matrix();
+            let dw = rotation_vector(&(rt * r.inverse()));
+            (dw, dw.norm())
+        }
+        Some(FreeTurn::About(u)) => {
+            let (a, across) = held_direction(pose, target, u);
+            let b = Vector3::from_fn(|i, _| if i == u { 1.0 } else { 0.0 });
+            turn_between(&a, &b, &across)
+        }
+        Some(FreeTurn::All) | None => (Vector3::zeros(), 0.0),
+    };
+    let e = Vector6::new(p.x / length, p.y / length, p.z / length, w.x, w.y, w.z);
+    (e, p.norm(), dr)
+}
+
 /// The rotation vector of the shortest turn taking the z axis `a` of `pose` to the z axis `b`
 /// of `target` (perpendicular to both), and its angle `atan2(|a × b|, a·b)`; for opposite
 /// axes, a half turn about the x axis of `pose` (perpendicular to `a`).
 fn shortest_turn(pose: &Isometry3<f64>, target: &Isometry3<f64>) -> (Vector3<f64>, f64) {
-    let (a, b) = (pose * Vector3::z(), target * Vector3::z());
-    let u = a.cross(&b);
-    let (s, c) = (u.norm(), a.dot(&b));
+    turn_between(
+        &(pose * Vector3::z()),
+        &(target * Vector3::z()),
+        &(pose * Vector3::x()),
+    )
+}
+
+/// The rotation vector of the shortest turn taking the unit vector `a` to the unit vector
+/// `b` (perpendicular to both), and its angle `atan2(|a × b|, a·b)`; for opposite vectors, a
+/// half turn about `across`, a unit vector perpendicular to `a`.
+fn turn_between(a: &Vector3<f64>, b: &Vector3<f64>, across: &Vector3<f64>) -> (Vector3<f64>, f64) {
+    let u = a.cross(b);
+    let (s, c) = (u.norm(), a.dot(b));
     let angle = s.atan2(c);
     let turn = if s > 0.0 {
         u * (angle / s)
     } else if c >= 0.0 {
         Vector3::zeros()
     } else {
-        (pose * Vector3::x()) * core::f64::consts::PI
+        across * core::f64::consts::PI
     };
     (turn, angle)
 }

@@ -4,9 +4,11 @@
 //! direction, which the whole pose there is not); checked against the targets directly (the
 //! distance between the origins, the tool's z axis against the target's), not through the
 //! solver's own error. On a redundant arm the freed constraints are more self-motion for
-//! `solve_preferring`.
+//! `solve_preferring`. A mask (`Task::Mask`) frees components of the pose error in world
+//! axes: checked the same way, the counted components against the target, the free ones left
+//! free.
 
-use crate::catalogue::{panda, planar_elbow, scara};
+use crate::catalogue::{panda, planar_elbow, puma560, scara};
 use crate::support::{allocations_during, random_q};
 use dhgen::ik::{IkError, NumericIk, Preference, Task};
 use dhgen::model::random::{ArmStyle, random_arm};
@@ -21,7 +23,8 @@ use rand::{RngExt, SeedableRng};
 /// Solves `target` in `task` from `seed` and checks the result against the target directly:
 /// the tool's origin within the position tolerance, its z axis within the orientation
 /// tolerance of the target's (for the axis), the rotation matrix within it (for the pose),
-/// the joints within their limits, and the errors
+/// for a mask the counted position components within the tolerance and the turn still to
+/// make about the free world axis (if one), the joints within their limits, and the errors
 /// reported those of [`Task::errors`].
 fn check<A: Arm>(
     arm: &A,
@@ -41,14 +44,29 @@ where
         .solve(arm, target, seed)
         .unwrap_or_else(|e| panic!("{what}: {e}"));
     let pose = arm.fk(&s.q);
-    let dp = (pose.translation.vector - target.translation.vector).norm();
-    assert!(dp <= ik.position_tolerance, "{what}: position {dp:e}");
+    let dp = target.translation.vector - pose.translation.vector;
+    let counted = |k: usize| !matches!(task, Task::Mask(mask) if !mask[k]);
+    for k in (0..3).filter(|&k| counted(k)) {
+        assert!(
+            dp[k].abs() <= ik.position_tolerance,
+            "{what}: position {dp}"
+        );
+    }
     let axis = (pose.rotation * Vector3::new(0.0, 0.0, 1.0)
         - target.rotation * Vector3::new(0.0, 0.0, 1.0))
     .norm();
+    // The turn still to make, `R* Rᵀ`: with one world axis free, about that axis.
+    let left = target.rotation * pose.rotation.inverse();
+    let free: Vec<usize> = (0..3).filter(|&k| !counted(3 + k)).collect();
     match task {
         Task::PositionAndAxis => assert!(axis <= ik.orientation_tolerance, "{what}: {axis:e}"),
         Task::Position => assert_eq!(s.orientation_error, 0.0, "{what}"),
+        Task::Mask(_) if free.len() == 3 => assert_eq!(s.orientation_error, 0.0, "{what}"),
+        Task::Mask(_) if free.len() == 1 => {
+            let u = Vector3::from_fn(|k, _| if k == free[0] { 1.0 } else { 0.0 });
+            let moved = (left * u - u).norm();
+            assert!(moved <= ik.orientation_tolerance, "{what}: {moved:e}");
+        }
         _ => {
             let r = pose.rotation.to_rotation_matrix().into_inner()
                 - target.rotation.to_rotation_matrix().into_inner();
@@ -192,10 +210,26 @@ fn panda_reaches_each_task() {
 /// rows, where no joint is on a limit).
 #[test]
 fn a_position_alone_frees_more_self_motion() {
+    let (checked, nearer) = frees_more_self_motion(Task::Position, 3..6, 78, 20);
+    assert!(checked >= 10, "{checked}");
+    assert_eq!(nearer, 20);
+}
+
+/// On `cases` random targets, posture and seeds for the Panda: the solution of `task` nearest
+/// a posture, started from the whole pose's, reaches the task, is at least as near as the
+/// whole pose's, and where no joint is on a limit is stationary on the self-motion of the
+/// Jacobian with the rows `free` zeroed (the posture's pull has no part in its null space).
+/// Returns how many were checked for stationarity and how many were nearer.
+fn frees_more_self_motion(
+    task: Task,
+    free: core::ops::Range<usize>,
+    seed: u64,
+    cases: usize,
+) -> (usize, usize) {
     let arm = panda::Robot;
-    let mut rng = StdRng::seed_from_u64(78);
+    let mut rng = StdRng::seed_from_u64(seed);
     let (mut checked, mut nearer) = (0, 0);
-    for case in 0..20 {
+    for case in 0..cases {
         let target = arm.fk(&random_q(&arm, &mut rng));
         let seed = random_q(&arm, &mut rng);
         let posture = random_q(&arm, &mut rng);
@@ -208,42 +242,40 @@ fn a_position_alone_frees_more_self_motion() {
                 .unwrap_or_else(|e| panic!("case {case}: {e}"))
                 .q
         };
-        // From the whole pose's nearest solution, which already has the position.
+        // From the whole pose's nearest solution, which already reaches the task.
         let whole = solve(Task::Pose, &seed);
-        let position = solve(Task::Position, &whole);
-        let p = arm.fk(&position).translation.vector;
-        assert!(
-            (p - target.translation.vector).norm() <= 1e-10,
-            "case {case}"
-        );
+        let freer = solve(task, &whole);
+        let (dp, dr) = task.errors(&arm.fk(&freer), &target);
+        assert!(dp <= 1e-10 && dr <= 1e-10, "case {case}: {dp:e} {dr:e}");
         let distance = |q: &SVector<f64, 7>| (posture - q).norm();
-        nearer += usize::from(distance(&position) < distance(&whole) - 1e-6);
+        nearer += usize::from(distance(&freer) < distance(&whole) - 1e-6);
         assert!(
-            distance(&position) <= distance(&whole) + 1e-9,
+            distance(&freer) <= distance(&whole) + 1e-9,
             "case {case}: {} > {}",
-            distance(&position),
+            distance(&freer),
             distance(&whole)
         );
         let on_limit = (0..7).any(|k| {
             let [lo, hi] = arm.limits(k).unwrap();
-            position[k] <= lo + 1e-9 || position[k] >= hi - 1e-9
+            freer[k] <= lo + 1e-9 || freer[k] >= hi - 1e-9
         });
         if on_limit {
             continue;
         }
-        let mut j = arm.jacobian(&position);
-        j.fixed_rows_mut::<3>(3).fill(0.0);
-        let pull = posture - position;
-        let free = JacobianSvd::new(&j).null_space_projection(&pull);
+        let mut j = arm.jacobian(&freer);
+        for r in free.clone() {
+            j.row_mut(r).fill(0.0);
+        }
+        let pull = posture - freer;
+        let moves = JacobianSvd::new(&j).null_space_projection(&pull);
         assert!(
-            free.amax() <= 1e-7 * (1.0 + pull.amax()),
+            moves.amax() <= 1e-7 * (1.0 + pull.amax()),
             "case {case}: {:e}",
-            free.amax()
+            moves.amax()
         );
         checked += 1;
     }
-    assert!(checked >= 10, "{checked}");
-    assert_eq!(nearer, 20);
+    (checked, nearer)
 }
 
 #[test]
@@ -302,4 +334,114 @@ fn a_task_solve_allocates_nothing_for_a_generated_arm() {
         0
     );
     assert!(result.unwrap().unwrap().position_error <= 1e-10);
+}
+
+/// `pose` turned about the world's vertical through its origin by `angle`.
+fn yawed(pose: &Isometry3<f64>, angle: f64) -> Isometry3<f64> {
+    let turn = UnitQuaternion::from_axis_angle(&Vector3::z_axis(), angle);
+    Isometry3::from_parts(pose.translation, turn * pose.rotation)
+}
+
+/// A SCARA told only x and y reaches them at heights its prismatic joint cannot (the same
+/// targets as positions fail); a mask counting one rotation component is refused.
+#[test]
+fn a_mask_frees_what_it_leaves_out_on_a_scara() {
+    let arm = scara::Robot;
+    let mut rng = StdRng::seed_from_u64(91);
+    for case in 0..20 {
+        let mut target = position_of(&arm, &random_q(&arm, &mut rng), &mut rng);
+        target.translation.vector.z += rng.random_range(1.0..5.0);
+        let seed = random_q(&arm, &mut rng);
+        let what = format!("scara xy {case}");
+        let mask = Task::Mask([true, true, false, false, false, false]);
+        check(&arm, mask, &target, &seed, &what);
+        let position = NumericIk {
+            task: Task::Position,
+            ..NumericIk::default()
+        };
+        assert!(position.solve(&arm, &target, &seed).is_err(), "{what}");
+    }
+    for rotation in [
+        [true, false, false],
+        [false, true, false],
+        [false, false, true],
+    ] {
+        let mask = [true, true, true, rotation[0], rotation[1], rotation[2]];
+        let ik = NumericIk {
+            task: Task::Mask(mask),
+            ..NumericIk::default()
+        };
+        let seed = random_q(&arm, &mut rng);
+        let target = arm.fk(&seed);
+        match ik.solve(&arm, &target, &seed) {
+            Err(IkError::InvalidSettings(why)) => assert!(why.contains("mask"), "{why}"),
+            other => panic!("{mask:?}: {other:?}"),
+        }
+    }
+}
+
+/// With the turn about the world's vertical left free, the PUMA 560 (five constraints, six
+/// joints) and the Panda reach targets turned about the vertical from random seeds, and the
+/// turn they leave is free: the PUMA 560's solutions mostly keep some of it.
+#[test]
+fn a_mask_leaves_the_turn_about_the_vertical_free() {
+    let mask = Task::Mask([true, true, true, true, true, false]);
+    let mut rng = StdRng::seed_from_u64(92);
+    let mut kept = 0;
+    for case in 0..20 {
+        let arm = puma560::Robot;
+        let pose = arm.fk(&random_q(&arm, &mut rng));
+        let target = yawed(&pose, rng.random_range(-3.0..3.0));
+        let seed = random_q(&arm, &mut rng);
+        let q = check(&arm, mask, &target, &seed, &format!("puma {case}"));
+        let left = target.rotation * arm.fk(&q).rotation.inverse();
+        kept += usize::from(left.angle() > 1e-3);
+        let arm = panda::Robot;
+        let pose = arm.fk(&random_q(&arm, &mut rng));
+        let target = yawed(&pose, rng.random_range(-3.0..3.0));
+        let seed = random_q(&arm, &mut rng);
+        check(&arm, mask, &target, &seed, &format!("panda {case}"));
+    }
+    assert!(kept >= 10, "{kept}");
+}
+
+/// The turn about the vertical, left free, is one more dimension of the Panda's self-motion:
+/// the solution nearest a posture, started from the whole pose's, is at least as near (here
+/// nearer in all but a few cases), and stationary on that larger self-motion (where no joint is
+/// on a limit: the yaw freedom pushes more of them there, so more cases).
+#[test]
+fn a_mask_frees_more_self_motion() {
+    let mask = Task::Mask([true, true, true, true, true, false]);
+    let (checked, nearer) = frees_more_self_motion(mask, 5..6, 93, 40);
+    assert!(checked >= 10, "{checked}");
+    assert!(nearer >= 35, "{nearer}");
+}
+
+#[test]
+fn mask_errors_and_constraints_are_what_they_say() {
+    let a = Isometry3::new(Vector3::new(0.1, 0.2, 0.3), Vector3::new(0.4, -0.2, 0.1));
+    // Moved by (0.3, 0, 0.4) and turned by 0.7 about the world's vertical.
+    let b = Translation3::new(0.3, 0.0, 0.4) * yawed(&a, 0.7);
+    let all = Task::Mask([true; 6]);
+    let (dp, dr) = all.errors(&b, &a);
+    assert!(
+        (dp - 0.5).abs() < 1e-15 && (dr - 0.7).abs() < 1e-14,
+        "{dp} {dr}"
+    );
+    // As the whole pose's.
+    let (p, r) = Task::Pose.errors(&b, &a);
+    assert!((dp - p).abs() < 1e-15 && (dr - r).abs() < 1e-14);
+    let (dp, dr) = Task::Mask([false, true, true, true, true, false]).errors(&b, &a);
+    assert!((dp - 0.4).abs() < 1e-15 && dr < 1e-15, "{dp} {dr:e}");
+    let (dp, dr) = Task::Mask([false; 6]).errors(&b, &a);
+    assert_eq!((dp, dr), (0.0, 0.0));
+    assert_eq!(
+        [
+            [true; 6],
+            [false; 6],
+            [true, false, true, true, false, true]
+        ]
+        .map(|m| Task::Mask(m).constraints()),
+        [6, 0, 4]
+    );
 }
