@@ -75,6 +75,51 @@ pub fn target(
     ))
 }
 
+/// The task of `--mask X,Y,Z,RX,RY,RZ` (each 1 or 0), `given` that of the other flags: a
+/// mask counting rotation components needs the orientation of `--rpy` or `--at` (the whole
+/// pose).
+pub fn mask(list: &str, given: Task) -> Result<Task, String> {
+    let values = split("--mask", list)?;
+    if values.len() != 6 {
+        return Err(format!(
+            "--mask takes 6 values (X,Y,Z,RX,RY,RZ), not {}",
+            values.len()
+        ));
+    }
+    let mut mask = [false; 6];
+    for (k, v) in values.iter().enumerate() {
+        mask[k] = match v.as_str() {
+            "1" => true,
+            "0" => false,
+            _ => return Err(format!("--mask, entry {}: 1 or 0, not {v:?}", k + 1)),
+        };
+    }
+    match mask[3..].iter().filter(|&&m| m).count() {
+        1 => Err(
+            "--mask counts none, two or all three of RX,RY,RZ (two: free to turn \
+                  about the world axis left out)"
+                .into(),
+        ),
+        0 => Ok(Task::Mask(mask)),
+        _ if given == Task::Pose => Ok(Task::Mask(mask)),
+        _ => {
+            Err("--mask counts rotation components: give the orientation with --rpy or --at".into())
+        }
+    }
+}
+
+/// `mask`'s counted components by name.
+fn counted(mask: &[bool; 6]) -> String {
+    let names = ["x", "y", "z", "rx", "ry", "rz"];
+    let counted: Vec<&str> = names
+        .iter()
+        .zip(mask)
+        .filter(|(_, c)| **c)
+        .map(|(n, _)| *n)
+        .collect();
+    counted.join(", ")
+}
+
 /// One solution, as printed.
 struct Found {
     q: Vec<f64>,
@@ -165,6 +210,7 @@ pub fn run(
                     .collect::<Vec<_>>()
             })
             .map_err(|e| e.to_string()),
+        Task::Mask(_) => Err("it solves whole poses, not a --mask".to_string()),
         _ => Err("it needs the whole pose: give --rpy".to_string()),
     };
     let ik = NumericIk {
@@ -216,9 +262,18 @@ pub fn run(
             "task": match task {
                 Task::Position => "position",
                 Task::PositionAndAxis => "position and axis",
+                Task::Mask(_) => "mask",
                 _ => "pose",
             },
-            "rpy": (task == Task::Pose).then(|| rpy_of(target)),
+            "mask": match task {
+                Task::Mask(m) => Some(m.map(u8::from)),
+                _ => None,
+            },
+            "rpy": match task {
+                Task::Pose => Some(rpy_of(target)),
+                Task::Mask(m) if m[3..].contains(&true) => Some(rpy_of(target)),
+                _ => None,
+            },
             "axis": (task == Task::PositionAndAxis).then(|| axis_of(target)),
             "closed_form": match &closed {
                 Ok(list) => json!({ "solutions": list.iter().map(Found::json).collect::<Vec<_>>() }),
@@ -240,6 +295,12 @@ pub fn run(
     let orientation = match task {
         Task::Position => "any orientation".to_string(),
         Task::PositionAndAxis => format!("z axis along ({})", listed(axis_of(target))),
+        Task::Mask(m) if m[3..].contains(&true) => format!(
+            "roll-pitch-yaw ({}) rad, counting {}",
+            listed(rpy_of(target)),
+            counted(&m)
+        ),
+        Task::Mask(m) => format!("any orientation, counting {}", counted(&m)),
         _ => format!("roll-pitch-yaw ({}) rad", listed(rpy_of(target))),
     };
     writeln!(

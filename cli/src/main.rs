@@ -4,8 +4,9 @@
 //! - `dhgen eval ROBOT.toml --q ... [--qd ...] [--qdd ...] [--json] [--derivatives]
 //!   [--task-space]`: T, J, J_b (tool axes), D, C, g, τ, the kinetic and potential energy
 //!   (and the derivatives of the dynamics, the tool's task-space dynamics) on the runtime path;
-//! - `dhgen ik ROBOT.toml (--position X,Y,Z [--rpy R,P,Y] | --at LIST) [--seed LIST]
-//!   [--nearest LIST | --most-manipulable] [--json]`: inverse kinematics, closed form and numeric;
+//! - `dhgen ik ROBOT.toml (--position X,Y,Z [--rpy R,P,Y | --axis X,Y,Z] | --at LIST)
+//!   [--mask X,Y,Z,RX,RY,RZ] [--seed LIST] [--nearest LIST | --most-manipulable] [--json]`:
+//!   inverse kinematics, closed form and numeric;
 //! - `dhgen emit ROBOT.toml [-o FILE] [--name MOD] [--derivatives] [--regressor]`: the module `robot!`
 //!   generates, formatted;
 //! - `dhgen latex ROBOT.toml`: D(q), c_ijk, g(q) and P(q) as LaTeX equations;
@@ -118,6 +119,12 @@ enum Command {
         /// The pose of the tool at these joint values (a list like `eval`'s `--q`).
         #[arg(long, allow_hyphen_values = true, value_name = "LIST")]
         at: Option<String>,
+        /// The components of the pose to reach, in world axes: `X,Y,Z,RX,RY,RZ`, each 1
+        /// (counted) or 0 (free), the Robotics Toolbox's `mask`. Of `RX,RY,RZ` count none,
+        /// two (free to turn about the world axis left out) or all three, the orientation
+        /// given by `--rpy` or `--at`.
+        #[arg(long, value_name = "X,Y,Z,RX,RY,RZ", conflicts_with = "axis")]
+        mask: Option<String>,
         /// The numeric solver's seed (a list like `eval`'s `--q`); 0 if omitted (each joint
         /// clamped into its limits).
         #[arg(long, allow_hyphen_values = true, value_name = "LIST")]
@@ -363,13 +370,14 @@ fn run(command: Command) -> Result<String, String> {
             rpy,
             axis,
             at,
+            mask,
             seed,
             nearest,
             most_manipulable,
             json,
         } => {
             let r = load(&robot)?;
-            let (target, task) = match (at, position) {
+            let (target, mut task) = match (at, position) {
                 (Some(at), _) => {
                     let q = eval::positions(&r, "--at", &eval::split("--at", &at)?)?;
                     (r.fk(&q), Task::Pose)
@@ -379,6 +387,9 @@ fn run(command: Command) -> Result<String, String> {
                     return Err("give the pose: --position (with --rpy or --axis) or --at".into());
                 }
             };
+            if let Some(list) = mask {
+                task = ik::mask(&list, task)?;
+            }
             let prefer = match (nearest, most_manipulable) {
                 (Some(list), _) => ik::Prefer::Posture(eval::positions(
                     &r,

@@ -1600,6 +1600,104 @@ fn ik_solves_part_of_a_pose() {
     assert!(text.contains("z axis along (0, 0, -1)"), "{text}");
 }
 
+/// `--mask`: the SCARA placed over a point above its reach, and the Panda at the pose of
+/// `--at` up to a turn about the vertical, checked with the robots' forward kinematics; bad
+/// masks are refused with the reason.
+#[test]
+fn ik_solves_a_mask() {
+    let run = |args: &[&str]| -> serde_json::Value {
+        serde_json::from_str(&stdout(args)).expect("valid JSON")
+    };
+    let scara = Robot::from_toml_file(root().join("robots/scara.toml")).unwrap();
+    let args = [
+        "ik",
+        "robots/scara.toml",
+        "--position",
+        "0.3,0.2,3",
+        "--mask",
+        "1,1,0,0,0,0",
+    ];
+    let v = run(&[&args[..], &["--json"]].concat());
+    assert_eq!(v["task"], "mask");
+    assert_eq!(v["mask"], serde_json::json!([1, 1, 0, 0, 0, 0]));
+    assert!(v["closed_form"]["unavailable"].is_string());
+    let p = scara.fk(&ik_q(&v["numeric"])).translation.vector;
+    assert!(
+        (p.x - 0.3).abs() < 1e-10 && (p.y - 0.2).abs() < 1e-10,
+        "{p}"
+    );
+    assert!(stdout(&args).contains("any orientation, counting x, y"));
+
+    let panda = Robot::from_toml_file(root().join("robots/panda.toml")).unwrap();
+    let at = [0.1, -0.3, 0.2, -1.8, 0.1, 1.6, 0.5];
+    let target = panda.fk(&at);
+    let v = run(&[
+        "ik",
+        "robots/panda.toml",
+        "--at",
+        "0.1,-0.3,0.2,-1.8,0.1,1.6,0.5",
+        "--mask",
+        "1,1,1,1,1,0",
+        "--seed",
+        "0.6,0,0,-1.5,0,1.5,0",
+        "--json",
+    ]);
+    let pose = panda.fk(&ik_q(&v["numeric"]));
+    let dp = (pose.translation.vector - target.translation.vector).norm();
+    // The turn still to make is about the vertical: it leaves the vertical where it is.
+    let up = dhgen::nalgebra::Vector3::z();
+    let left = target.rotation * pose.rotation.inverse();
+    assert!(dp < 1e-10 && (left * up - up).norm() < 1e-10, "{dp:e}");
+    assert!(
+        left.angle() > 1e-3,
+        "the seed's turn about the vertical is kept"
+    );
+
+    for (mask, rpy, why) in [
+        (
+            "1,1,1",
+            true,
+            "--mask takes 6 values (X,Y,Z,RX,RY,RZ), not 3",
+        ),
+        ("1,1,2,1,1,0", true, "--mask, entry 3: 1 or 0, not \"2\""),
+        (
+            "1,1,1,1,0,0",
+            true,
+            "--mask counts none, two or all three of RX,RY,RZ",
+        ),
+        (
+            "1,1,1,1,1,0",
+            false,
+            "give the orientation with --rpy or --at",
+        ),
+    ] {
+        let mut args = vec![
+            "ik",
+            "robots/panda.toml",
+            "--position",
+            "0.4,0.1,0.5",
+            "--mask",
+            mask,
+        ];
+        if rpy {
+            args.extend(["--rpy", "0,0,0"]);
+        }
+        let err = failure(&args);
+        assert!(err.contains(why), "{mask}: {err}");
+    }
+    let err = failure(&[
+        "ik",
+        "robots/panda.toml",
+        "--position",
+        "0.4,0.1,0.5",
+        "--axis",
+        "0,0,1",
+        "--mask",
+        "1,1,1,0,0,0",
+    ]);
+    assert!(err.contains("cannot be used with"), "{err}");
+}
+
 #[test]
 fn ik_reports_what_it_cannot_do() {
     let err = failure(&[
