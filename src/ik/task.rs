@@ -146,12 +146,7 @@ impl Task {
         }
         let dp = target.translation.vector - pose.translation.vector;
         let (dw, dr) = match self {
-            Task::Pose => {
-                let rt: Rotation3<f64> = target.rotation.to_rotation_matrix();
-                let r: Rotation3<f64> = pose.rotation.to_rotation_matrix();
-                let dw = rotation_vector(&(rt * r.inverse()));
-                (dw, dw.norm())
-            }
+            Task::Pose => whole_turn(pose, target),
             Task::Position | Task::Mask(_) => (Vector3::zeros(), 0.0),
             Task::PositionAndAxis => shortest_turn(pose, target),
         };
@@ -196,33 +191,35 @@ impl Task {
                     j.row_mut(r).fill(0.0);
                 }
                 match free_turn(&mask) {
-                    Some(FreeTurn::All) => j.fixed_rows_mut::<3>(3).fill(0.0),
+                    Some(FreeTurn::Every) => j.fixed_rows_mut::<3>(3).fill(0.0),
                     Some(FreeTurn::About(u)) => {
                         let (a, _) = held_direction(&pose(), target, u);
                         about(j, a);
                     }
-                    Some(FreeTurn::None) | None => {}
+                    Some(FreeTurn::Nothing) | None => {}
                 }
             }
         }
     }
 }
 
-/// What a mask leaves free of the orientation: every turn, none, or the turns about world
-/// axis `u` (0, 1, 2); `None` for a mask counting one rotation component.
+/// What a mask leaves free of the orientation ([`free_turn`]).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(super) enum FreeTurn {
-    All,
-    None,
+    /// Every turn: no rotation component counted.
+    Every,
+    /// No turn: all three counted.
+    Nothing,
+    /// The turns about world axis `u` (0, 1, 2), the one not counted.
     About(usize),
 }
 
-/// [`FreeTurn`] of `mask`.
+/// [`FreeTurn`] of `mask`; `None` for a mask counting one rotation component.
 pub(super) fn free_turn(mask: &[bool; 6]) -> Option<FreeTurn> {
     let free: [bool; 3] = core::array::from_fn(|k| !mask[3 + k]);
     match free.iter().filter(|&&f| f).count() {
-        3 => Some(FreeTurn::All),
-        0 => Some(FreeTurn::None),
+        3 => Some(FreeTurn::Every),
+        0 => Some(FreeTurn::Nothing),
         1 => free.iter().position(|&f| f).map(FreeTurn::About),
         _ => None,
     }
@@ -254,21 +251,25 @@ fn masked(
     let dp = target.translation.vector - pose.translation.vector;
     let p = Vector3::from_fn(|k, _| if mask[k] { dp[k] } else { 0.0 });
     let (w, dr) = match free_turn(mask) {
-        Some(FreeTurn::None) => {
-            let rt: Rotation3<f64> = target.rotation.to_rotation_matrix();
-            let r: Rotation3<f64> = pose.rotation.to_rotation_matrix();
-            let dw = rotation_vector(&(rt * r.inverse()));
-            (dw, dw.norm())
-        }
+        Some(FreeTurn::Nothing) => whole_turn(pose, target),
         Some(FreeTurn::About(u)) => {
             let (a, across) = held_direction(pose, target, u);
             let b = Vector3::from_fn(|i, _| if i == u { 1.0 } else { 0.0 });
             turn_between(&a, &b, &across)
         }
-        Some(FreeTurn::All) | None => (Vector3::zeros(), 0.0),
+        Some(FreeTurn::Every) | None => (Vector3::zeros(), 0.0),
     };
     let e = Vector6::new(p.x / length, p.y / length, p.z / length, w.x, w.y, w.z);
     (e, p.norm(), dr)
+}
+
+/// The rotation vector `log(R* Rᵀ)` of the turn still to make from `pose` to `target`, and its
+/// angle.
+fn whole_turn(pose: &Isometry3<f64>, target: &Isometry3<f64>) -> (Vector3<f64>, f64) {
+    let rt: Rotation3<f64> = target.rotation.to_rotation_matrix();
+    let r: Rotation3<f64> = pose.rotation.to_rotation_matrix();
+    let dw = rotation_vector(&(rt * r.inverse()));
+    (dw, dw.norm())
 }
 
 /// The rotation vector of the shortest turn taking the z axis `a` of `pose` to the z axis `b`
