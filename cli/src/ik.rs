@@ -94,18 +94,19 @@ pub fn mask(list: &str, given: Task) -> Result<Task, String> {
             _ => return Err(format!("--mask, entry {}: 1 or 0, not {v:?}", k + 1)),
         };
     }
-    match mask[3..].iter().filter(|&&m| m).count() {
-        1 => Err(
-            "--mask counts none, two or all three of RX,RY,RZ (two: free to turn \
-                  about the world axis left out)"
-                .into(),
-        ),
-        0 => Ok(Task::Mask(mask)),
-        _ if given == Task::Pose => Ok(Task::Mask(mask)),
-        _ => {
-            Err("--mask counts rotation components: give the orientation with --rpy or --at".into())
-        }
+    let task = Task::Mask(mask);
+    // The library's rule, said in the flag's terms.
+    task.check().map_err(|_| {
+        "--mask counts none, two or all three of RX,RY,RZ (two: free to turn about the world \
+         axis left out)"
+            .to_string()
+    })?;
+    if mask[3..].contains(&true) && given != Task::Pose {
+        return Err(
+            "--mask counts rotation components: give the orientation with --rpy or --at".into(),
+        );
     }
+    Ok(task)
 }
 
 /// `mask`'s counted components by name.

@@ -238,14 +238,7 @@ impl NumericIk {
                 "initial_damping must be finite and >= 0",
             ));
         }
-        if let Task::Mask(mask) = self.task
-            && super::task::free_turn(&mask).is_none()
-        {
-            return Err(IkError::InvalidSettings(
-                "task: a mask counts none, two or all three of the rotation components",
-            ));
-        }
-        Ok(())
+        self.task.check().map_err(IkError::InvalidSettings)
     }
 
     pub(super) fn clamp<A: Arm>(&self, arm: &A, q: &mut OVector<f64, A::Dof>)

@@ -99,6 +99,24 @@ impl Task {
         }
     }
 
+    /// Why the numeric solver refuses this task, if it does: a [`Mask`](Task::Mask) counting
+    /// exactly one rotation component. [`NumericIk`](super::NumericIk) returns it as
+    /// [`IkError::InvalidSettings`](super::IkError::InvalidSettings).
+    ///
+    /// ```
+    /// use dhgen::ik::Task;
+    /// assert!(Task::Mask([true, true, true, true, true, false]).check().is_ok());
+    /// assert!(Task::Mask([true, true, true, false, false, true]).check().is_err());
+    /// ```
+    pub fn check(self) -> Result<(), &'static str> {
+        match self {
+            Task::Mask(mask) if free_turn(&mask).is_none() => {
+                Err("task: a mask counts none, two or all three of the rotation components")
+            }
+            _ => Ok(()),
+        }
+    }
+
     /// `(position error in m, orientation error in rad)` of `pose` against `target` in this
     /// task: the distance between the tool origins, and the angle of the rotation between the
     /// orientations ([`Pose`](Task::Pose), as [`pose_error`](super::pose_error)), 0
@@ -121,8 +139,8 @@ impl Task {
             Task::Pose => super::pose_error(pose, target),
             Task::Position => (dp, 0.0),
             Task::PositionAndAxis => (dp, shortest_turn(pose, target).1),
-            Task::Mask(mask) => {
-                let (_, dp, dr) = masked(&mask, pose, target, 1.0);
+            Task::Mask(_) => {
+                let (_, dp, dr) = self.residual(target, pose, 1.0);
                 (dp, dr)
             }
         }
@@ -141,14 +159,17 @@ impl Task {
         pose: &Isometry3<f64>,
         length: f64,
     ) -> (Vector6<f64>, f64, f64) {
-        if let Task::Mask(mask) = self {
-            return masked(&mask, pose, target, length);
-        }
-        let dp = target.translation.vector - pose.translation.vector;
+        let mut dp = target.translation.vector - pose.translation.vector;
         let (dw, dr) = match self {
             Task::Pose => whole_turn(pose, target),
-            Task::Position | Task::Mask(_) => (Vector3::zeros(), 0.0),
+            Task::Position => (Vector3::zeros(), 0.0),
             Task::PositionAndAxis => shortest_turn(pose, target),
+            Task::Mask(mask) => {
+                for k in (0..3).filter(|&k| !mask[k]) {
+                    dp[k] = 0.0;
+                }
+                masked_turn(&mask, pose, target)
+            }
         };
         let e = Vector6::new(
             dp.x / length,
@@ -205,7 +226,7 @@ impl Task {
 
 /// What a mask leaves free of the orientation ([`free_turn`]).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(super) enum FreeTurn {
+enum FreeTurn {
     /// Every turn: no rotation component counted.
     Every,
     /// No turn: all three counted.
@@ -215,7 +236,7 @@ pub(super) enum FreeTurn {
 }
 
 /// [`FreeTurn`] of `mask`; `None` for a mask counting one rotation component.
-pub(super) fn free_turn(mask: &[bool; 6]) -> Option<FreeTurn> {
+fn free_turn(mask: &[bool; 6]) -> Option<FreeTurn> {
     let free: [bool; 3] = core::array::from_fn(|k| !mask[3 + k]);
     match free.iter().filter(|&&f| f).count() {
         3 => Some(FreeTurn::Every),
@@ -239,18 +260,14 @@ fn held_direction(
     (held(u), held((u + 1) % 3))
 }
 
-/// [`Task::residual`] and [`Task::errors`] for a mask: `[(p* − p)/length; δ]` with the
-/// position components left out set to 0 and δ as [`Task::Mask`] says (0 for a mask counting
-/// one rotation component, which the solver refuses), and the two errors.
-fn masked(
+/// The rotation part of [`Task::residual`] for a mask, and its angle: as [`Task::Mask`] says
+/// (0 for a mask counting one rotation component, which [`Task::check`] refuses).
+fn masked_turn(
     mask: &[bool; 6],
     pose: &Isometry3<f64>,
     target: &Isometry3<f64>,
-    length: f64,
-) -> (Vector6<f64>, f64, f64) {
-    let dp = target.translation.vector - pose.translation.vector;
-    let p = Vector3::from_fn(|k, _| if mask[k] { dp[k] } else { 0.0 });
-    let (w, dr) = match free_turn(mask) {
+) -> (Vector3<f64>, f64) {
+    match free_turn(mask) {
         Some(FreeTurn::Nothing) => whole_turn(pose, target),
         Some(FreeTurn::About(u)) => {
             let (a, across) = held_direction(pose, target, u);
@@ -258,9 +275,7 @@ fn masked(
             turn_between(&a, &b, &across)
         }
         Some(FreeTurn::Every) | None => (Vector3::zeros(), 0.0),
-    };
-    let e = Vector6::new(p.x / length, p.y / length, p.z / length, w.x, w.y, w.z);
-    (e, p.norm(), dr)
+    }
 }
 
 /// The rotation vector `log(R* Rᵀ)` of the turn still to make from `pose` to `target`, and its
