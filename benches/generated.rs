@@ -133,6 +133,23 @@ macro_rules! bench_robot {
         cycle(c, name, "coriolis", "runtime", &s, |s| {
             robot.coriolis(&s.q, &s.qd)
         });
+        cycle(c, name, "center_of_mass", "generated_f64", &s, |s| {
+            g::center_of_mass(&s.q)
+        });
+        cycle(c, name, "center_of_mass", "runtime", &s, |s| {
+            robot.center_of_mass(&s.q)
+        });
+        cycle(
+            c,
+            name,
+            "center_of_mass_jacobian",
+            "generated_f64",
+            &s,
+            |s| g::center_of_mass_jacobian(&s.q),
+        );
+        cycle(c, name, "center_of_mass_jacobian", "runtime", &s, |s| {
+            robot.center_of_mass_jacobian(&s.q)
+        });
         cycle(c, name, "gravity", "generated_f64", &s, |s| {
             g::gravity(&s.q)
         });

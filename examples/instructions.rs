@@ -245,6 +245,10 @@ macro_rules! run {
                     dhgen::velocity::manipulability_gradient(&j, dhgen::velocity::Axes::All)
                         .map_or(0.0, |(m, g)| m + g[1])
                 }
+                ("center_of_mass", true) => $m::center_of_mass(q).1.x,
+                ("center_of_mass", false) => robot.center_of_mass(q).1.x,
+                ("center_of_mass_jacobian", true) => $m::center_of_mass_jacobian(q)[(0, 1)],
+                ("center_of_mass_jacobian", false) => robot.center_of_mass_jacobian(q)[(0, 1)],
                 ("mass_matrix", true) => $m::mass_matrix(q)[(1, 1)],
                 ("mass_matrix", false) => robot.mass_matrix(q)[(1, 1)],
                 ("christoffel", true) => $m::christoffel(q)[1][2][0],

@@ -267,7 +267,9 @@ where
 
     /// The links' total mass `M` and centre of mass `c` in the world frame (links fixed to the
     /// base, which no joint moves, are not counted; `c` is the world origin if `M` is 0):
-    /// Pinocchio's `centerOfMass`. The potential energy is `−M gravity · c`.
+    /// Pinocchio's `centerOfMass`. The potential energy is `−M gravity · c`. By default by
+    /// walking [`chain`](Arm::chain) (the runtime path's algorithm); generated modules
+    /// override it with their own derivation.
     #[doc(alias = "centerOfMass")]
     fn center_of_mass(&self, q: &OVector<f64, Self::Dof>) -> (f64, Point3<f64>) {
         let chain = self.chain();
@@ -284,7 +286,8 @@ where
     /// `jacobianCenterOfMass`; the gravity torques are `g(q) = −M J_cᵀ gravity`. The mass-weighted
     /// mean of the Jacobians of the links' centres of mass (as
     /// [`point_jacobian`](crate::velocity::point_jacobian) builds them from the tool's Jacobian
-    /// and pose); zero if the links have no mass.
+    /// and pose) by default; zero if the links have no mass. Generated modules override it
+    /// with their own derivation.
     ///
     /// ```
     /// use dhgen::nalgebra::{SVector, Vector3};

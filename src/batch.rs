@@ -27,7 +27,7 @@
 //! ```
 
 use crate::Real;
-use nalgebra::{ArrayStorage, Isometry3, Matrix, Quaternion, Scalar, SimdBool, SimdValue};
+use nalgebra::{ArrayStorage, Isometry3, Matrix, Point3, Quaternion, Scalar, SimdBool, SimdValue};
 use nalgebra::{Translation3, UnitQuaternion};
 pub use simba::simd::{WideBoolF32x8, WideBoolF64x4, WideF32x8, WideF64x4};
 
@@ -309,6 +309,18 @@ where
         self.0.unpack_at(out, |o: &mut L| &mut at(o).0);
         self.1.unpack_at(out, |o: &mut L| &mut at(o).1);
         self.2.unpack_at(out, |o: &mut L| &mut at(o).2);
+    }
+}
+
+impl<P> Unpack for Point3<P>
+where
+    P: Scalar + Leaf,
+    P::Lane: Scalar + Copy,
+{
+    type Lane = Point3<P::Lane>;
+    #[inline]
+    fn lane(&self, i: usize) -> Self::Lane {
+        Point3::from(self.coords.lane(i))
     }
 }
 

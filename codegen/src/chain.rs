@@ -14,6 +14,9 @@ use dhgen_model::{ChainRef, Frame, Inertial, JointKind, JointValue, Ring};
 /// A 3-vector over a ring.
 pub type V3<R> = [R; 3];
 
+/// A mass and its first moment `m c` about a frame's origin, in its axes.
+pub type FirstMoment<R> = (R, V3<R>);
+
 fn k<R: Ring>(x: f64) -> R {
     R::from_f64(x)
 }
@@ -349,6 +352,19 @@ impl JointSymbols<f64> for Numbers<'_> {
     }
 }
 
+/// Each link as described (not [`grouped`]): its mass and first moment `m c` in its joint
+/// frame; zeros for a kinematics-only chain. Grouping keeps the dynamics, not per-link sums
+/// such as the centre of mass, which read these.
+pub fn described<R: Ring>(
+    chain: ChainRef<'_>,
+) -> impl DoubleEndedIterator<Item = FirstMoment<R>> + ExactSizeIterator + '_ {
+    chain.bodies.iter().map(|b| {
+        b.inertial.map_or((k(0.0), [k(0.0), k(0.0), k(0.0)]), |i| {
+            (k(i.mass), i.com.map(|c| k(i.mass * c)))
+        })
+    })
+}
+
 /// What grouping the links' parameters ([`grouped`]) takes off their potential energy: the
 /// mass it moves onto the base, which no joint lifts. A constant, since grouping leaves g(q) =
 /// ∂P/∂q unchanged; taken at q = 0 (offsets applied) as the links as described less the
@@ -356,12 +372,8 @@ impl JointSymbols<f64> for Numbers<'_> {
 pub fn grouping_shift(chain: ChainRef<'_>) -> f64 {
     let zeros = vec![0.0; chain.dof()];
     let at_zero = RingChain::<f64>::new(chain, &Numbers(chain, &zeros));
-    let described = chain.bodies.iter().map(|b| {
-        b.inertial
-            .map_or((0.0, [0.0; 3]), |i| (i.mass, i.com.map(|c| i.mass * c)))
-    });
     let grouped = at_zero.bodies.iter().map(|b| (b.m, b.h));
-    at_zero.potential_of(described) - at_zero.potential_of(grouped)
+    at_zero.potential_of(described(chain)) - at_zero.potential_of(grouped)
 }
 
 /// The chain of one robot in one arithmetic, in joint frames (see
@@ -525,18 +537,34 @@ impl<'c, R: Ring> RingChain<'c, R> {
     /// adds `−M gravity · p_0`.
     fn potential_of(
         &self,
-        bodies: impl DoubleEndedIterator<Item = (R, V3<R>)> + ExactSizeIterator,
+        bodies: impl DoubleEndedIterator<Item = FirstMoment<R>> + ExactSizeIterator,
     ) -> R {
-        let mut mass = k::<R>(0.0);
-        let mut h: V3<R> = [k(0.0), k(0.0), k(0.0)];
-        for (t, (m, hj)) in self.t.iter().zip(bodies).rev() {
-            // Links j.. in K_j, then seen from K_{j−1} (the root frame for j = 0).
-            mass = mass + m;
-            h = add3(&rot(t, &add3(&h, &hj)), &scale3(&mass, &t.p));
-        }
+        let (_, (mass, h)) = self.first_moments(bodies);
         let (g, p0) = (&self.chain.gravity, &self.chain.placements[0].p);
         let lift = g[0] * p0[0] + g[1] * p0[1] + g[2] * p0[2];
         -(dot(&self.gravity, &h) + mass * k(lift))
+    }
+
+    /// For bodies given as (mass, first moment) in their joint frames, carried tip to base:
+    /// per joint k the mass of links k.. and their first moment about joint frame k's origin
+    /// in its axes, and the total mass and first moment about the root frame's origin in its
+    /// axes.
+    pub fn first_moments(
+        &self,
+        bodies: impl DoubleEndedIterator<Item = FirstMoment<R>> + ExactSizeIterator,
+    ) -> (Vec<FirstMoment<R>>, FirstMoment<R>) {
+        let mut mass = k::<R>(0.0);
+        let mut h: V3<R> = [k(0.0), k(0.0), k(0.0)];
+        let mut per_joint = Vec::with_capacity(self.dof());
+        for (t, (m, hj)) in self.t.iter().zip(bodies).rev() {
+            // Links j.. in K_j, then seen from K_{j−1} (the root frame for j = 0).
+            mass = mass + m;
+            let own = add3(&h, &hj);
+            h = add3(&rot(t, &own), &scale3(&mass, &t.p));
+            per_joint.push((mass.clone(), own));
+        }
+        per_joint.reverse();
+        (per_joint, (mass, h))
     }
 
     /// The velocity pass: each joint frame's angular velocity ω and its origin's linear

@@ -205,6 +205,8 @@ macro_rules! dynamics {
                 forward_dynamics(qd, tau),
                 kinetic_energy(qd),
                 potential_energy(),
+                center_of_mass(),
+                center_of_mass_jacobian(),
                 inverse_dynamics_with_payload(qd, qdd, payload),
                 bias_with_payload(qd, payload),
                 mass_matrix_with_payload(payload),

@@ -26,7 +26,8 @@ macro_rules! compare {
             dynamics::<N>(robot, q, qd, qdd, &st.mass_matrix(), &st.christoffel(),
                 &st.coriolis(qd), &st.gravity(), &st.inverse_dynamics(qd, qdd))?;
             energy_and_bias::<N>(robot, q, qd, [st.kinetic_energy(qd), st.potential_energy()],
-                &st.bias(qd))
+                &st.bias(qd))?;
+            centre_of_mass::<N>(robot, q, st.center_of_mass(), &st.center_of_mass_jacobian())
         });
     };
     ($test:ident, $m:ident, $robot:expr, kinematics) => {
@@ -132,6 +133,26 @@ fn energy_and_bias<const N: usize>(
     let s = max_abs(br.iter().copied());
     for i in 0..N {
         close("bias", bias[i], br[i], s)?;
+    }
+    Ok(())
+}
+
+/// The links' mass, centre of mass and its Jacobian against the runtime path's (the trait's
+/// walk over the links' centres and Jacobians).
+fn centre_of_mass<const N: usize>(
+    robot: &Robot,
+    q: &[f64; N],
+    (mass, c): (f64, dhgen::nalgebra::Point3<f64>),
+    jc: &dhgen::nalgebra::SMatrix<f64, 3, N>,
+) -> Result<(), TestCaseError> {
+    let (want_mass, want_c) = robot.center_of_mass(q);
+    close("M", mass, want_mass, want_mass)?;
+    for i in 0..3 {
+        close("c", c[i], want_c[i], 1.0)?;
+    }
+    let jr = robot.center_of_mass_jacobian(q);
+    for i in 0..3 * N {
+        close("J_c", jc[i], jr[i], 1.0)?;
     }
     Ok(())
 }

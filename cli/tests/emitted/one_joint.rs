@@ -511,6 +511,40 @@ pub mod one_joint {
             out = ::dhgen::nalgebra::convert::<f64, T>(0f64);
             out
         }
+        ///The links' total mass M and their centre of mass c in the world frame, `(M, c)` (links fixed to the base, which no joint moves, are not counted; c is the world origin if M is 0): the potential energy is `−M gravity · c`.
+        #[doc(alias = "centerOfMass")]
+        #[must_use]
+        pub fn center_of_mass(&self) -> (T, na::Point3<T>) {
+            let mut out: (T, na::Point3<T>) = (T::zero(), na::Point3::origin());
+            let c1: T = self.c[0];
+            let s1: T = self.s[0];
+            let k3: T = ::dhgen::nalgebra::convert::<f64, T>(0.5f64);
+            let t4: T = c1 * k3;
+            out.1[0] = t4;
+            let t6: T = s1 * k3;
+            out.1[1] = t6;
+            out.0 = ::dhgen::nalgebra::convert::<f64, T>(1f64);
+            out.1[2] = ::dhgen::nalgebra::convert::<f64, T>(0f64);
+            out
+        }
+        ///The Jacobian of the centre of mass, 3×n in world axes: `ċ = J_c q̇`, and the gravity torques are `g(q) = −M J_cᵀ gravity` (zero if the links have no mass).
+        #[doc(alias = "jacobianCenterOfMass")]
+        #[must_use]
+        pub fn center_of_mass_jacobian(&self) -> na::SMatrix<T, 3, DOF> {
+            let mut out: na::SMatrix<T, 3, DOF> = na::Matrix::from_data(
+                na::ArrayStorage([[T::zero(); 3]; DOF]),
+            );
+            let c1: T = self.c[0];
+            let s1: T = self.s[0];
+            let k3: T = ::dhgen::nalgebra::convert::<f64, T>(0.5f64);
+            let t6: T = s1 * k3;
+            let t8: T = -t6;
+            out[(0, 0)] = t8;
+            let t4: T = c1 * k3;
+            out[(1, 0)] = t4;
+            out[(2, 0)] = ::dhgen::nalgebra::convert::<f64, T>(0f64);
+            out
+        }
         ///Kinetic energy with a payload held by the tool (`payload`: its ten parameters, as for `inverse_dynamics_with_payload`): ½ q̇ᵀ D(q) q̇ with `mass_matrix_with_payload`.
         #[must_use]
         pub fn kinetic_energy_with_payload(
@@ -1323,6 +1357,28 @@ pub mod one_joint {
             State { c, s, d }
         }
         #[inline]
+        fn for_center_of_mass(q: &impl ::dhgen::JointArray<T, DOF>) -> Self {
+            let q = q.to_array();
+            let mut c = [T::zero(); DOF];
+            let mut s = [T::zero(); DOF];
+            let d = [T::zero(); DOF];
+            let (sa, ca) = ::dhgen::Real::sincos_array([q[0]]);
+            s[0] = sa[0];
+            c[0] = ca[0];
+            State { c, s, d }
+        }
+        #[inline]
+        fn for_center_of_mass_jacobian(q: &impl ::dhgen::JointArray<T, DOF>) -> Self {
+            let q = q.to_array();
+            let mut c = [T::zero(); DOF];
+            let mut s = [T::zero(); DOF];
+            let d = [T::zero(); DOF];
+            let (sa, ca) = ::dhgen::Real::sincos_array([q[0]]);
+            s[0] = sa[0];
+            c[0] = ca[0];
+            State { c, s, d }
+        }
+        #[inline]
         fn for_kinetic_energy_with_payload(
             q: &impl ::dhgen::JointArray<T, DOF>,
         ) -> Self {
@@ -1708,6 +1764,22 @@ pub mod one_joint {
         q: &impl ::dhgen::JointArray<T, DOF>,
     ) -> T {
         State::for_potential_energy(q).potential_energy()
+    }
+    ///The links' total mass M and their centre of mass c in the world frame, `(M, c)` (links fixed to the base, which no joint moves, are not counted; c is the world origin if M is 0): the potential energy is `−M gravity · c`.
+    #[doc(alias = "centerOfMass")]
+    #[must_use]
+    pub fn center_of_mass<T: ::dhgen::Real>(
+        q: &impl ::dhgen::JointArray<T, DOF>,
+    ) -> (T, na::Point3<T>) {
+        State::for_center_of_mass(q).center_of_mass()
+    }
+    ///The Jacobian of the centre of mass, 3×n in world axes: `ċ = J_c q̇`, and the gravity torques are `g(q) = −M J_cᵀ gravity` (zero if the links have no mass).
+    #[doc(alias = "jacobianCenterOfMass")]
+    #[must_use]
+    pub fn center_of_mass_jacobian<T: ::dhgen::Real>(
+        q: &impl ::dhgen::JointArray<T, DOF>,
+    ) -> na::SMatrix<T, 3, DOF> {
+        State::for_center_of_mass_jacobian(q).center_of_mass_jacobian()
     }
     ///Kinetic energy with a payload held by the tool (`payload`: its ten parameters, as for `inverse_dynamics_with_payload`): ½ q̇ᵀ D(q) q̇ with `mass_matrix_with_payload`.
     #[must_use]
@@ -2188,6 +2260,26 @@ pub mod one_joint {
         ) -> Result<(), ::dhgen::batch::LengthMismatch> {
             ::dhgen::batch::run([q], out, |[q]| super::potential_energy(q))
         }
+        /// [`center_of_mass`](super::center_of_mass) for each configuration: `out[c]` from `q[c]`, four `f64` or eight `f32` configurations per call (`dhgen::batch`).
+        ///
+        /// # Errors
+        /// `LengthMismatch` (nothing written) unless every slice has `out.len()` entries.
+        pub fn center_of_mass<T: ::dhgen::batch::Lanes>(
+            q: &[[T; DOF]],
+            out: &mut [(T, na::Point3<T>)],
+        ) -> Result<(), ::dhgen::batch::LengthMismatch> {
+            ::dhgen::batch::run([q], out, |[q]| super::center_of_mass(q))
+        }
+        /// [`center_of_mass_jacobian`](super::center_of_mass_jacobian) for each configuration: `out[c]` from `q[c]`, four `f64` or eight `f32` configurations per call (`dhgen::batch`).
+        ///
+        /// # Errors
+        /// `LengthMismatch` (nothing written) unless every slice has `out.len()` entries.
+        pub fn center_of_mass_jacobian<T: ::dhgen::batch::Lanes>(
+            q: &[[T; DOF]],
+            out: &mut [na::SMatrix<T, 3, DOF>],
+        ) -> Result<(), ::dhgen::batch::LengthMismatch> {
+            ::dhgen::batch::run([q], out, |[q]| super::center_of_mass_jacobian(q))
+        }
         /// [`kinetic_energy_with_payload`](super::kinetic_energy_with_payload) for each configuration: `out[c]` from `q[c]`, `qd[c]` and `payload` (the same for every configuration), four `f64` or eight `f32` configurations per call (`dhgen::batch`).
         ///
         /// # Errors
@@ -2527,6 +2619,15 @@ pub mod one_joint {
         }
         fn potential_energy(&self, q: &na::SVector<f64, DOF>) -> f64 {
             State::for_potential_energy(q).potential_energy()
+        }
+        fn center_of_mass(&self, q: &na::SVector<f64, DOF>) -> (f64, na::Point3<f64>) {
+            State::for_center_of_mass(q).center_of_mass()
+        }
+        fn center_of_mass_jacobian(
+            &self,
+            q: &na::SVector<f64, DOF>,
+        ) -> na::SMatrix<f64, 3, DOF> {
+            State::for_center_of_mass_jacobian(q).center_of_mass_jacobian()
         }
         fn tool_terms(
             &self,

@@ -3601,6 +3601,192 @@ pub mod puma560 {
             out = t65;
             out
         }
+        ///The links' total mass M and their centre of mass c in the world frame, `(M, c)` (links fixed to the base, which no joint moves, are not counted; c is the world origin if M is 0): the potential energy is `−M gravity · c`.
+        #[doc(alias = "centerOfMass")]
+        #[must_use]
+        pub fn center_of_mass(&self) -> (T, na::Point3<T>) {
+            let mut out: (T, na::Point3<T>) = (T::zero(), na::Point3::origin());
+            let c1: T = self.c[0];
+            let s1: T = self.s[0];
+            let c2: T = self.c[1];
+            let s2: T = self.s[1];
+            let c3: T = self.c[2];
+            let s3: T = self.s[2];
+            let c4: T = self.c[3];
+            let s4: T = self.s[3];
+            let c5: T = self.c[4];
+            let s5: T = self.s[4];
+            let k23: T = ::dhgen::nalgebra::convert::<f64, T>(0.0028799999999999997f64);
+            let k27: T = ::dhgen::nalgebra::convert::<f64, T>(0.015579999999999998f64);
+            let k32: T = ::dhgen::nalgebra::convert::<f64, T>(0.025374999999999998f64);
+            let k34: T = ::dhgen::nalgebra::convert::<f64, T>(0.5397500000000001f64);
+            let k36: T = ::dhgen::nalgebra::convert::<f64, T>(0.336f64);
+            let k38: T = ::dhgen::nalgebra::convert::<f64, T>(0.06767999999999999f64);
+            let k47: T = ::dhgen::nalgebra::convert::<f64, T>(2.61239f64);
+            let k49: T = ::dhgen::nalgebra::convert::<f64, T>(0.9078025f64);
+            let k51: T = ::dhgen::nalgebra::convert::<f64, T>(1.1832f64);
+            let k53: T = ::dhgen::nalgebra::convert::<f64, T>(0.10439999999999999f64);
+            let k55: T = ::dhgen::nalgebra::convert::<f64, T>(3.9585f64);
+            let k72: T = ::dhgen::nalgebra::convert::<f64, T>(0.042643923240938165f64);
+            let k75: T = ::dhgen::nalgebra::convert::<f64, T>(15.754413499999998f64);
+            let t24: T = s5 * k23;
+            let t33: T = ::dhgen::Real::mul_add_fast(-c4, t24, k32);
+            let t40: T = c3 * t33;
+            let t28: T = ::dhgen::Real::mul_add_fast(c5, k23, k27);
+            let t35: T = t28 + k34;
+            let t37: T = t35 + k36;
+            let t43: T = ::dhgen::Real::mul_add_fast(-s3, t37, t40);
+            let t48: T = t43 + k47;
+            let t52: T = t48 + k51;
+            let t57: T = c2 * t52;
+            let t44: T = s3 * t33;
+            let t46: T = ::dhgen::Real::mul_add_fast(c3, t37, t44);
+            let t54: T = t46 + k53;
+            let t60: T = ::dhgen::Real::mul_add_fast(-s2, t54, t57);
+            let t65: T = c1 * t60;
+            let t39: T = ::dhgen::Real::mul_add_fast(s4, t24, k38);
+            let t50: T = t39 + k49;
+            let t56: T = t50 + k55;
+            let t67: T = ::dhgen::Real::mul_add_fast(s1, t56, t65);
+            let t73: T = t67 * k72;
+            out.1[0] = t73;
+            let t68: T = s1 * t60;
+            let t71: T = ::dhgen::Real::mul_add_fast(-c1, t56, t68);
+            let t74: T = t71 * k72;
+            out.1[1] = t74;
+            let t62: T = s2 * t52;
+            let t64: T = ::dhgen::Real::mul_add_fast(c2, t54, t62);
+            let t76: T = t64 + k75;
+            let t77: T = k72 * t76;
+            out.1[2] = t77;
+            out.0 = ::dhgen::nalgebra::convert::<f64, T>(23.45f64);
+            out
+        }
+        ///The Jacobian of the centre of mass, 3×n in world axes: `ċ = J_c q̇`, and the gravity torques are `g(q) = −M J_cᵀ gravity` (zero if the links have no mass).
+        #[doc(alias = "jacobianCenterOfMass")]
+        #[must_use]
+        pub fn center_of_mass_jacobian(&self) -> na::SMatrix<T, 3, DOF> {
+            let mut out: na::SMatrix<T, 3, DOF> = na::Matrix::from_data(
+                na::ArrayStorage([[T::zero(); 3]; DOF]),
+            );
+            let c1: T = self.c[0];
+            let s1: T = self.s[0];
+            let c2: T = self.c[1];
+            let s2: T = self.s[1];
+            let c3: T = self.c[2];
+            let s3: T = self.s[2];
+            let c4: T = self.c[3];
+            let s4: T = self.s[3];
+            let c5: T = self.c[4];
+            let s5: T = self.s[4];
+            let k23: T = ::dhgen::nalgebra::convert::<f64, T>(0.0028799999999999997f64);
+            let k27: T = ::dhgen::nalgebra::convert::<f64, T>(0.015579999999999998f64);
+            let k32: T = ::dhgen::nalgebra::convert::<f64, T>(0.025374999999999998f64);
+            let k34: T = ::dhgen::nalgebra::convert::<f64, T>(0.5397500000000001f64);
+            let k36: T = ::dhgen::nalgebra::convert::<f64, T>(0.336f64);
+            let k38: T = ::dhgen::nalgebra::convert::<f64, T>(0.06767999999999999f64);
+            let k47: T = ::dhgen::nalgebra::convert::<f64, T>(2.61239f64);
+            let k49: T = ::dhgen::nalgebra::convert::<f64, T>(0.9078025f64);
+            let k51: T = ::dhgen::nalgebra::convert::<f64, T>(1.1832f64);
+            let k53: T = ::dhgen::nalgebra::convert::<f64, T>(0.10439999999999999f64);
+            let k55: T = ::dhgen::nalgebra::convert::<f64, T>(3.9585f64);
+            let k72: T = ::dhgen::nalgebra::convert::<f64, T>(0.042643923240938165f64);
+            let t24: T = s5 * k23;
+            let t31: T = s4 * t24;
+            let t39: T = t31 + k38;
+            let t50: T = t39 + k49;
+            let t56: T = t50 + k55;
+            let t69: T = c1 * t56;
+            let t29: T = c4 * t24;
+            let t33: T = k32 - t29;
+            let t40: T = c3 * t33;
+            let t26: T = c5 * k23;
+            let t28: T = t26 + k27;
+            let t35: T = t28 + k34;
+            let t37: T = t35 + k36;
+            let t43: T = ::dhgen::Real::mul_add_fast(-s3, t37, t40);
+            let t48: T = t43 + k47;
+            let t52: T = t48 + k51;
+            let t57: T = c2 * t52;
+            let t44: T = s3 * t33;
+            let t46: T = ::dhgen::Real::mul_add_fast(c3, t37, t44);
+            let t54: T = t46 + k53;
+            let t60: T = ::dhgen::Real::mul_add_fast(-s2, t54, t57);
+            let t79: T = ::dhgen::Real::mul_add_fast(-s1, t60, t69);
+            let t81: T = k72 * t79;
+            out[(0, 0)] = t81;
+            let t65: T = c1 * t60;
+            let t67: T = ::dhgen::Real::mul_add_fast(s1, t56, t65);
+            let t73: T = t67 * k72;
+            out[(1, 0)] = t73;
+            let t62: T = s2 * t52;
+            let t64: T = ::dhgen::Real::mul_add_fast(c2, t54, t62);
+            let t84: T = c1 * t64;
+            let t88: T = k72 * t84;
+            let t89: T = -t88;
+            out[(0, 1)] = t89;
+            let t86: T = s1 * t64;
+            let t90: T = k72 * t86;
+            let t91: T = -t90;
+            out[(1, 1)] = t91;
+            let t92: T = t60 * k72;
+            out[(2, 1)] = t92;
+            let t95: T = c2 * t46;
+            let t98: T = ::dhgen::Real::mul_add_fast(s2, t43, t95);
+            let t104: T = c1 * t98;
+            let t108: T = k72 * t104;
+            let t109: T = -t108;
+            out[(0, 2)] = t109;
+            let t106: T = s1 * t98;
+            let t110: T = k72 * t106;
+            let t111: T = -t110;
+            out[(1, 2)] = t111;
+            let t102: T = c2 * t43;
+            let t103: T = ::dhgen::Real::mul_add_fast(-s2, t46, t102);
+            let t112: T = k72 * t103;
+            out[(2, 2)] = t112;
+            let t114: T = c3 * t31;
+            let t116: T = c2 * t114;
+            let t115: T = s3 * t31;
+            let t118: T = ::dhgen::Real::mul_add_fast(-s2, t115, t116);
+            let t122: T = c1 * t118;
+            let t124: T = ::dhgen::Real::mul_add_fast(s1, t29, t122);
+            let t128: T = k72 * t124;
+            out[(0, 3)] = t128;
+            let t125: T = s1 * t118;
+            let t127: T = ::dhgen::Real::mul_add_fast(-c1, t29, t125);
+            let t129: T = k72 * t127;
+            out[(1, 3)] = t129;
+            let t119: T = s2 * t114;
+            let t121: T = ::dhgen::Real::mul_add_fast(c2, t115, t119);
+            let t130: T = k72 * t121;
+            out[(2, 3)] = t130;
+            let t136: T = s3 * t24;
+            let t131: T = c4 * t26;
+            let t138: T = ::dhgen::Real::mul_add_fast(-c3, t131, t136);
+            let t145: T = c2 * t138;
+            let t139: T = s3 * t131;
+            let t143: T = ::dhgen::Real::mul_add_fast(c3, t24, t139);
+            let t148: T = ::dhgen::Real::mul_add_fast(s2, t143, t145);
+            let t153: T = c1 * t148;
+            let t132: T = s4 * t26;
+            let t155: T = ::dhgen::Real::mul_add_fast(s1, t132, t153);
+            let t159: T = k72 * t155;
+            out[(0, 4)] = t159;
+            let t156: T = s1 * t148;
+            let t158: T = ::dhgen::Real::mul_add_fast(-c1, t132, t156);
+            let t160: T = k72 * t158;
+            out[(1, 4)] = t160;
+            let t149: T = s2 * t138;
+            let t152: T = ::dhgen::Real::mul_add_fast(-c2, t143, t149);
+            let t161: T = k72 * t152;
+            out[(2, 4)] = t161;
+            out[(2, 0)] = ::dhgen::nalgebra::convert::<f64, T>(0f64);
+            out[(0, 5)] = ::dhgen::nalgebra::convert::<f64, T>(0f64);
+            out[(1, 5)] = ::dhgen::nalgebra::convert::<f64, T>(0f64);
+            out[(2, 5)] = ::dhgen::nalgebra::convert::<f64, T>(0f64);
+            out
+        }
         ///Kinetic energy with a payload held by the tool (`payload`: its ten parameters, as for `inverse_dynamics_with_payload`): ½ q̇ᵀ D(q) q̇ with `mass_matrix_with_payload`.
         #[must_use]
         pub fn kinetic_energy_with_payload(
@@ -7478,6 +7664,44 @@ pub mod puma560 {
             State { c, s, d }
         }
         #[inline]
+        fn for_center_of_mass(q: &impl ::dhgen::JointArray<T, DOF>) -> Self {
+            let q = q.to_array();
+            let mut c = [T::zero(); DOF];
+            let mut s = [T::zero(); DOF];
+            let d = [T::zero(); DOF];
+            let (sa, ca) = ::dhgen::Real::sincos_array([q[0], q[1], q[2], q[3], q[4]]);
+            s[0] = sa[0];
+            c[0] = ca[0];
+            s[1] = sa[1];
+            c[1] = ca[1];
+            s[2] = sa[2];
+            c[2] = ca[2];
+            s[3] = sa[3];
+            c[3] = ca[3];
+            s[4] = sa[4];
+            c[4] = ca[4];
+            State { c, s, d }
+        }
+        #[inline]
+        fn for_center_of_mass_jacobian(q: &impl ::dhgen::JointArray<T, DOF>) -> Self {
+            let q = q.to_array();
+            let mut c = [T::zero(); DOF];
+            let mut s = [T::zero(); DOF];
+            let d = [T::zero(); DOF];
+            let (sa, ca) = ::dhgen::Real::sincos_array([q[0], q[1], q[2], q[3], q[4]]);
+            s[0] = sa[0];
+            c[0] = ca[0];
+            s[1] = sa[1];
+            c[1] = ca[1];
+            s[2] = sa[2];
+            c[2] = ca[2];
+            s[3] = sa[3];
+            c[3] = ca[3];
+            s[4] = sa[4];
+            c[4] = ca[4];
+            State { c, s, d }
+        }
+        #[inline]
         fn for_kinetic_energy_with_payload(
             q: &impl ::dhgen::JointArray<T, DOF>,
         ) -> Self {
@@ -7809,6 +8033,22 @@ pub mod puma560 {
         q: &impl ::dhgen::JointArray<T, DOF>,
     ) -> T {
         State::for_potential_energy(q).potential_energy()
+    }
+    ///The links' total mass M and their centre of mass c in the world frame, `(M, c)` (links fixed to the base, which no joint moves, are not counted; c is the world origin if M is 0): the potential energy is `−M gravity · c`.
+    #[doc(alias = "centerOfMass")]
+    #[must_use]
+    pub fn center_of_mass<T: ::dhgen::Real>(
+        q: &impl ::dhgen::JointArray<T, DOF>,
+    ) -> (T, na::Point3<T>) {
+        State::for_center_of_mass(q).center_of_mass()
+    }
+    ///The Jacobian of the centre of mass, 3×n in world axes: `ċ = J_c q̇`, and the gravity torques are `g(q) = −M J_cᵀ gravity` (zero if the links have no mass).
+    #[doc(alias = "jacobianCenterOfMass")]
+    #[must_use]
+    pub fn center_of_mass_jacobian<T: ::dhgen::Real>(
+        q: &impl ::dhgen::JointArray<T, DOF>,
+    ) -> na::SMatrix<T, 3, DOF> {
+        State::for_center_of_mass_jacobian(q).center_of_mass_jacobian()
     }
     ///Kinetic energy with a payload held by the tool (`payload`: its ten parameters, as for `inverse_dynamics_with_payload`): ½ q̇ᵀ D(q) q̇ with `mass_matrix_with_payload`.
     #[must_use]
@@ -8167,6 +8407,26 @@ pub mod puma560 {
         ) -> Result<(), ::dhgen::batch::LengthMismatch> {
             ::dhgen::batch::run([q], out, |[q]| super::potential_energy(q))
         }
+        /// [`center_of_mass`](super::center_of_mass) for each configuration: `out[c]` from `q[c]`, four `f64` or eight `f32` configurations per call (`dhgen::batch`).
+        ///
+        /// # Errors
+        /// `LengthMismatch` (nothing written) unless every slice has `out.len()` entries.
+        pub fn center_of_mass<T: ::dhgen::batch::Lanes>(
+            q: &[[T; DOF]],
+            out: &mut [(T, na::Point3<T>)],
+        ) -> Result<(), ::dhgen::batch::LengthMismatch> {
+            ::dhgen::batch::run([q], out, |[q]| super::center_of_mass(q))
+        }
+        /// [`center_of_mass_jacobian`](super::center_of_mass_jacobian) for each configuration: `out[c]` from `q[c]`, four `f64` or eight `f32` configurations per call (`dhgen::batch`).
+        ///
+        /// # Errors
+        /// `LengthMismatch` (nothing written) unless every slice has `out.len()` entries.
+        pub fn center_of_mass_jacobian<T: ::dhgen::batch::Lanes>(
+            q: &[[T; DOF]],
+            out: &mut [na::SMatrix<T, 3, DOF>],
+        ) -> Result<(), ::dhgen::batch::LengthMismatch> {
+            ::dhgen::batch::run([q], out, |[q]| super::center_of_mass_jacobian(q))
+        }
         /// [`kinetic_energy_with_payload`](super::kinetic_energy_with_payload) for each configuration: `out[c]` from `q[c]`, `qd[c]` and `payload` (the same for every configuration), four `f64` or eight `f32` configurations per call (`dhgen::batch`).
         ///
         /// # Errors
@@ -8445,6 +8705,15 @@ pub mod puma560 {
         }
         fn potential_energy(&self, q: &na::SVector<f64, DOF>) -> f64 {
             State::for_potential_energy(q).potential_energy()
+        }
+        fn center_of_mass(&self, q: &na::SVector<f64, DOF>) -> (f64, na::Point3<f64>) {
+            State::for_center_of_mass(q).center_of_mass()
+        }
+        fn center_of_mass_jacobian(
+            &self,
+            q: &na::SVector<f64, DOF>,
+        ) -> na::SMatrix<f64, 3, DOF> {
+            State::for_center_of_mass_jacobian(q).center_of_mass_jacobian()
         }
         fn tool_terms(
             &self,

@@ -11,7 +11,11 @@ use crate::graph::{E, SharedGraph, cost};
 use dhgen_model::{ChainRef, Frame, JointKind};
 
 /// The joint frames in the world frame, `P_0` multiplied in first or last.
-fn joint_frames(chain: ChainRef<'_>, graph: &SharedGraph, p0_first: bool) -> Vec<Frame<E>> {
+pub(super) fn joint_frames(
+    chain: ChainRef<'_>,
+    graph: &SharedGraph,
+    p0_first: bool,
+) -> Vec<Frame<E>> {
     let ring = super::graph_chain(chain, graph);
     let p0 = chain.placements[0].to_ring::<E>();
     if p0_first {
@@ -25,7 +29,7 @@ fn joint_frames(chain: ChainRef<'_>, graph: &SharedGraph, p0_first: bool) -> Vec
 }
 
 /// Builds `outputs(p0_first)` both ways in fresh graphs and keeps the cheaper.
-fn cheaper_order<T>(
+pub(super) fn cheaper_order<T>(
     mut build: impl FnMut(&SharedGraph, bool) -> T,
     roots: impl Fn(&T) -> Vec<E>,
 ) -> (SharedGraph, T) {

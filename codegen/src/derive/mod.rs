@@ -4,6 +4,7 @@
 //! recursion over the chain kept unexpanded), both are built and the one with fewer
 //! operations after common-subexpression sharing is kept.
 
+pub mod center_of_mass;
 pub mod christoffel;
 pub mod derivatives;
 pub mod energy;

@@ -9,7 +9,9 @@
 
 use super::shape::Shape;
 use super::{Context, cholesky};
-use crate::derive::{derivatives, energy, gravity, kinematics, newton_euler, payload, singularity};
+use crate::derive::{
+    center_of_mass, derivatives, energy, gravity, kinematics, newton_euler, payload, singularity,
+};
 use crate::graph::{E, SharedGraph};
 use crate::poly::Poly;
 use dhgen_model::parameters::Column;
@@ -1074,6 +1076,37 @@ pub const QUANTITIES: &[Quantity] = &[
         make: |cx| {
             let (graph, p) = energy::potential_energy(&cx.derivation);
             derived(graph, p)
+        },
+        arm: Some(ArmMethod::Dynamics),
+    },
+    Quantity {
+        name: "center_of_mass",
+        doc: "The links' total mass M and their centre of mass c in the world frame, \
+              `(M, c)` (links fixed to the base, which no joint moves, are not counted; c is \
+              the world origin if M is 0): the potential energy is `−M gravity · c`.",
+        aliases: &["centerOfMass"],
+        inputs: &[],
+        shape: Shape::MassAndPoint,
+        available: Availability::Dynamics,
+        public: true,
+        make: |cx| {
+            let (graph, c) = center_of_mass::center_of_mass(cx.chain);
+            derived(graph, c)
+        },
+        arm: Some(ArmMethod::Dynamics),
+    },
+    Quantity {
+        name: "center_of_mass_jacobian",
+        doc: "The Jacobian of the centre of mass, 3×n in world axes: `ċ = J_c q̇`, and the \
+              gravity torques are `g(q) = −M J_cᵀ gravity` (zero if the links have no mass).",
+        aliases: &["jacobianCenterOfMass"],
+        inputs: &[],
+        shape: Shape::PointJacobian,
+        available: Availability::Dynamics,
+        public: true,
+        make: |cx| {
+            let (graph, j) = center_of_mass::center_of_mass_jacobian(cx.chain);
+            derived(graph, j)
         },
         arm: Some(ArmMethod::Dynamics),
     },

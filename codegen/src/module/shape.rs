@@ -20,6 +20,10 @@ pub enum Shape {
     Vector6,
     /// A 6×n matrix, column by column.
     Jacobian,
+    /// A mass and a point: `(M, c)`, the mass first.
+    MassAndPoint,
+    /// A 3×n matrix, column by column.
+    PointJacobian,
     /// One value per joint.
     Vector,
     /// An optional value per joint.
@@ -63,6 +67,8 @@ impl Shape {
             Shape::PosePerJoint => quote!([na::Isometry3<#t>; DOF]),
             Shape::Vector6 => quote!(na::SVector<#t, 6>),
             Shape::Jacobian => quote!(na::SMatrix<#t, 6, DOF>),
+            Shape::MassAndPoint => quote!((#t, na::Point3<#t>)),
+            Shape::PointJacobian => quote!(na::SMatrix<#t, 3, DOF>),
             Shape::Vector => quote!(na::SVector<#t, DOF>),
             Shape::OptionVector => quote!(Option<na::SVector<#t, DOF>>),
             Shape::VectorMask => {
@@ -125,6 +131,8 @@ impl Shape {
             Shape::HomogeneousPerJoint => Some(quote!([#identity; DOF])),
             Shape::Vector6 => Some(zeros(quote!(6), quote!(1))),
             Shape::Jacobian => Some(zeros(quote!(6), quote!(DOF))),
+            Shape::MassAndPoint => Some(quote!((T::zero(), na::Point3::origin()))),
+            Shape::PointJacobian => Some(zeros(quote!(3), quote!(DOF))),
             Shape::Square => Some(zeros(quote!(DOF), quote!(DOF))),
             Shape::Regressor => Some(zeros(quote!(DOF), quote!(PARAMETERS))),
             Shape::BaseRegressor => Some(zeros(quote!(DOF), quote!(BASE_PARAMETERS))),
@@ -174,6 +182,12 @@ impl Shape {
             Shape::Vector6 => (0..6usize).map(|i| quote!(out[#i])).collect(),
             Shape::Jacobian => (0..n)
                 .flat_map(|c| (0..6usize).map(move |r| quote!(out[(#r, #c)])))
+                .collect(),
+            Shape::MassAndPoint => std::iter::once(quote!(out.0))
+                .chain((0..3usize).map(|i| quote!(out.1[#i])))
+                .collect(),
+            Shape::PointJacobian => (0..n)
+                .flat_map(|c| (0..3usize).map(move |r| quote!(out[(#r, #c)])))
                 .collect(),
             Shape::Vector => (0..n).map(|i| quote!(out[#i])).collect(),
             Shape::Square => (0..n * n)
