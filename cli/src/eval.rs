@@ -1,4 +1,5 @@
-//! `dhgen eval`: T, J, D, C, g, τ and the kinetic and potential energy at one configuration,
+//! `dhgen eval`: T, J, D, C, g, τ, the kinetic and potential energy and the centre of mass at
+//! one configuration,
 //! on the runtime path, with `--derivatives` those of inverse and forward dynamics, and with
 //! `--task-space` the tool's task-space dynamics.
 
@@ -37,6 +38,9 @@ struct Dynamics {
     tau: DVector<f64>,
     /// The kinetic energy T(q, q̇) and the potential energy P(q), J.
     energy: [f64; 2],
+    /// The links' mass M (kg) and centre of mass c (m, world frame), and c's Jacobian J_c.
+    centre: (f64, [f64; 3]),
+    centre_jacobian: DMatrix<f64>,
     /// Present when asked for (`--derivatives`).
     derivatives: Option<Derivatives>,
     /// Present when asked for (`--task-space`): the tool's Λ, μ and p, or why there are none.
@@ -79,6 +83,9 @@ impl Dynamics {
                 "potential_energy",
                 DMatrix::from_element(1, 1, self.energy[1]),
             ),
+            ("M", "mass", DMatrix::from_element(1, 1, self.centre.0)),
+            ("c(q)", "com", DMatrix::from_row_slice(1, 3, &self.centre.1)),
+            ("J_c(q)", "Jcom", self.centre_jacobian.clone()),
         ];
         if let Some(d) = &self.derivatives {
             all.push(("∂τ/∂q", "dtau_dq", d.dtau_dq.clone()));
@@ -325,6 +332,14 @@ fn compute(
             g: robot.gravity(&q),
             tau,
             energy: [robot.kinetic_energy(&q, &qd), robot.potential_energy(&q)],
+            centre: {
+                let (mass, c) = robot.center_of_mass(&q);
+                (mass, c.coords.into())
+            },
+            centre_jacobian: {
+                let jc = robot.center_of_mass_jacobian(&q);
+                DMatrix::from_column_slice(3, jc.ncols(), jc.as_slice())
+            },
             derivatives,
             task_space,
         }
@@ -348,8 +363,9 @@ impl Evaluation {
     /// (the body Jacobian, tool axes), `Jdot_qd` and `Jb_dot_qd` (J̇ q̇ in world axes and
     /// J̇_b q̇ in tool axes, 6 numbers each), `manipulability` and `manipulability_gradient` (null
     /// where J has lost rank) always; `D`, `C`, `g`,
-    /// `tau`, `kinetic_energy` and `potential_energy` (numbers) only when the robot has
-    /// dynamics; with `--derivatives` also `dtau_dq`,
+    /// `tau`, `kinetic_energy` and `potential_energy` (numbers), `mass` (the links', kg), `com`
+    /// (their centre of mass, world frame, 3 numbers) and `Jcom` (its Jacobian, 3 × n) only
+    /// when the robot has dynamics; with `--derivatives` also `dtau_dq`,
     /// `dtau_dqd` (entry `[k][m]` = ∂τ_k/∂x_m) and, unless D(q) is singular, `dqdd_dq`,
     /// `dqdd_dqd` and `Minv` (forward dynamics' derivatives at the τ above); with
     /// `--task-space` the tool's `Lambda`, `mu` and `p`, or `task_space_error` saying why there
@@ -381,9 +397,9 @@ impl Evaluation {
         if let (Some(dynamics), Some(obj)) = (&self.dynamics, v.as_object_mut()) {
             for (_, key, m) in dynamics.named() {
                 // Numbers, vectors (one row) as arrays, matrices as arrays of rows.
-                let value = if matches!(key, "kinetic_energy" | "potential_energy") {
+                let value = if matches!(key, "kinetic_energy" | "potential_energy" | "mass") {
                     Value::from(m[(0, 0)])
-                } else if matches!(key, "g" | "tau" | "mu" | "p") {
+                } else if matches!(key, "g" | "tau" | "com" | "mu" | "p") {
                     Value::from(m.as_slice().to_vec())
                 } else {
                     rows(&m)
@@ -449,6 +465,8 @@ impl Evaluation {
                 g,
                 tau,
                 energy: [kinetic, potential],
+                centre: (mass, centre),
+                centre_jacobian,
                 derivatives,
                 task_space,
             }) => {
@@ -474,6 +492,17 @@ impl Evaluation {
                      (zero at the world origin)",
                     trimmed(*kinetic, 6),
                     trimmed(*potential, 6)
+                );
+                let _ = writeln!(
+                    out,
+                    "\nlinks' mass M = {} kg, centre of mass c(q) = {} m (world frame)",
+                    trimmed(*mass, 6),
+                    list(centre)
+                );
+                block(
+                    &mut out,
+                    "J_c(q): Jacobian of the centre of mass, world axes (g(q) = −M J_cᵀ gravity)",
+                    centre_jacobian,
                 );
                 if let Some(Derivatives {
                     dtau_dq,

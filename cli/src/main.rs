@@ -50,8 +50,8 @@ enum Command {
         robot: Source,
     },
     /// Evaluate the pose T, Jacobian J (world axes) and J_b (tool axes), and (with mass
-    /// properties) D, C, g, τ and the kinetic and potential energy at one configuration, on the
-    /// runtime path (`dhgen::Robot`).
+    /// properties) D, C, g, τ, the kinetic and potential energy and the centre of mass with its
+    /// Jacobian at one configuration, on the runtime path (`dhgen::Robot`).
     Eval {
         #[command(flatten)]
         robot: Source,

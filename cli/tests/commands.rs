@@ -309,6 +309,13 @@ fn eval_json_matches_the_runtime() {
     assert!(close(v["kinetic_energy"].as_f64().unwrap(), kinetic));
     let potential = robot.potential_energy(&q);
     assert!(close(v["potential_energy"].as_f64().unwrap(), potential));
+    let (mass, centre) = robot.center_of_mass(&q);
+    assert!(close(v["mass"].as_f64().unwrap(), mass));
+    for i in 0..3 {
+        assert!(close(vector("com")[i], centre[i]), "com[{i}]");
+    }
+    let jc = robot.center_of_mass_jacobian(&q);
+    check("Jcom", matrix("Jcom"), &|r, c| jc[(r, c)], (3, 6));
     assert_eq!(v["robot"], "puma560");
     assert_eq!(v["dof"], 6);
     assert_eq!(v["has_dynamics"], true);
