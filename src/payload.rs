@@ -12,7 +12,9 @@
 //! Panda 882 against 818), where `inverse_dynamics` here adds `Jᵀ W` from the Jacobian and
 //! `J̇ q̇` (about 3× the cost of τ); likewise `m::bias_with_payload`, `m::mass_matrix_with_payload`,
 //! `m::gravity_with_payload` and the energies, `m::kinetic_energy_with_payload` and
-//! `m::potential_energy_with_payload`.
+//! `m::potential_energy_with_payload`. The centre of mass with the payload
+//! ([`center_of_mass`], [`center_of_mass_jacobian`]) combines the arm's, generated where the
+//! arm is, with the payload's, rigid on the tool.
 //!
 //! ```
 //! dhgen::robot!(mod puma560 = "robots/puma560.toml");
@@ -30,7 +32,9 @@
 
 use crate::arm::{Arm, ArmAllocator, ArmDynamics};
 use crate::task_space::ToolTerms;
-use nalgebra::{DefaultAllocator, Isometry3, Matrix3, Matrix6, OMatrix, OVector, Vector3, Vector6};
+use nalgebra::{
+    DefaultAllocator, Isometry3, Matrix3, Matrix6, OMatrix, OVector, Point3, U3, Vector3, Vector6,
+};
 
 /// A rigid body fixed in the tool frame: mass, centre of mass and inertia about it, in the
 /// tool frame's axes. Built only through [`Payload::new`], which checks it.
@@ -394,4 +398,68 @@ where
     let w = world_at(&tool, payload);
     let moment = tool.translation.vector * w.mass + w.h;
     arm.potential_energy(q) - gravity_vector(arm).dot(&moment)
+}
+
+/// The mass and centre of mass of the links and the payload together, world frame: `(M + m,
+/// (M c + m p + h) / (M + m))`, with the arm's `(M, c)`
+/// ([`center_of_mass`](ArmDynamics::center_of_mass)), `p` the tool origin and `h = m·c_p` the
+/// payload's first moment in world axes (`c` is the world origin if both masses are 0). What
+/// a balance or support-polygon check needs while the arm carries the payload.
+///
+/// ```
+/// dhgen::robot!(mod puma560 = "robots/puma560.toml");
+/// use dhgen::payload::{Payload, center_of_mass};
+///
+/// let part = Payload::new(2.0, [0.0, 0.0, 0.05], [[3e-3, 0.0, 0.0], [0.0, 3e-3, 0.0], [0.0, 0.0, 3e-3]])
+///     .unwrap();
+/// let q = dhgen::nalgebra::SVector::from([0.1, -0.6, 0.4, 0.3, 0.8, -0.2]);
+/// let (mass, c) = center_of_mass(&puma560::Robot, &part, &q);
+/// let (arm_mass, _) = dhgen::ArmDynamics::center_of_mass(&puma560::Robot, &q);
+/// assert!((mass - arm_mass - 2.0).abs() < 1e-12);
+/// // The weight of both acts at c: the potential energy is −(M + m) gravity · c.
+/// let p = dhgen::payload::potential_energy(&puma560::Robot, &part, &q);
+/// assert!((p - mass * 9.81 * c.z).abs() < 1e-9);
+/// ```
+#[doc(alias = "centerOfMass")]
+pub fn center_of_mass<A: ArmDynamics>(
+    arm: &A,
+    payload: &Payload,
+    q: &OVector<f64, A::Dof>,
+) -> (f64, Point3<f64>)
+where
+    DefaultAllocator: ArmAllocator<A::Dof>,
+{
+    let tool = arm.fk(q);
+    let w = world_at(&tool, payload);
+    let (mass, c) = arm.center_of_mass(q);
+    let total = mass + w.mass;
+    let moment = c.coords * mass + tool.translation.vector * w.mass + w.h;
+    let c = if total > 0.0 { moment / total } else { moment };
+    (total, Point3::new(c.x, c.y, c.z))
+}
+
+/// The Jacobian of [`center_of_mass`], 3×n in world axes: `(M J_c + m J_p) / (M + m)`, with
+/// the arm's `J_c` ([`center_of_mass_jacobian`](ArmDynamics::center_of_mass_jacobian)) and
+/// `m J_p = m J_v − h× J_ω` the payload's centre's (rigid on the tool: `J_v`, `J_ω` the tool's
+/// Jacobian's rows); zero if both masses are 0.
+#[doc(alias = "jacobianCenterOfMass")]
+pub fn center_of_mass_jacobian<A: ArmDynamics>(
+    arm: &A,
+    payload: &Payload,
+    q: &OVector<f64, A::Dof>,
+) -> OMatrix<f64, U3, A::Dof>
+where
+    DefaultAllocator: ArmAllocator<A::Dof>,
+{
+    let j = arm.jacobian(q);
+    let w = world(arm, payload, q);
+    let (mass, _) = arm.center_of_mass(q);
+    let total = mass + w.mass;
+    let mut out = arm.center_of_mass_jacobian(q) * mass;
+    for (k, mut column) in out.column_iter_mut().enumerate() {
+        let v = j.fixed_view::<3, 1>(0, k) * w.mass;
+        let omega = j.fixed_view::<3, 1>(3, k);
+        column += v + omega.cross(&w.h);
+    }
+    if total > 0.0 { out / total } else { out }
 }

@@ -111,6 +111,19 @@ fn check<A: ArmDynamics<Dof = nalgebra::Const<N>>, const N: usize>(
                 merged.potential_energy(&qv),
             ],
         );
+        let (mass, centre) = payload::center_of_mass(arm, &p, &q);
+        let (want_mass, want_centre) = merged.center_of_mass(&qv);
+        close(&format!("{name} mass"), &[mass], &[want_mass]);
+        close(
+            &format!("{name} centre of mass"),
+            centre.coords.as_slice(),
+            want_centre.coords.as_slice(),
+        );
+        close(
+            &format!("{name} J_c"),
+            payload::center_of_mass_jacobian(arm, &p, &q).as_slice(),
+            merged.center_of_mass_jacobian(&qv).as_slice(),
+        );
         // No payload is the arm itself.
         let none = payload::inverse_dynamics(arm, &Payload::NONE, &q, &qd, &qdd);
         close(
@@ -150,6 +163,19 @@ fn check_runtime(name: &str, robot: &Robot) {
                 payload::potential_energy(robot, &p, &q),
             ],
             &energies,
+        );
+        let (mass, centre) = payload::center_of_mass(robot, &p, &q);
+        let (want_mass, want_centre) = merged.center_of_mass(&q);
+        close(name, &[mass], &[want_mass]);
+        close(
+            name,
+            centre.coords.as_slice(),
+            want_centre.coords.as_slice(),
+        );
+        close(
+            name,
+            payload::center_of_mass_jacobian(robot, &p, &q).as_slice(),
+            merged.center_of_mass_jacobian(&q).as_slice(),
         );
         // The robot holding it, built without the description's text.
         let holding = robot.with_payload(&p).expect("a robot with dynamics");
