@@ -363,6 +363,17 @@ pub fn reachable(g: &Graph, roots: impl IntoIterator<Item = Id>) -> Vec<Id> {
         .collect()
 }
 
+/// The tangent of joint j's variable for [`derivative`]: `d cos θ_j = −sin θ_j`,
+/// `d sin θ_j = cos θ_j` (revolute) or `d d_j = 1` (prismatic), every other input's 0.
+pub fn along_joint(graph: &SharedGraph, j: usize) -> impl Fn(Sym) -> E + '_ {
+    move |s| match s {
+        Sym::Cos(i) if i == j => -E::sym(graph, Sym::Sin(j)),
+        Sym::Sin(i) if i == j => E::sym(graph, Sym::Cos(j)),
+        Sym::Len(i) if i == j => E::K(1.0),
+        _ => E::K(0.0),
+    }
+}
+
 /// The derivatives of the expressions `roots` of `graph` along the tangent that gives each
 /// input symbol the derivative `tangent(s)`: forward mode over the graph, every node's
 /// derivative built once, in `graph` (so it shares what the values, and other derivatives

@@ -11,7 +11,7 @@
 //! operations; `c` differentiated along each joint in its graph is the other candidate.
 
 use crate::chain::{V3, described};
-use crate::graph::{E, SharedGraph, Sym};
+use crate::graph::{E, SharedGraph, along_joint};
 use dhgen_model::{ChainRef, JointKind};
 
 /// `1 / M` for the links' total mass `M`, or 1 where they have none (every first moment is
@@ -46,14 +46,7 @@ pub fn center_of_mass_jacobian(chain: ChainRef<'_>) -> (SharedGraph, Vec<E>) {
         let (graph, mc) = center_of_mass(chain);
         let c = &mc[1..];
         let columns: Vec<E> = (0..chain.dof())
-            .flat_map(|j| {
-                crate::graph::derivative(&graph, c, |s| match s {
-                    Sym::Cos(i) if i == j => -E::sym(&graph, Sym::Sin(j)),
-                    Sym::Sin(i) if i == j => E::sym(&graph, Sym::Cos(j)),
-                    Sym::Len(i) if i == j => E::K(1.0),
-                    _ => E::K(0.0),
-                })
-            })
+            .flat_map(|j| crate::graph::derivative(&graph, c, along_joint(&graph, j)))
             .collect();
         (graph, columns)
     };

@@ -155,13 +155,11 @@ pub fn inverse_dynamics_derivatives(
     if let Some((graph, tau)) = assembled {
         // Along q_j (`wrt_q`, the angle or the displacement) or along q̇_j.
         let along = |wrt_q: bool, j: usize| {
-            crate::graph::derivative(graph, tau, |s| match s {
-                Sym::Cos(i) if wrt_q && i == j => -E::sym(graph, Sym::Sin(j)),
-                Sym::Sin(i) if wrt_q && i == j => E::sym(graph, Sym::Cos(j)),
-                Sym::Len(i) if wrt_q && i == j => E::K(1.0),
-                Sym::Qd(i) if !wrt_q && i == j => E::K(1.0),
-                _ => E::K(0.0),
-            })
+            if wrt_q {
+                crate::graph::derivative(graph, tau, crate::graph::along_joint(graph, j))
+            } else {
+                crate::graph::derivative(graph, tau, |s| E::K(f64::from(s == Sym::Qd(j))))
+            }
         };
         let lanes = dual_rnea(chain, graph, n);
         let c = dv
