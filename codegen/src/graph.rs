@@ -365,7 +365,7 @@ pub fn reachable(g: &Graph, roots: impl IntoIterator<Item = Id>) -> Vec<Id> {
 
 /// The tangent of joint j's variable for [`derivative`]: `d cos θ_j = −sin θ_j`,
 /// `d sin θ_j = cos θ_j` (revolute) or `d d_j = 1` (prismatic), every other input's 0.
-pub fn along_joint(graph: &SharedGraph, j: usize) -> impl Fn(Sym) -> E + '_ {
+pub fn joint_tangent(graph: &SharedGraph, j: usize) -> impl Fn(Sym) -> E + '_ {
     move |s| match s {
         Sym::Cos(i) if i == j => -E::sym(graph, Sym::Sin(j)),
         Sym::Sin(i) if i == j => E::sym(graph, Sym::Cos(j)),

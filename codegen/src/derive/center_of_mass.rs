@@ -11,7 +11,7 @@
 //! operations; `c` differentiated along each joint in its graph is the other candidate.
 
 use crate::chain::{V3, described};
-use crate::graph::{E, SharedGraph, along_joint};
+use crate::graph::{E, SharedGraph, joint_tangent};
 use dhgen_model::{ChainRef, JointKind};
 
 /// `1 / M` for the links' total mass `M`, or 1 where they have none (every first moment is
@@ -46,7 +46,7 @@ pub fn center_of_mass_jacobian(chain: ChainRef<'_>) -> (SharedGraph, Vec<E>) {
         let (graph, mc) = center_of_mass(chain);
         let c = &mc[1..];
         let columns: Vec<E> = (0..chain.dof())
-            .flat_map(|j| crate::graph::derivative(&graph, c, along_joint(&graph, j)))
+            .flat_map(|j| crate::graph::derivative(&graph, c, joint_tangent(&graph, j)))
             .collect();
         (graph, columns)
     };

@@ -156,7 +156,7 @@ pub fn inverse_dynamics_derivatives(
         // Along q_j (`wrt_q`, the angle or the displacement) or along q̇_j.
         let along = |wrt_q: bool, j: usize| {
             if wrt_q {
-                crate::graph::derivative(graph, tau, crate::graph::along_joint(graph, j))
+                crate::graph::derivative(graph, tau, crate::graph::joint_tangent(graph, j))
             } else {
                 crate::graph::derivative(graph, tau, |s| E::K(f64::from(s == Sym::Qd(j))))
             }
