@@ -1,14 +1,15 @@
 //! Timings of inverse kinematics and velocity kinematics on generated robots: the closed
 //! form by kinematic decoupling (all solutions, each verified by forward kinematics; the
 //! bar to beat is IKFast's published ~4 µs per solve), the numeric solver from nearby and
-//! from random seeds, and the velocity-kinematics helpers. Every call takes the next of 64
+//! from random seeds, redundancy resolution (`solve_preferring`), and the velocity-kinematics
+//! helpers. Every call takes the next of 64
 //! fixed random poses (seeded, from joint vectors within the limits).
 //!
 //! `cargo bench --bench ik -- --warm-up-time 1 --measurement-time 2`
 
 use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
 use dhgen::Arm;
-use dhgen::ik::{DecoupledIk, NumericIk};
+use dhgen::ik::{DecoupledIk, NumericIk, Preference};
 use dhgen::nalgebra::{Isometry3, SVector, Vector6};
 use dhgen::velocity::{Damping, JacobianSvd, inverse_velocity};
 use rand::rngs::StdRng;
@@ -18,6 +19,7 @@ use std::hint::black_box;
 dhgen::robot!(mod puma560 = "robots/puma560.toml");
 dhgen::robot!(mod stanford = "robots/stanford.toml");
 dhgen::robot!(mod panda = "robots/panda.toml");
+dhgen::robot!(mod snake17 = "tests/fixtures/snake17.toml");
 
 const STATES: usize = 64;
 
@@ -109,6 +111,45 @@ fn numeric(c: &mut Criterion) {
     });
 }
 
+/// Redundancy resolution: from a random seed, the solution nearest the middle of the limits
+/// (the 7-joint Panda, and the 17-joint snake whose limits the active set holds joints on).
+fn preferring(c: &mut Criterion) {
+    fn middle<const N: usize, A: Arm<Dof = dhgen::nalgebra::Const<N>>>(arm: &A) -> SVector<f64, N> {
+        SVector::from_fn(|j, _| {
+            let [lo, hi] = arm.limits(j).unwrap_or([0.0, 0.0]);
+            0.5 * (lo + hi)
+        })
+    }
+    let solver = NumericIk::default();
+    let pd = cases::<7, _>(&panda::Robot, 7);
+    let posture = middle::<7, _>(&panda::Robot);
+    cycle(c, "panda", "ik_preferring", "nearest_middle", &pd, |s| {
+        solver.solve_preferring(
+            &panda::Robot,
+            &s.pose,
+            &s.random,
+            Preference::Posture(&posture),
+        )
+    });
+    let snake = cases::<17, _>(&snake17::Robot, 17);
+    let posture = middle::<17, _>(&snake17::Robot);
+    cycle(
+        c,
+        "snake17",
+        "ik_preferring",
+        "nearest_middle",
+        &snake,
+        |s| {
+            solver.solve_preferring(
+                &snake17::Robot,
+                &s.pose,
+                &s.random,
+                Preference::Posture(&posture),
+            )
+        },
+    );
+}
+
 fn velocity(c: &mut Criterion) {
     let puma = cases::<6, _>(&puma560::Robot, 560);
     let xi = Vector6::new(0.1, -0.2, 0.05, 0.3, 0.0, -0.1);
@@ -123,5 +164,5 @@ fn velocity(c: &mut Criterion) {
     });
 }
 
-criterion_group!(benches, closed_form, numeric, velocity);
+criterion_group!(benches, closed_form, numeric, preferring, velocity);
 criterion_main!(benches);
