@@ -440,8 +440,8 @@ where
 
 /// The Jacobian of [`center_of_mass`], 3×n in world axes: `(M J_c + m J_p) / (M + m)`, with
 /// the arm's `J_c` ([`center_of_mass_jacobian`](ArmDynamics::center_of_mass_jacobian)) and
-/// `m J_p = m J_v − h× J_ω` the payload's centre's (rigid on the tool: `J_v`, `J_ω` the tool's
-/// Jacobian's rows); zero if both masses are 0.
+/// `J_p` the payload's centre's, a point rigid on the tool (as
+/// [`point_jacobian`](crate::velocity::point_jacobian) builds it); zero if both masses are 0.
 #[doc(alias = "jacobianCenterOfMass")]
 pub fn center_of_mass_jacobian<A: ArmDynamics>(
     arm: &A,
@@ -456,10 +456,12 @@ where
     let (mass, _) = arm.center_of_mass(q);
     let total = mass + w.mass;
     let mut out = arm.center_of_mass_jacobian(q) * mass;
-    for (k, mut column) in out.column_iter_mut().enumerate() {
-        let v = j.fixed_view::<3, 1>(0, k) * w.mass;
-        let omega = j.fixed_view::<3, 1>(3, k);
-        column += v + omega.cross(&w.h);
+    // A payload of no mass has no first moment either, and adds nothing.
+    if w.mass > 0.0 {
+        let offset = w.h / w.mass;
+        for (k, mut column) in out.column_iter_mut().enumerate() {
+            column += crate::velocity::moved_column(&j, k, &offset) * w.mass;
+        }
     }
     if total > 0.0 { out / total } else { out }
 }

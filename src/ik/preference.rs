@@ -606,15 +606,13 @@ impl Released {
         for k in (0..g.len()).filter(|&k| held[k] == 0.0) {
             b += j.column(k) * g[k];
         }
-        let released = Released {
-            y: nalgebra::Vector6::zeros(),
+        let mut released = Released {
+            y: b,
             u: *svd.u(),
             inverse_squares: sigma.map(|s| 1.0 / (s * s)),
         };
-        Some(Released {
-            y: released.gram_inverse(&b),
-            ..released
-        })
+        released.y = released.gram_inverse(&b);
+        Some(released)
     }
 
     /// `G⁻¹ x`.
