@@ -7,11 +7,11 @@
 //! Robots: the PUMA 560, the SCARA (motors and friction), the `odd` fixture (modified DH,
 //! a prismatic joint, base and tool poses, gravity off every axis, products of inertia,
 //! motors, friction), the Stanford arm (derivatives of τ assembled from its normal forms), the
-//! Panda (C and ∂τ/∂q in joint frames) and the 17-joint `snake17` (forward dynamics and D⁻¹
-//! by the looped Cholesky factorisation).
+//! Panda (C and ∂τ/∂q in joint frames), the 17-joint `snake17` (forward dynamics and D⁻¹
+//! by the looped Cholesky factorisation) and `oblique9`, a 9-joint arm without structure.
 
 use crate::catalogue::{
-    odd_derivatives as odd, panda_derivatives as panda, puma560_derivatives as puma,
+    oblique9, odd_derivatives as odd, panda_derivatives as panda, puma560_derivatives as puma,
     scara_derivatives as scara, snake17_derivatives as snake17, stanford_derivatives as stanford,
 };
 use crate::support::{fixture, max_abs, runtime};
@@ -148,6 +148,11 @@ derivative_laws!(
     runtime("stanford")
 );
 derivative_laws!(panda_derivatives_obey_the_laws, panda, runtime("panda"));
+derivative_laws!(
+    oblique9_derivatives_obey_the_laws,
+    oblique9,
+    fixture("oblique9")
+);
 
 /// Coulomb friction is constant away from q̇ = 0 and not differentiable at it; the generated
 /// derivative takes its subgradient 0 there too, so ∂τ/∂q̇ at a joint at rest is the smooth

@@ -1,10 +1,11 @@
 //! Generated code against the runtime path, on random configurations, for every catalogue
-//! robot and for the fixtures `odd`, `gantry` and `snake17` (tests/fixtures), which cover
-//! what the reference files do not (prismatic joints, modified DH with base and tool, tilted
-//! gravity, motors and friction, more joints than the normal form holds).
+//! robot and for the fixtures `odd`, `gantry`, `snake17` and `oblique9` (tests/fixtures), which
+//! cover what the reference files do not (prismatic joints, modified DH with base and tool,
+//! tilted gravity, motors and friction, more joints than the normal form holds, an arm with no
+//! quarter turn or zero anywhere).
 
 use crate::catalogue::{
-    cylindrical, gantry, odd, panda, planar_elbow, puma560, scara, snake17, stanford, ur5,
+    cylindrical, gantry, oblique9, odd, panda, planar_elbow, puma560, scara, snake17, stanford, ur5,
 };
 use crate::support::{fixture, max_abs, runtime};
 use dhgen::Robot;
@@ -187,6 +188,11 @@ compare!(
     snake17_generated_equals_runtime,
     snake17,
     fixture("snake17")
+);
+compare!(
+    oblique9_generated_equals_runtime,
+    oblique9,
+    fixture("oblique9")
 );
 
 /// f32 instantiation of the same generated code agrees with f64 to f32 precision.

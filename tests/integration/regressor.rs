@@ -297,8 +297,8 @@ macro_rules! generated_regressor {
 }
 
 use crate::catalogue::{
-    odd_derivatives, panda_regressor, planar_elbow, puma560_derivatives, scara_derivatives,
-    stanford_regressor, ur5,
+    oblique9, odd_derivatives, panda_regressor, planar_elbow, puma560_derivatives,
+    scara_derivatives, stanford_regressor, ur5,
 };
 use crate::support::{fixture, runtime};
 
@@ -319,6 +319,7 @@ generated_regressor!(
     runtime("scara")
 );
 generated_regressor!(odd_generated_regressor, odd_derivatives, fixture("odd"));
+generated_regressor!(oblique9_generated_regressor, oblique9, fixture("oblique9"));
 generated_regressor!(ur5_generated_regressor, ur5, runtime("ur5"));
 generated_regressor!(
     planar_elbow_generated_regressor,
