@@ -68,3 +68,20 @@ macro_rules! check {
 
 check!(puma560_in_f64_and_f32, puma560_f64, puma560_f32, 6);
 check!(panda_in_f64_and_f32, panda_f64, panda_f32, 7);
+
+/// Every other generated function (derivatives, regressor, payload, batch) runs in the
+/// no_std build, in `f64` and `f32`, and the two agree: the sum of one entry of each, to
+/// `f32` precision and the conditioning of D(q) that the solved quantities carry.
+#[test]
+fn everything_else_runs_and_f32_agrees_with_f64() {
+    use dhgen_nostd_check::{puma560_everything_f32, puma560_everything_f64};
+    let (q, qd, qdd) = (first::<6>(&Q), first::<6>(&QD), first::<6>(&QDD));
+    let payload = [
+        0.8, 0.01, -0.02, 0.05, 0.004, 0.0001, 0.005, 0.0002, -0.0001, 0.003,
+    ];
+    let e = puma560_everything_f64(&q, &qd, &qdd, &payload);
+    let s = puma560_everything_f32(&narrow(&q), &narrow(&qd), &narrow(&qdd), &narrow(&payload));
+    assert!(e.is_finite() && s.is_finite(), "f64 {e}, f32 {s}");
+    let err = (f64::from(s) - e).abs() / e.abs().max(1.0);
+    assert!(err <= 1e-5, "f32 {s} differs from f64 {e} by {err:e}");
+}
