@@ -1,9 +1,10 @@
 //! Proof that `dhgen::robot!` output needs only `core` and nalgebra: this crate is
 //! `#![no_std]`, depends on `dhgen` without default features, and instantiates the generated
 //! kinematics and dynamics for `f32` and `f64` (generic functions are compiled only where
-//! they are instantiated), and every other generated function, the derivatives, the
-//! regressor, the payload's forms and the `batch` slices among them, for a module built with
-//! `derivatives` and `regressor`.
+//! they are instantiated), and, for a module built with `derivatives` and `regressor`, every
+//! function of the module (the `_lanes` forms through the functions that return them as
+//! `Option`s), the derivatives, the regressor and the payload's forms among them, and one of
+//! its `batch` slice functions (they share `dhgen::batch::run`).
 //!
 //! Building it for a target without `std`, e.g.
 //! `cargo build -p dhgen-nostd-check --target thumbv7em-none-eabihf`, is the full check:
@@ -91,6 +92,11 @@ macro_rules! evaluate_everything {
             let batched =
                 r::batch::mass_matrix(&[*q, *qd], &mut batch).map_or(0.0, |()| batch[1][(0, 0)]);
             r::fk_matrix(q)[(0, 3)]
+                + r::fk(q).translation.vector.x
+                + r::jacobian(q)[(0, 1)]
+                + r::mass_matrix(q)[(1, 1)]
+                + r::gravity(q)[1]
+                + r::forward_dynamics(q, qd, &tau).map_or(0.0, |a| a[1])
                 + r::frames(q)[2].translation.vector.x
                 + r::frames_matrix(q)[2][(0, 3)]
                 + r::body_jacobian(q)[(0, 1)]

@@ -43,7 +43,8 @@ dhgen::robot!(pub mod panda_derivatives = "robots/panda.toml", derivatives);
 dhgen::robot!(pub mod snake17_derivatives = "tests/fixtures/snake17.toml", derivatives);
 // No structure at all (every twist oblique, every length and offset non-zero, full inertia
 // tensors, a prismatic joint, base, tool, motors, friction, tilted gravity), 9 joints: where
-// the single-frame derivations and the loops compete with the joint-frame ones.
+// the derivations in one frame's coordinates win (D in the middle joint's frame, C and ∂τ/∂q
+// in the first joint's), not the joint-frame ones the catalogue's arms take.
 dhgen::robot!(pub mod oblique9 = "tests/fixtures/oblique9.toml", derivatives, regressor);
 dhgen::robot!(pub mod panda_regressor = "robots/panda.toml", regressor);
 dhgen::robot!(pub mod stanford_regressor = "robots/stanford.toml", regressor);
