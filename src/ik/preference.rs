@@ -606,18 +606,26 @@ impl Released {
         for k in (0..g.len()).filter(|&k| held[k] == 0.0) {
             b += j.column(k) * g[k];
         }
-        let mut released = Released {
-            y: b,
-            u: *svd.u(),
-            inverse_squares: sigma.map(|s| 1.0 / (s * s)),
-        };
-        released.y = released.gram_inverse(&b);
-        Some(released)
+        let (u, inverse_squares) = (*svd.u(), sigma.map(|s| 1.0 / (s * s)));
+        Some(Released {
+            y: Self::solve(&u, &inverse_squares, &b),
+            u,
+            inverse_squares,
+        })
+    }
+
+    /// `G⁻¹ x = U Σ⁻² Uᵀ x`.
+    fn solve(
+        u: &nalgebra::Matrix6<f64>,
+        inverse_squares: &nalgebra::Vector6<f64>,
+        x: &nalgebra::Vector6<f64>,
+    ) -> nalgebra::Vector6<f64> {
+        u * u.tr_mul(x).component_mul(inverse_squares)
     }
 
     /// `G⁻¹ x`.
     fn gram_inverse(&self, x: &nalgebra::Vector6<f64>) -> nalgebra::Vector6<f64> {
-        self.u * (self.u.tr_mul(x).component_mul(&self.inverse_squares))
+        Self::solve(&self.u, &self.inverse_squares, x)
     }
 
     /// Component k of the projected gradient once joint k (held, gradient `g_k`) is released.
