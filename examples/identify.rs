@@ -15,8 +15,9 @@
 //! (q, q̇, q̈, τ), as a robot's joint encoders and motor currents would give.
 //!
 //! Identification: the generated base regressor `Y_b(q, q̇, q̈)` of the nominal structure
-//! (`robot!(..., regressor)`: the geometry is known, the inertial parameters are not), stacked
-//! over the recording, and least squares by SVD. Reported: the condition number of the stacked
+//! (`robot!(..., regressor)`: the geometry is known, the inertial parameters are not) of each
+//! sample, folded into `dhgen::identification::LeastSquares` (least squares by Givens
+//! rotations, sample by sample, weighted by each joint's noise). Reported: the condition number of the stacked
 //! base regressor; the recovered base parameters against the plant's (without noise: exact up
 //! to rounding); with noise on the torques, the error against the standard deviation least
 //! squares predicts; the torque prediction error on a second trajectory; and the payload alone
@@ -24,6 +25,7 @@
 //! (`target/identify.svg` unless a path is given) shows measured and predicted torques on the
 //! validation trajectory.
 
+use dhgen::identification::LeastSquares;
 use dhgen::nalgebra::{DMatrix, DVector, SMatrix, SVector};
 use dhgen::payload::Payload;
 use dhgen::{Robot, RobotModel};
@@ -222,16 +224,18 @@ fn main() -> Result<(), Box<dyn Error>> {
     let base_rows = |q: &V6, qd: &V6, qdd: &V6| puma560::base_regressor(q, qd, qdd);
 
     let train = record(20.0, 0.0);
-    let (y, tau) = stack::<{ puma560::BASE_PARAMETERS }>(&train, 10, base_rows);
-    let svd = y.clone().svd(true, true);
-    let s = &svd.singular_values;
+    let picked: Vec<&Record> = train.iter().step_by(10).collect();
+    let mut exact = LeastSquares::new(puma560::BASE_PARAMETERS);
+    for r in &picked {
+        exact.add(&base_rows(&r.q, &r.qd, &r.qdd), &r.tau)?;
+    }
+    let estimate = exact.estimate()?;
     println!(
         "stacked base regressor: {} × {}, condition number {:.1}",
-        y.nrows(),
-        y.ncols(),
-        s.max() / s.min()
+        estimate.rows,
+        puma560::BASE_PARAMETERS,
+        estimate.condition_number
     );
-    let exact = svd.solve(&tau, 1e-14).map_err(|e| e.to_string())?;
     let rel = |a: &DVector<f64>| {
         (a - &truth)
             .iter()
@@ -242,33 +246,37 @@ fn main() -> Result<(), Box<dyn Error>> {
     println!(
         "without noise: worst error of the {} base parameters {:.1e} (relative, to max(|π_b|, 1e-3))",
         puma560::BASE_PARAMETERS,
-        rel(&exact)
+        rel(&estimate.parameters)
     );
 
-    // Torque noise: 1 % of each joint's RMS torque, Gaussian.
+    // Torque noise: 1 % of each joint's RMS torque, Gaussian; each joint's rows weighted by
+    // 1/σ_j (Gautier's weighted least squares), whose estimate's covariance the noise
+    // predicts: (YᵀW²Y)⁻¹, the library's covariance divided by the residual variance.
     let n = puma560::DOF;
     let rms: Vec<f64> = (0..n)
         .map(|j| {
-            let sum: f64 = tau.iter().skip(j).step_by(n).map(|t| t * t).sum();
-            (sum / (tau.len() / n) as f64).sqrt()
+            let sum: f64 = picked.iter().map(|r| r.tau[j] * r.tau[j]).sum();
+            (sum / picked.len() as f64).sqrt()
         })
         .collect();
     let sigma: Vec<f64> = rms.iter().map(|r| 0.01 * r).collect();
-    let noisy = DVector::from_fn(tau.len(), |i, _| tau[i] + sigma[i % n] * rng.gaussian());
-    // Weighted least squares (each joint's rows by 1/σ_j): the estimate and its covariance.
-    let w = DVector::from_fn(tau.len(), |i, _| 1.0 / sigma[i % n]);
-    let yw = DMatrix::from_fn(y.nrows(), y.ncols(), |r, c| y[(r, c)] * w[r]);
-    let tw = noisy.component_mul(&w);
-    let svd_w = yw.clone().svd(true, true);
-    let estimate = svd_w.solve(&tw, 1e-14).map_err(|e| e.to_string())?;
-    let cov = (yw.transpose() * &yw)
-        .try_inverse()
-        .ok_or("the weighted regressor is rank deficient")?;
-    println!("with 1 % torque noise (σ = {:.3?} N·m):", sigma);
+    let weights: Vec<f64> = sigma.iter().map(|s| 1.0 / s).collect();
+    let mut weighted = LeastSquares::new(puma560::BASE_PARAMETERS);
+    for r in &picked {
+        let noisy = V6::from_fn(|j, _| r.tau[j] + sigma[j] * rng.gaussian());
+        weighted.add_weighted(&base_rows(&r.q, &r.qd, &r.qdd), &noisy, &weights)?;
+    }
+    let fit = weighted.estimate()?;
+    let estimate = &fit.parameters;
+    println!(
+        "with 1 % torque noise (σ = {:.3?} N·m), residual variance {:.3} (1 for weights of the \
+         true noise):",
+        sigma, fit.residual_variance
+    );
     println!("  k   truth         estimate      error      predicted σ   |error|/σ");
     let mut worst_z = 0.0f64;
     for k in 0..puma560::BASE_PARAMETERS {
-        let sd = cov[(k, k)].sqrt();
+        let sd = (fit.covariance[(k, k)] / fit.residual_variance).sqrt();
         let z = (estimate[k] - truth[k]).abs() / sd;
         worst_z = worst_z.max(z);
         println!(
@@ -289,7 +297,7 @@ fn main() -> Result<(), Box<dyn Error>> {
     // Validation on another trajectory.
     let validation = record(8.0, 2.3);
     let (yv, tv) = stack::<{ puma560::BASE_PARAMETERS }>(&validation, 1, base_rows);
-    let predicted = &yv * &estimate;
+    let predicted = &yv * estimate;
     let err = &predicted - &tv;
     for j in 0..n {
         let e: f64 = err.iter().skip(j).step_by(n).map(|x| x * x).sum::<f64>();
@@ -309,17 +317,13 @@ fn main() -> Result<(), Box<dyn Error>> {
     );
     let short = record(3.0, 4.1);
     let first = 10 * (n - 1);
-    let (y6, t6) = stack::<10>(&short, 5, |q, qd, qdd| {
-        puma560::regressor(q, qd, qdd)
-            .fixed_columns::<10>(first)
-            .into_owned()
-    });
-    let (yall, _) = stack::<{ puma560::PARAMETERS }>(&short, 5, puma560::regressor);
-    let residual = &t6 - &yall * &own;
-    let payload = y6
-        .svd(true, true)
-        .solve(&residual, 1e-14)
-        .map_err(|e| e.to_string())?;
+    let mut alone = LeastSquares::new(10);
+    for r in short.iter().step_by(5) {
+        let y = puma560::regressor(&r.q, &r.qd, &r.qdd);
+        let residual = r.tau - y * &own;
+        alone.add(&y.fixed_columns::<10>(first), &residual)?;
+    }
+    let payload = alone.estimate()?.parameters;
     let m = payload[0];
     println!(
         "payload from 3 s of motion: mass {:.6} kg (true 2.5), centre of mass [{:.6}, {:.6}, {:.6}] m (true [0, 0, 0.08])",

@@ -143,6 +143,9 @@ pub mod parameters {
         names, reduce, sample_states, values,
     };
 }
+// Identification: the base parameters from measured motion, by least squares on the regressor.
+#[cfg(feature = "std")]
+pub mod identification;
 #[cfg(feature = "std")]
 pub use error::Error;
 #[cfg(feature = "std")]

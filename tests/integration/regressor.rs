@@ -88,6 +88,73 @@ fn regressor_times_parameters_is_inverse_dynamics() {
     }
 }
 
+/// Identification (`dhgen::identification`) on every robot, from its own inverse dynamics at
+/// seeded states: without noise the least-squares estimate is its base parameters; with
+/// Gaussian torque noise of known σ_j on joint j, rows weighted by 1/σ_j, every parameter is
+/// within five predicted standard deviations of them, and the residual variance within five of
+/// its standard deviations of 1 (what weights of the true noise give).
+#[test]
+fn identification_recovers_the_base_parameters() {
+    use dhgen::identification::LeastSquares;
+    let mut x: u64 = 0x5EED_1DE4;
+    let mut uniform = move || {
+        x ^= x << 13;
+        x ^= x >> 7;
+        x ^= x << 17;
+        ((x >> 11) as f64 + 0.5) / (1u64 << 53) as f64
+    };
+    let mut gaussian = move || {
+        let (u, v) = (uniform(), uniform());
+        (-2.0 * u.ln()).sqrt() * (std::f64::consts::TAU * v).cos()
+    };
+    for (name, robot) in robots() {
+        let base = robot.base_parameters();
+        let truth = base.reduce(&robot.parameters());
+        let (b, n) = (base.count(), robot.dof());
+        let sigma: Vec<f64> = (0..n).map(|j| 0.02 * (j + 1) as f64).collect();
+        let weights: Vec<f64> = sigma.iter().map(|s| 1.0 / s).collect();
+        let (mut exact, mut noisy) = (LeastSquares::new(b), LeastSquares::new(b));
+        let samples = (10 * b).div_ceil(n) as u64;
+        for seed in 0..samples {
+            let (q, qd, qdd) = state(&robot, 1_000 + seed);
+            let y = base.base_regressor(&robot.regressor(&q[..], &qd[..], &qdd[..]));
+            let tau = robot.inverse_dynamics(&q[..], &qd[..], &qdd[..]);
+            exact.add(&y, &tau).unwrap();
+            let measured = DVector::from_fn(n, |j, _| tau[j] + sigma[j] * gaussian());
+            noisy.add_weighted(&y, &measured, &weights).unwrap();
+        }
+        let e = exact.estimate().unwrap();
+        let scale = truth.amax();
+        let err = (&e.parameters - &truth).amax() / scale;
+        assert!(
+            err < 1e-9,
+            "{name}: {err:e} (condition number {:.1})",
+            e.condition_number
+        );
+        let e = noisy.estimate().unwrap();
+        let worst = (0..b)
+            .map(|k| (e.parameters[k] - truth[k]).abs() / e.standard_deviations[k])
+            .fold(0.0, f64::max);
+        assert!(
+            worst < 5.0,
+            "{name}: an estimate {worst:.2} standard deviations off"
+        );
+        // σ̂² (rows − b) is χ² with rows − b degrees of freedom: σ̂² has mean 1 and standard
+        // deviation √(2 / (rows − b)).
+        let spread = (2.0 / (e.rows - b) as f64).sqrt();
+        assert!(
+            (e.residual_variance - 1.0).abs() < 5.0 * spread,
+            "{name}: residual variance {} (its standard deviation {spread:.3})",
+            e.residual_variance
+        );
+        println!(
+            "{name}: {b} base parameters from {} rows, condition number {:.1}: exact to {err:.1e}; \
+             with noise, within {worst:.2} σ, residual variance {:.3}",
+            e.rows, e.condition_number, e.residual_variance
+        );
+    }
+}
+
 /// The rank of the regressor stacked over `states` seeded states, by Householder QR of
 /// blocks (no pivoting) and a singular value decomposition of the triangular factor: a
 /// computation that shares nothing with the pivoted reduction but the regressor.
