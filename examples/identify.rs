@@ -10,7 +10,8 @@
 //! written from a fixed seed by `--write-plant`; the example checks that it is current) and a
 //! 2.5 kg payload in its hand, none of which the controller knows. A computed-torque
 //! controller on the *nominal* generated model drives the plant along an exciting trajectory
-//! (a sum of sines per joint) for 20 s at 1 kHz, the plant integrated by RK4 on its generated
+//! (a finite Fourier series per joint, `dhgen::trajectory::FourierSeries`: two periods of 10 s,
+//! its bounds checked against the joint limits) for 20 s at 1 kHz, the plant integrated by RK4 on its generated
 //! forward dynamics with the payload (`forward_dynamics_with_payload`); the example records
 //! (q, q̇, q̈, τ), as a robot's joint encoders and motor currents would give.
 //!
@@ -28,6 +29,7 @@
 use dhgen::identification::LeastSquares;
 use dhgen::nalgebra::{DMatrix, DVector, SMatrix, SVector};
 use dhgen::payload::Payload;
+use dhgen::trajectory::{FourierSeries, Synchronized};
 use dhgen::{Robot, RobotModel};
 use plotters::prelude::*;
 use std::error::Error;
@@ -108,22 +110,28 @@ fn plant_is_current(expected: &RobotModel) -> Result<bool, Box<dyn Error>> {
     Ok(&checked_in == expected)
 }
 
-/// The exciting trajectory: per joint, a sum of three sines about a mid pose.
-fn desired(t: f64, seed: f64) -> [[f64; 6]; 3] {
-    let mut out = [[0.0; 6]; 3];
-    for j in 0..6 {
-        let mid = [0.0, -0.6, 0.3, 0.0, 0.4, 0.0][j];
-        out[0][j] = mid;
-        for k in 0..3 {
-            let w = 0.35 * (1.0 + k as f64) * (1.0 + 0.13 * j as f64 + 0.07 * seed);
-            let a = 0.5 / (1.0 + k as f64);
-            let phase = 1.7 * j as f64 + 0.9 * k as f64 + seed;
-            out[0][j] += a * (w * t + phase).sin();
-            out[1][j] += a * w * (w * t + phase).cos();
-            out[2][j] -= a * w * w * (w * t + phase).sin();
-        }
-    }
-    out
+/// Harmonics of the exciting trajectory.
+const HARMONICS: usize = 4;
+
+/// The exciting trajectory (`dhgen::trajectory::FourierSeries`, Swevers et al.'s finite
+/// Fourier series): per joint, four harmonics about a mid pose, harmonic `l` of amplitude
+/// 0.35/l rad and a phase from `seed`; `seconds` long, in two periods when that is 20 s or more
+/// (a periodic recording, whose torques hold the harmonics only).
+fn exciting(seconds: f64, seed: f64) -> Synchronized<FourierSeries<HARMONICS>, 6> {
+    let mid = [0.0, 0.8, -1.0, 0.0, 0.4, 0.0];
+    let cycles = if seconds >= 20.0 { 2 } else { 1 };
+    let omega = std::f64::consts::TAU * f64::from(cycles) / seconds;
+    // Harmonic l's position p sin(l ω τ + φ) is (a_l sin − b_l cos)/(l ω) with
+    // a_l = p l ω cos φ and b_l = −p l ω sin φ.
+    let coefficient = |j: usize, l: usize, part: fn(f64) -> f64| {
+        let (p, rate) = (0.35 / l as f64, l as f64 * omega);
+        let phase = 1.7 * j as f64 + 0.9 * l as f64 + seed;
+        p * rate * part(phase)
+    };
+    let a = core::array::from_fn(|j| core::array::from_fn(|l| coefficient(j, l + 1, f64::cos)));
+    let b = core::array::from_fn(|j| core::array::from_fn(|l| -coefficient(j, l + 1, f64::sin)));
+    Synchronized::fourier(0.0, seconds / f64::from(cycles), cycles, &mid, &a, &b)
+        .expect("finite coefficients")
 }
 
 /// One recorded sample.
@@ -142,17 +150,22 @@ fn record(seconds: f64, seed: f64) -> Vec<Record> {
     let held = Payload::new(body.mass, body.com, body.inertia)
         .expect("a physical payload")
         .parameters();
-    let [q0, qd0, _] = desired(0.0, seed);
-    let (mut q, mut qd) = (V6::from_row_slice(&q0), V6::from_row_slice(&qd0));
+    let reference = exciting(seconds, seed);
+    let start = reference.eval(0.0);
+    let (mut q, mut qd) = (
+        V6::from_fn(|j, _| start[j].q),
+        V6::from_fn(|j, _| start[j].qd),
+    );
     let mut out = Vec::new();
     let steps = (seconds / DT) as usize;
     for i in 0..steps {
         let t = i as f64 * DT;
-        let [qr, qdr, qddr] = desired(t, seed);
+        let r = reference.eval(t);
         let qa: [f64; 6] = core::array::from_fn(|j| q[j]);
         let qda: [f64; 6] = core::array::from_fn(|j| qd[j]);
-        let v: [f64; 6] =
-            core::array::from_fn(|j| qddr[j] + 400.0 * (qr[j] - qa[j]) + 40.0 * (qdr[j] - qda[j]));
+        let v: [f64; 6] = core::array::from_fn(|j| {
+            r[j].qdd + 400.0 * (r[j].q - qa[j]) + 40.0 * (r[j].qd - qda[j])
+        });
         let tau = puma560::inverse_dynamics(&qa, &qda, &v);
         // The plant's D is positive definite everywhere: its accelerations always exist.
         let f = |q: &V6, qd: &V6| plant::forward_dynamics_with_payload(q, qd, &tau, &held);
@@ -222,6 +235,32 @@ fn main() -> Result<(), Box<dyn Error>> {
         puma560::BASE_PARAMETERS
     );
     let base_rows = |q: &V6, qd: &V6, qdd: &V6| puma560::base_regressor(q, qd, qdd);
+
+    // The exciting trajectory's bounds, checked against the joint limits before it is run.
+    let training = exciting(20.0, 0.0);
+    let mut worst = dhgen::trajectory::Setpoint::default();
+    for (j, series) in training.joints().iter().enumerate() {
+        let b = series.bounds();
+        let (low, high) = (series.center() - b.q, series.center() + b.q);
+        if let Some([min, max]) = nominal_model.links[j].limits
+            && (low < min || high > max)
+        {
+            return Err(format!("joint {}: the excitation reaches [{low}, {high}]", j + 1).into());
+        }
+        worst = dhgen::trajectory::Setpoint::new(
+            worst.q.max(b.q),
+            worst.qd.max(b.qd),
+            worst.qdd.max(b.qdd),
+        );
+    }
+    println!(
+        "exciting trajectory: {HARMONICS} harmonics of a {} s period, twice; |q − q_mid| ≤ {:.2} rad, \
+         |q̇| ≤ {:.2} rad/s, |q̈| ≤ {:.2} rad/s² (worst joint), within the joint limits",
+        training.joints()[0].period(),
+        worst.q,
+        worst.qd,
+        worst.qdd
+    );
 
     let train = record(20.0, 0.0);
     let picked: Vec<&Record> = train.iter().step_by(10).collect();

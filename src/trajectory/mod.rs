@@ -10,6 +10,9 @@
 //!   ([`Lspb::velocity_limited`]), with their closed-form durations
 //!   ([`bang_bang_duration`], [`velocity_limited_duration`]).
 //!
+//! Periodic excitation for parameter identification: [`FourierSeries`], a finite Fourier series
+//! about a mid position with bounds on its position, velocity and acceleration.
+//!
 //! Many joints: [`Synchronized`] holds one profile per joint, all sharing the same start and end
 //! time (for the limit-based profiles, the slowest joint's minimum duration).
 //!
@@ -45,8 +48,10 @@
 //! [`bang_bang_duration`]: crate::trajectory::bang_bang_duration
 //! [`velocity_limited_duration`]: crate::trajectory::velocity_limited_duration
 //! [`Synchronized`]: crate::trajectory::Synchronized
+//! [`FourierSeries`]: crate::trajectory::FourierSeries
 
 mod cubic;
+mod fourier;
 mod lspb;
 mod min_time;
 mod multi;
@@ -55,6 +60,7 @@ mod quintic;
 mod via;
 
 pub use cubic::Cubic;
+pub use fourier::FourierSeries;
 pub use lspb::Lspb;
 pub use min_time::{bang_bang_duration, velocity_limited_duration};
 pub use multi::Synchronized;
@@ -198,6 +204,18 @@ pub enum TrajectoryError {
         /// Its value.
         value: f64,
         /// Which joint or via point.
+        at: Location,
+    },
+    /// A coefficient of a [`FourierSeries`] is NaN or infinite.
+    #[error("Fourier coefficient {coefficient}_{harmonic} = {value} is not finite{at}")]
+    NonFiniteCoefficient {
+        /// `"a"` or `"b"`.
+        coefficient: &'static str,
+        /// The harmonic, from 1.
+        harmonic: usize,
+        /// Its value.
+        value: f64,
+        /// Which joint.
         at: Location,
     },
     /// The LSPB cruise velocity `V` lies outside `((qf - q0)/T, 2 (qf - q0)/T]` for a positive
@@ -366,6 +384,17 @@ impl TrajectoryError {
                 value,
                 at: place(at),
             },
+            Self::NonFiniteCoefficient {
+                coefficient,
+                harmonic,
+                value,
+                at,
+            } => Self::NonFiniteCoefficient {
+                coefficient,
+                harmonic,
+                value,
+                at: place(at),
+            },
             Self::LspbVelocityOutOfRange {
                 v,
                 exclusive_bound,
@@ -500,8 +529,9 @@ const COEFFICIENT_NAMES: [&str; 6] = [
     "polynomial coefficient a5",
 ];
 
-/// The range check shared by [`Cubic`] and [`Quintic`], whose constructors take finite input
-/// that can still describe a profile `f64` cannot hold (a velocity of 1e300 for 1e10 s).
+/// The range check shared by [`Cubic`], [`Quintic`] and [`FourierSeries`] (with no
+/// coefficients: its scales are its bounds), whose constructors take finite input that can
+/// still describe a profile `f64` cannot hold (a velocity of 1e300 for 1e10 s).
 ///
 /// `scales` are the position, velocity and acceleration scales: with `T = tf - t0`, the sums
 /// of the magnitudes of the Hermite data each derivative is formed from (position: `|q0|`,

@@ -1,8 +1,8 @@
 //! Many joints moving together: one profile per joint over one common time interval.
 
 use super::{
-    Cubic, Location, Lspb, MultiProfile, Profile, Quintic, Setpoint, TrajectoryError,
-    bang_bang_duration, finite, velocity_limited_duration,
+    Cubic, FourierSeries, Location, Lspb, MultiProfile, Profile, Quintic, Setpoint,
+    TrajectoryError, bang_bang_duration, finite, velocity_limited_duration,
 };
 
 /// One profile per joint (`N` joints), all starting and ending at the same times.
@@ -121,6 +121,22 @@ impl<const N: usize> Synchronized<Cubic, N> {
         vf: &[f64; N],
     ) -> Result<Self, TrajectoryError> {
         let joints = try_joints(|j| Cubic::new(t0, tf, q0[j], v0[j], qf[j], vf[j]))?;
+        Self::new(joints)
+    }
+}
+
+impl<const N: usize, const L: usize> Synchronized<FourierSeries<L>, N> {
+    /// One [`FourierSeries`] per joint, `cycles` periods of `period` from `t0`: joint `j`
+    /// about `q0[j]` with coefficients `a[j]` and `b[j]`.
+    pub fn fourier(
+        t0: f64,
+        period: f64,
+        cycles: u32,
+        q0: &[f64; N],
+        a: &[[f64; L]; N],
+        b: &[[f64; L]; N],
+    ) -> Result<Self, TrajectoryError> {
+        let joints = try_joints(|j| FourierSeries::new(t0, period, cycles, q0[j], a[j], b[j]))?;
         Self::new(joints)
     }
 }

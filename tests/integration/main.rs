@@ -54,6 +54,7 @@ mod runtime_reference;
 mod simulate;
 mod singular_inertia;
 mod task_space;
+mod trajectory_fourier;
 mod trajectory_lspb;
 mod trajectory_min_time;
 mod trajectory_multi;
