@@ -27,10 +27,10 @@
 //! (`target/identify.svg` unless a path is given) shows measured and predicted torques on the
 //! validation trajectory.
 
-use dhgen::identification::{IdentificationError, LeastSquares};
+use dhgen::identification::LeastSquares;
 use dhgen::nalgebra::{DMatrix, DVector, SMatrix, SVector};
 use dhgen::payload::Payload;
-use dhgen::trajectory::{FourierSeries, Synchronized};
+use dhgen::trajectory::{FourierSeries, Setpoint, Synchronized};
 use dhgen::{Robot, RobotModel};
 use plotters::prelude::*;
 use std::error::Error;
@@ -239,7 +239,8 @@ fn main() -> Result<(), Box<dyn Error>> {
 
     // The excitation's phases: of 16 candidates, those whose reference trajectory gives the
     // stacked base regressor the smallest condition number (the measure identification
-    // experiments minimise), from the reference alone, before anything is run.
+    // experiments minimise), from the reference alone (its rows with zero torques: the
+    // condition number does not read them), before anything is run.
     let condition = |seed: f64| -> Result<f64, Box<dyn Error>> {
         let reference = exciting(20.0, seed);
         let mut fit = LeastSquares::new(puma560::BASE_PARAMETERS);
@@ -252,11 +253,7 @@ fn main() -> Result<(), Box<dyn Error>> {
             );
             fit.add(&base_rows(&q, &qd, &qdd), &V6::zeros())?;
         }
-        Ok(match fit.estimate() {
-            Ok(estimate) => estimate.condition_number,
-            Err(IdentificationError::NotExcited { condition_number }) => condition_number,
-            Err(other) => return Err(other.into()),
-        })
+        Ok(fit.condition_number())
     };
     let mut candidates = Vec::new();
     for k in 0..16 {
@@ -276,7 +273,7 @@ fn main() -> Result<(), Box<dyn Error>> {
 
     // The exciting trajectory's bounds, checked against the joint limits before it is run.
     let training = exciting(20.0, seed);
-    let mut worst = dhgen::trajectory::Setpoint::default();
+    let mut worst = Setpoint::default();
     for (j, series) in training.joints().iter().enumerate() {
         let b = series.bounds();
         let (low, high) = (series.center() - b.q, series.center() + b.q);
@@ -285,11 +282,7 @@ fn main() -> Result<(), Box<dyn Error>> {
         {
             return Err(format!("joint {}: the excitation reaches [{low}, {high}]", j + 1).into());
         }
-        worst = dhgen::trajectory::Setpoint::new(
-            worst.q.max(b.q),
-            worst.qd.max(b.qd),
-            worst.qdd.max(b.qdd),
-        );
+        worst = Setpoint::new(worst.q.max(b.q), worst.qd.max(b.qd), worst.qdd.max(b.qdd));
     }
     println!(
         "exciting trajectory: {HARMONICS} harmonics of a {} s period, twice; |q − q_mid| ≤ {:.2} rad, \

@@ -269,6 +269,28 @@ impl LeastSquares {
         }
     }
 
+    /// `R`, upper triangular with `RᵀR = YᵀW²Y`: its singular values are the stacked
+    /// (weighted) regressor's (`R = Qᵀ W Y`).
+    fn triangle(&self) -> DMatrix<f64> {
+        let p = self.parameters();
+        self.factor.view((0, 0), (p, p)).upper_triangle()
+    }
+
+    /// The condition number of the rows added so far (weighted), the ratio of the largest to
+    /// the smallest singular value of the stacked regressor (∞ while it is singular): what
+    /// [`Estimate::condition_number`] reports, available before an estimate, and independent of
+    /// the torques. To choose an exciting trajectory, add its regressor rows with any torques
+    /// (zeros) and compare.
+    pub fn condition_number(&self) -> f64 {
+        let singular = self.triangle().singular_values();
+        let (largest, smallest) = (singular.max(), singular.min());
+        if smallest > 0.0 {
+            largest / smallest
+        } else {
+            f64::INFINITY
+        }
+    }
+
     /// The least-squares estimate from the rows added so far.
     ///
     /// # Errors
@@ -283,17 +305,9 @@ impl LeastSquares {
                 columns: p,
             });
         }
-        let r = self.factor.view((0, 0), (p, p)).upper_triangle();
+        let r = self.triangle();
         let z = self.factor.view((0, p), (p, 1)).into_owned();
-        // R's singular values are the stacked regressor's (R = Qᵀ W Y).
-        let singular = r.singular_values();
-        let largest = singular.max();
-        let smallest = singular.min();
-        let condition_number = if smallest > 0.0 {
-            largest / smallest
-        } else {
-            f64::INFINITY
-        };
+        let condition_number = self.condition_number();
         // Rank deficient to working precision by the usual rule (σ_min ≤ max(m, n) ε σ_max).
         if condition_number * self.rows.max(p) as f64 * f64::EPSILON >= 1.0 {
             return Err(IdentificationError::NotExcited { condition_number });
@@ -363,6 +377,7 @@ mod tests {
         assert!((&e.covariance - &cov).amax() < 1e-10 * cov.amax());
         let s = y.singular_values();
         assert!((e.condition_number / (s.max() / s.min()) - 1.0).abs() < 1e-10);
+        assert_eq!(fit.condition_number(), e.condition_number);
         assert_eq!(e.rows, 40);
     }
 
@@ -379,6 +394,12 @@ mod tests {
         let (a, b) = (weighted.estimate().unwrap(), scaled.estimate().unwrap());
         assert!((&a.parameters - &b.parameters).amax() < 1e-12);
         assert!((a.residual_variance - b.residual_variance).abs() < 1e-12);
+        assert!((weighted.condition_number() / scaled.condition_number() - 1.0).abs() < 1e-12);
+        // The torques do not enter it; an empty fit is singular.
+        let mut zeros = LeastSquares::new(5);
+        zeros.add(&ys, &DVector::zeros(30)).unwrap();
+        assert_eq!(zeros.condition_number(), scaled.condition_number());
+        assert_eq!(LeastSquares::new(5).condition_number(), f64::INFINITY);
     }
 
     #[test]
