@@ -33,6 +33,7 @@ mod generated_velocity;
 mod generated_vs_runtime;
 mod hostile_descriptions;
 mod hostile_urdf;
+mod identification_periodic;
 mod ik_closed_form;
 mod ik_numeric;
 mod ik_preference;

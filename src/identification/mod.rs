@@ -17,6 +17,11 @@
 //! recording that does not excite every base parameter is refused, with that condition number,
 //! rather than answered with arbitrary values in the directions it left free.
 //!
+//! [`PeriodAverage`] prepares a periodic recording: its periods averaged, each channel's noise
+//! variance estimated from their spread (the weights below), and the positions' harmonics as a
+//! [`FourierSeries`](crate::trajectory::FourierSeries) that gives velocities and
+//! accelerations without differentiating noise.
+//!
 //! Weights: with each joint's torque noise `σ_j` known (or estimated from a first, unweighted
 //! fit's residuals), weighting joint `j`'s rows by `1/σ_j` gives the minimum-variance estimate
 //! (Gautier's weighted least squares); the residual variance is then about 1.
@@ -45,6 +50,10 @@
 //! ```
 
 use nalgebra::{DMatrix, DVector, Dim, Matrix, RawStorage, U1};
+
+mod periodic;
+
+pub use periodic::PeriodAverage;
 
 /// Why rows could not be added, or no estimate formed.
 #[derive(Clone, Copy, Debug, PartialEq, thiserror::Error)]
@@ -100,6 +109,60 @@ pub enum IdentificationError {
         /// The condition number of the stacked (weighted) regressor.
         condition_number: f64,
     },
+    /// A recording given to [`PeriodAverage`] is not a positive whole number of periods of at
+    /// least one sample.
+    #[error(
+        "identification: {samples} samples are not a positive whole number of periods of \
+         {samples_per_period} samples"
+    )]
+    NotWholePeriods {
+        /// The samples given.
+        samples: usize,
+        /// The samples of one period.
+        samples_per_period: usize,
+    },
+    /// A sample of a recording has no value, or another number of values than the first.
+    #[error("identification: sample {sample} has {values} values where the first has {expected}")]
+    RaggedSample {
+        /// The sample's index, from 0.
+        sample: usize,
+        /// Its values.
+        values: usize,
+        /// The first sample's.
+        expected: usize,
+    },
+    /// A value of a recording is NaN or infinite.
+    #[error("identification: sample {sample}, channel {channel} is not finite")]
+    NonFiniteSample {
+        /// The sample's index, from 0.
+        sample: usize,
+        /// The value's index within the sample, from 0.
+        channel: usize,
+    },
+    /// A channel beyond a recording's.
+    #[error("identification: channel {channel} of a recording with {channels} channels")]
+    NoChannel {
+        /// The channel asked for.
+        channel: usize,
+        /// The recording's channels.
+        channels: usize,
+    },
+    /// Too few samples per period for the harmonics asked for: `N` samples resolve harmonics
+    /// below `N / 2` only.
+    #[error(
+        "identification: {harmonics} harmonics need more than {} samples per period; the \
+         recording has {samples_per_period}",
+        2 * harmonics
+    )]
+    TooFewSamples {
+        /// The samples of one period.
+        samples_per_period: usize,
+        /// The harmonics asked for.
+        harmonics: usize,
+    },
+    /// The period or start time of a Fourier series fitted to a recording is refused.
+    #[error("identification: {0}")]
+    Series(#[from] crate::trajectory::TrajectoryError),
 }
 
 /// Linear least squares `min ‖W (Y π − τ)‖`, rows added as they come (see the
