@@ -8,29 +8,33 @@
 //! The "real" robot (the plant) is the PUMA 560 of `robots/puma560.toml` with every mass,
 //! centre of mass and inertia changed by up to ±20 % (`examples/puma560_identify_plant.toml`,
 //! written from a fixed seed by `--write-plant`; the example checks that it is current) and a
-//! 2.5 kg payload in its hand, none of which the controller knows. A computed-torque
-//! controller on the *nominal* generated model drives the plant along an exciting trajectory
-//! (a finite Fourier series per joint, `dhgen::trajectory::FourierSeries`: two periods of 10 s,
-//! its phases those of 16 candidates whose reference gives the stacked base regressor the
-//! smallest condition number, its bounds checked against the joint limits) for 20 s at 1 kHz, the plant integrated by RK4 on its generated
-//! forward dynamics with the payload (`forward_dynamics_with_payload`); the example records
-//! (q, q̇, q̈, τ), as a robot's joint encoders and motor currents would give.
+//! 2.5 kg payload in its hand, which the controller knows only roughly (it assumes 2 kg at 6 cm
+//! instead of 8). A computed-torque controller on the *nominal* generated model drives the plant
+//! along an exciting trajectory (a finite Fourier series per joint,
+//! `dhgen::trajectory::FourierSeries`: three periods of 10 s, its phases those of 16 candidates
+//! whose reference gives the stacked base regressor the smallest condition number, its bounds
+//! checked against the joint limits) at 1 kHz, the plant integrated by RK4 on its generated
+//! forward dynamics with the payload (`forward_dynamics_with_payload`).
 //!
 //! Identification: the generated base regressor `Y_b(q, q̇, q̈)` of the nominal structure
-//! (`robot!(..., regressor)`: the geometry is known, the inertial parameters are not) of each
-//! sample, folded into `dhgen::identification::LeastSquares` (least squares by Givens
-//! rotations, sample by sample, weighted by each joint's noise). Reported: the condition number of the stacked
-//! base regressor; the recovered base parameters against the plant's (without noise: exact up
-//! to rounding); with noise on the torques, the error against the standard deviation least
-//! squares predicts; the torque prediction error on a second trajectory; and the payload alone
+//! (`robot!(..., regressor)`: the geometry is known, the inertial parameters are not), folded
+//! sample by sample into `dhgen::identification::LeastSquares` (least squares by Givens
+//! rotations). First from the plant's exact states and torques (exact up to rounding); then as a
+//! robot measures: positions from encoders of 2¹⁸ counts a turn and torques with 1 % noise,
+//! nothing else. The last two periods (the first holds the start's transient) are averaged
+//! (`dhgen::identification::PeriodAverage`), which halves the torque noise's variance and
+//! estimates it from the periods' spread; each position's first 40 harmonics give q, q̇ and q̈;
+//! each joint's rows are weighted by its estimated noise. Reported: the condition numbers, the
+//! recovered base parameters against the plant's with the error in standard deviations least
+//! squares predicts, the torque prediction error on a second trajectory, and the payload alone
 //! (10 parameters) identified from 3 s of motion with the arm's own parameters known. The SVG
 //! (`target/identify.svg` unless a path is given) shows measured and predicted torques on the
 //! validation trajectory.
 
-use dhgen::identification::LeastSquares;
+use dhgen::identification::{LeastSquares, PeriodAverage};
 use dhgen::nalgebra::{DMatrix, DVector, SMatrix, SVector};
 use dhgen::payload::Payload;
-use dhgen::trajectory::{FourierSeries, Setpoint, Synchronized};
+use dhgen::trajectory::{FourierSeries, MultiProfile, Profile, Setpoint, Synchronized};
 use dhgen::{Robot, RobotModel};
 use plotters::prelude::*;
 use std::error::Error;
@@ -114,14 +118,21 @@ fn plant_is_current(expected: &RobotModel) -> Result<bool, Box<dyn Error>> {
 /// Harmonics of the exciting trajectory.
 const HARMONICS: usize = 4;
 
+/// Its period, s, and the samples of one period.
+const PERIOD: f64 = 10.0;
+const PER_PERIOD: usize = 10_000;
+
+/// Harmonics of the fit of each measured position: the motion's bandwidth (the plant, unlike
+/// the reference, is not band-limited to the excitation's four: its tracking error has more).
+const FIT: usize = 40;
+
 /// The exciting trajectory (`dhgen::trajectory::FourierSeries`, Swevers et al.'s finite
-/// Fourier series): per joint, four harmonics about a mid pose, harmonic `l` of amplitude
-/// 0.35/l rad and a phase from `seed`; `seconds` long, in two periods when that is 20 s or more
-/// (a periodic recording, whose torques hold the harmonics only).
-fn exciting(seconds: f64, seed: f64) -> Synchronized<FourierSeries<HARMONICS>, 6> {
+/// Fourier series): per joint, four harmonics of a `period` about a mid pose, harmonic `l` of
+/// amplitude 0.35/l rad and a phase from `seed`, run for `cycles` periods (a periodic
+/// recording, whose torques hold the harmonics only once the start's transient has decayed).
+fn exciting(period: f64, cycles: u32, seed: f64) -> Synchronized<FourierSeries<HARMONICS>, 6> {
     let mid = [0.0, 0.8, -1.0, 0.0, 0.4, 0.0];
-    let cycles = if seconds >= 20.0 { 2 } else { 1 };
-    let omega = std::f64::consts::TAU * f64::from(cycles) / seconds;
+    let omega = std::f64::consts::TAU / period;
     // Harmonic l's position p sin(l ω τ + φ) is (a_l sin − b_l cos)/(l ω) with
     // a_l = p l ω cos φ and b_l = −p l ω sin φ.
     let coefficient = |j: usize, l: usize, part: fn(f64) -> f64| {
@@ -131,8 +142,7 @@ fn exciting(seconds: f64, seed: f64) -> Synchronized<FourierSeries<HARMONICS>, 6
     };
     let a = core::array::from_fn(|j| core::array::from_fn(|l| coefficient(j, l + 1, f64::cos)));
     let b = core::array::from_fn(|j| core::array::from_fn(|l| -coefficient(j, l + 1, f64::sin)));
-    Synchronized::fourier(0.0, seconds / f64::from(cycles), cycles, &mid, &a, &b)
-        .expect("finite coefficients")
+    Synchronized::fourier(0.0, period, cycles, &mid, &a, &b).expect("finite coefficients")
 }
 
 /// One recorded sample.
@@ -144,21 +154,37 @@ struct Record {
     tau: V6,
 }
 
-/// Computed torque on the nominal generated model drives the generated plant holding the
-/// payload; RK4 at 1 kHz.
-fn record(seconds: f64, seed: f64) -> Vec<Record> {
+/// What the controller assumes the hand holds: 2 kg, 6 cm beyond the flange (the true payload
+/// is 2.5 kg at 8 cm). Computed torque scales its gains by the model's inertia, and without
+/// a payload the model's wrist (about 0.002 kg·m²) gets a stiffness of under 1 N·m/rad, which
+/// the payload's weight turns over.
+fn guessed_payload() -> [f64; 10] {
+    let cube = 2.0 * 0.1 * 0.1 / 6.0;
+    Payload::new(
+        2.0,
+        [0.0, 0.0, 0.06],
+        [[cube, 0.0, 0.0], [0.0, cube, 0.0], [0.0, 0.0, cube]],
+    )
+    .expect("a physical payload")
+    .parameters()
+}
+
+/// Computed torque on the nominal generated model with a guessed payload drives the generated
+/// plant holding the true one; RK4 at 1 kHz.
+fn record(reference: &Synchronized<FourierSeries<HARMONICS>, 6>) -> Vec<Record> {
     let body = payload();
     let held = Payload::new(body.mass, body.com, body.inertia)
         .expect("a physical payload")
         .parameters();
-    let reference = exciting(seconds, seed);
+    let seconds = reference.duration();
     let start = reference.eval(0.0);
     let (mut q, mut qd) = (
         V6::from_fn(|j, _| start[j].q),
         V6::from_fn(|j, _| start[j].qd),
     );
     let mut out = Vec::new();
-    let steps = (seconds / DT) as usize;
+    let steps = (seconds / DT).round() as usize;
+    let guess = guessed_payload();
     for i in 0..steps {
         let t = i as f64 * DT;
         let r = reference.eval(t);
@@ -167,7 +193,7 @@ fn record(seconds: f64, seed: f64) -> Vec<Record> {
         let v: [f64; 6] = core::array::from_fn(|j| {
             r[j].qdd + 400.0 * (r[j].q - qa[j]) + 40.0 * (r[j].qd - qda[j])
         });
-        let tau = puma560::inverse_dynamics(&qa, &qda, &v);
+        let tau = puma560::inverse_dynamics_with_payload(&qa, &qda, &v, &guess);
         // The plant's D is positive definite everywhere: its accelerations always exist.
         let f = |q: &V6, qd: &V6| plant::forward_dynamics_with_payload(q, qd, &tau, &held);
         let qdd = f(&q, &qd).expect("the plant's D is positive definite");
@@ -242,9 +268,9 @@ fn main() -> Result<(), Box<dyn Error>> {
     // experiments minimise), from the reference alone (its rows with zero torques: the
     // condition number does not read them), before anything is run.
     let condition = |seed: f64| -> Result<f64, Box<dyn Error>> {
-        let reference = exciting(20.0, seed);
+        let reference = exciting(PERIOD, 1, seed);
         let mut fit = LeastSquares::new(puma560::BASE_PARAMETERS);
-        for i in (0..20_000).step_by(10) {
+        for i in (0..PER_PERIOD).step_by(10) {
             let r = reference.eval(i as f64 * DT);
             let (q, qd, qdd) = (
                 V6::from_fn(|j, _| r[j].q),
@@ -272,7 +298,7 @@ fn main() -> Result<(), Box<dyn Error>> {
     );
 
     // The exciting trajectory's bounds, checked against the joint limits before it is run.
-    let training = exciting(20.0, seed);
+    let training = exciting(PERIOD, 3, seed);
     let mut worst = Setpoint::default();
     for (j, series) in training.joints().iter().enumerate() {
         let b = series.bounds();
@@ -285,16 +311,17 @@ fn main() -> Result<(), Box<dyn Error>> {
         worst = Setpoint::new(worst.q.max(b.q), worst.qd.max(b.qd), worst.qdd.max(b.qdd));
     }
     println!(
-        "exciting trajectory: {HARMONICS} harmonics of a {} s period, twice; |q − q_mid| ≤ {:.2} rad, \
-         |q̇| ≤ {:.2} rad/s, |q̈| ≤ {:.2} rad/s² (worst joint), within the joint limits",
-        training.joints()[0].period(),
-        worst.q,
-        worst.qd,
-        worst.qdd
+        "exciting trajectory: {HARMONICS} harmonics of a {PERIOD} s period, three times; \
+         |q − q_mid| ≤ {:.2} rad, |q̇| ≤ {:.2} rad/s, |q̈| ≤ {:.2} rad/s² (worst joint), within the \
+         joint limits",
+        worst.q, worst.qd, worst.qdd
     );
 
-    let train = record(20.0, seed);
-    let picked: Vec<&Record> = train.iter().step_by(10).collect();
+    // The first period holds the transient of the start (the plant is not the model the
+    // controller inverts); the last two repeat.
+    let train = record(&training);
+    let steady = &train[PER_PERIOD..];
+    let picked: Vec<&Record> = steady.iter().step_by(10).collect();
     let mut exact = LeastSquares::new(puma560::BASE_PARAMETERS);
     for r in &picked {
         exact.add(&base_rows(&r.q, &r.qd, &r.qdd), &r.tau)?;
@@ -319,9 +346,13 @@ fn main() -> Result<(), Box<dyn Error>> {
         rel(&estimate.parameters)
     );
 
-    // Torque noise: 1 % of each joint's RMS torque, Gaussian; each joint's rows weighted by
-    // 1/σ_j (Gautier's weighted least squares), whose estimate's covariance the noise
-    // predicts: (YᵀW²Y)⁻¹, the library's covariance divided by the residual variance.
+    // As measured: positions from encoders of 2¹⁸ counts a turn, torques with Gaussian noise of
+    // 1 % of each joint's RMS torque; nothing else. The two periods averaged (the torque noise's
+    // variance halved, and estimated from the periods' spread), each joint's position fitted by
+    // its first FIT harmonics and differentiated: q, q̇ and q̈ without differentiating noise;
+    // each joint's rows weighted by 1/σ̂ of its averaged torque (Gautier's weighted least
+    // squares), whose estimate's covariance the noise predicts: (YᵀW²Y)⁻¹, the library's
+    // covariance divided by the residual variance.
     let n = puma560::DOF;
     let rms: Vec<f64> = (0..n)
         .map(|j| {
@@ -330,18 +361,93 @@ fn main() -> Result<(), Box<dyn Error>> {
         })
         .collect();
     let sigma: Vec<f64> = rms.iter().map(|r| 0.01 * r).collect();
-    let weights: Vec<f64> = sigma.iter().map(|s| 1.0 / s).collect();
+    let count = std::f64::consts::TAU / f64::from(1u32 << 18);
+    let measured: Vec<[f64; 12]> = steady
+        .iter()
+        .map(|r| {
+            core::array::from_fn(|c| {
+                if c < n {
+                    (r.q[c] / count).round() * count
+                } else {
+                    r.tau[c - n] + sigma[c - n] * rng.gaussian()
+                }
+            })
+        })
+        .collect();
+    let average = PeriodAverage::new(&measured, PER_PERIOD)?;
+    let t0 = steady[0].t;
+    let fits = (0..n)
+        .map(|j| average.fourier_series::<FIT>(j, t0, PERIOD))
+        .collect::<Result<Vec<_>, _>>()?;
+    let noise = average.noise_variance().ok_or("two periods")?;
+    let show = |v: &[f64]| {
+        v.iter()
+            .map(|x| format!("{x:.2e}"))
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    let mean_noise = average.mean_noise_variance().ok_or("two periods")?;
+    println!(
+        "measured: encoder counts of {count:.2e} rad, torques with noise σ = [{}] N·m; two \
+         periods averaged",
+        show(&sigma)
+    );
+    println!(
+        "  noise σ̂ from the periods' spread: torques [{}] N·m, positions {:.2e} rad at most \
+         (the motion repeats, and so do its counts)",
+        show(&(0..n).map(|j| noise[n + j].sqrt()).collect::<Vec<_>>()),
+        (0..n).map(|j| noise[j].sqrt()).fold(0.0, f64::max),
+    );
+    // The fitted states against the plant's own, which the identification never reads.
+    let mut worst_state = [0.0f64; 3];
+    let mut size = [0.0f64; 3];
+    for r in &steady[PER_PERIOD..] {
+        for (j, fit) in fits.iter().enumerate() {
+            let s = fit.eval(r.t);
+            for (k, (x, y)) in [(s.q, r.q[j]), (s.qd, r.qd[j]), (s.qdd, r.qdd[j])]
+                .into_iter()
+                .enumerate()
+            {
+                worst_state[k] = worst_state[k].max((x - y).abs());
+                size[k] = size[k].max(y.abs());
+            }
+        }
+    }
+    // The plant's q̈ at a sample is its acceleration as the new torque applies; the wrist's
+    // changes within the 1 ms step, and the positions show the step's: their second
+    // differences (q_{k+1} − 2 q_k + q_{k−1}) / Δt², unquantized, differ from it as much.
+    let second_difference = steady[PER_PERIOD..]
+        .windows(3)
+        .flat_map(|w| {
+            (0..n).map(move |j| (w[2].q[j] - 2.0 * w[1].q[j] + w[0].q[j]) / (DT * DT) - w[1].qdd[j])
+        })
+        .fold(0.0, |m: f64, e| m.max(e.abs()));
+    println!(
+        "  {FIT} harmonics of each position: worst error of q {:.1e} rad, q̇ {:.1e} rad/s, q̈ {:.1e} \
+         rad/s² (of {:.2}, {:.2}, {:.2} at most) against the plant's own; the exact positions' \
+         second differences differ from its q̈ by {second_difference:.1e}",
+        worst_state[0], worst_state[1], worst_state[2], size[0], size[1], size[2]
+    );
+    let weights: Vec<f64> = (0..n).map(|j| 1.0 / mean_noise[n + j].sqrt()).collect();
     let mut weighted = LeastSquares::new(puma560::BASE_PARAMETERS);
-    for r in &picked {
-        let noisy = V6::from_fn(|j, _| r.tau[j] + sigma[j] * rng.gaussian());
-        weighted.add_weighted(&base_rows(&r.q, &r.qd, &r.qdd), &noisy, &weights)?;
+    for k in (0..PER_PERIOD).step_by(5) {
+        let t = t0 + k as f64 * DT;
+        let states: Vec<_> = fits.iter().map(|f| f.eval(t)).collect();
+        let (q, qd, qdd) = (
+            V6::from_fn(|j, _| states[j].q),
+            V6::from_fn(|j, _| states[j].qd),
+            V6::from_fn(|j, _| states[j].qdd),
+        );
+        let torques = average.sample(k).ok_or("a sample of the period")?;
+        let tau = V6::from_fn(|j, _| torques[n + j]);
+        weighted.add_weighted(&base_rows(&q, &qd, &qdd), &tau, &weights)?;
     }
     let fit = weighted.estimate()?;
     let estimate = &fit.parameters;
     println!(
-        "with 1 % torque noise (σ = {:.3?} N·m), residual variance {:.3} (1 for weights of the \
-         true noise):",
-        sigma, fit.residual_variance
+        "  base parameters from {} rows, condition number {:.1}, residual variance {:.3} (1 for \
+         weights of the true noise):",
+        fit.rows, fit.condition_number, fit.residual_variance
     );
     println!("  k   truth         estimate      error      predicted σ   |error|/σ");
     let mut worst_z = 0.0f64;
@@ -365,7 +471,7 @@ fn main() -> Result<(), Box<dyn Error>> {
     );
 
     // Validation on another trajectory.
-    let validation = record(8.0, 2.3);
+    let validation = record(&exciting(8.0, 1, 2.3));
     let (yv, tv) = stack::<{ puma560::BASE_PARAMETERS }>(&validation, 1, base_rows);
     let predicted = &yv * estimate;
     let err = &predicted - &tv;
@@ -385,7 +491,7 @@ fn main() -> Result<(), Box<dyn Error>> {
     let own = DVector::from_vec(
         dhgen::parameters::values(&arm_model).ok_or("the arm has mass properties")?,
     );
-    let short = record(3.0, 4.1);
+    let short = record(&exciting(3.0, 1, 4.1));
     let first = 10 * (n - 1);
     let mut alone = LeastSquares::new(10);
     for r in short.iter().step_by(5) {
