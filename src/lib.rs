@@ -139,8 +139,8 @@ pub mod payload;
 #[cfg(feature = "std")]
 pub mod parameters {
     pub use dhgen_model::parameters::{
-        BODY_PARAMETER_NAMES, BODY_PARAMETERS, BaseParameters, Column, body_parameters, columns,
-        names, reduce, sample_states, values,
+        BODY_PARAMETER_NAMES, BODY_PARAMETERS, BaseParameters, Column, Links, ParameterError,
+        body_parameters, columns, names, reduce, sample_states, values, with_values,
     };
 }
 // Identification: the base parameters from measured motion, by least squares on the regressor.

@@ -172,6 +172,215 @@ pub fn values(model: &RobotModel) -> Option<Vec<f64>> {
     )
 }
 
+/// Why parameter values could not be taken as a robot's.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+#[cfg(feature = "std")]
+#[non_exhaustive]
+pub enum ParameterError {
+    /// Another number of values than the robot (or the regrouping) has parameters.
+    #[error("{given} {what} given where the robot has {expected}")]
+    Count {
+        /// What was counted: `"parameter values"`, `"base parameter values"`.
+        what: &'static str,
+        /// The values given.
+        given: usize,
+        /// The values expected.
+        expected: usize,
+    },
+    /// A value, or what it implies for its link (the centre of mass `m·c / m`, the inertia
+    /// about it), breaks a rule of the description format.
+    #[error("parameter {name} (index {index}): {message}")]
+    Value {
+        /// The parameter's name ([`names`]), e.g. `mx3`, `Izz2`, `fv1`.
+        name: String,
+        /// Its index in `π`.
+        index: usize,
+        /// What is wrong.
+        message: String,
+    },
+}
+
+/// What [`with_values`] asks of each link's values.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg(feature = "std")]
+pub enum Links {
+    /// Physical links, by the rules a description obeys (see [`with_values`]).
+    Physical,
+    /// Values in range only (and a massless link without first moment): links that may be no
+    /// body's, a negative mass or an inertia that is not positive semi-definite, whose
+    /// equations of motion are still the robot's. Base parameters expanded over a reference
+    /// ([`BaseParameters::expand`]) usually need it: motion fixes only the base parameters'
+    /// combinations, and the reference's values for the rest rarely leave every link physical
+    /// (of the 18 robots with mass properties in dhgen's tests, base parameters of a copy 15 %
+    /// heavier expanded over the original's values left 17 with an unphysical link). A model
+    /// of such links is a `dhgen::Robot` (its torques, `D(q)`, forward dynamics are the
+    /// identified robot's), not a description: [`RobotModel::to_toml`] writes it, validation
+    /// refuses it.
+    AsGiven,
+}
+
+/// The robot `model` with the parameters `pi` (in the order of [`columns`]): each link's mass,
+/// centre of mass `m·c / m` and inertia about it (`I − m (|c|² 1 − c cᵀ)`, from `I` about the
+/// frame's origin), each motor's rotor inertia (`Jm = Ia / G²`, its gear kept), each joint's
+/// friction; everything else as it was. The inverse of [`values`]: a model built from a
+/// parameter vector, identified ones say (expanded from base parameters by
+/// [`BaseParameters::expand`]), for `dhgen::Robot::from_model` or a
+/// description file ([`RobotModel::to_toml`]).
+///
+/// With [`Links::Physical`], the values must describe physical links, by the rules a
+/// description obeys: finite, a mass in range and not negative (a massless link with no first
+/// moment), the centre of mass within range, the inertia about it positive semi-definite and
+/// obeying the triangle inequality (unless the link's inertia in `model` already broke it, as
+/// `allow_nonphysical_inertia` permits), rotor inertias and friction coefficients not negative.
+/// With [`Links::AsGiven`], finite values in range (and a massless link with no first moment).
+///
+/// # Errors
+/// [`ParameterError::Count`] unless `pi` has one value per column;
+/// [`ParameterError::Value`] naming the first parameter that breaks a rule (for a link's
+/// inertia, its `Ixx`).
+///
+/// ```
+/// use dhgen_model::parameters::{Links, values, with_values};
+/// let model = dhgen_model::RobotModel::from_toml_file("../robots/puma560.toml").unwrap();
+/// let mut pi = values(&model).unwrap();
+/// pi[20] *= 1.1; // link 3's mass, its first moment and inertia about the origin kept
+/// let heavier = with_values(&model, &pi, Links::Physical).unwrap();
+/// assert_eq!(heavier.links[2].inertial.unwrap().mass, pi[20]);
+/// assert_eq!(values(&heavier).unwrap()[20], pi[20]);
+/// pi[20] = -1.0;
+/// assert!(with_values(&model, &pi, Links::Physical).unwrap_err().to_string().contains("m3"));
+/// // A negative mass moves by the same equations.
+/// assert!(with_values(&model, &pi, Links::AsGiven).is_ok());
+/// ```
+#[cfg(feature = "std")]
+pub fn with_values(
+    model: &RobotModel,
+    pi: &[f64],
+    links: Links,
+) -> Result<RobotModel, ParameterError> {
+    use crate::validate::{
+        FRICTION, INERTIA, LENGTH, MASS, ROTOR_INERTIA, check_inertia_tensor, check_mass,
+    };
+    let columns = columns(model);
+    if pi.len() != columns.len() {
+        return Err(ParameterError::Count {
+            what: "parameter values",
+            given: pi.len(),
+            expected: columns.len(),
+        });
+    }
+    let names = names(model);
+    let fail = |index: usize, message: String| ParameterError::Value {
+        name: names[index].clone(),
+        index,
+        message,
+    };
+    if let Some(index) = pi.iter().position(|x| !x.is_finite()) {
+        return Err(fail(index, format!("{} is not a finite number", pi[index])));
+    }
+    let mut out = model.clone();
+    for (i, link) in out.links.iter_mut().enumerate() {
+        let first = BODY_PARAMETERS * i;
+        let p: [f64; BODY_PARAMETERS] = core::array::from_fn(|k| pi[first + k]);
+        let mass = p[0];
+        let physical = links == Links::Physical;
+        if physical {
+            check_mass(mass).map_err(|message| fail(first, message))?;
+        } else {
+            MASS.check_value(mass.abs())
+                .map_err(|message| fail(first, message))?;
+        }
+        let moment = [p[1], p[2], p[3]];
+        let com = if mass != 0.0 {
+            moment.map(|x| x / mass)
+        } else if moment == [0.0; 3] {
+            [0.0; 3]
+        } else {
+            return Err(fail(
+                first + 1,
+                format!("a massless link's first moment m·c = {moment:?} is not zero"),
+            ));
+        };
+        for (k, c) in com.iter().enumerate() {
+            LENGTH
+                .check_value(*c)
+                .map_err(|message| fail(first + 1 + k, format!("centre of mass: {message}")))?;
+        }
+        // I_c = I_o − m (|c|² 1 − c cᵀ), written with the first moment: (|mc|² 1 − mc mcᵀ) / m.
+        let origin = inertia_of(&p);
+        let inertia: [[f64; 3]; 3] = core::array::from_fn(|a| {
+            core::array::from_fn(|b| {
+                let shift = if mass != 0.0 {
+                    let mc2: f64 = moment.iter().map(|x| x * x).sum();
+                    ((if a == b { mc2 } else { 0.0 }) - moment[a] * moment[b]) / mass
+                } else {
+                    0.0
+                };
+                origin[a][b] - shift
+            })
+        });
+        let allowed = link
+            .inertial
+            .is_some_and(|old| !crate::validate::obeys_triangle_inequality(&old.inertia, old.mass));
+        if physical {
+            check_inertia_tensor(&inertia, mass, allowed).map_err(|message| {
+                fail(
+                    first + INERTIA_ENTRIES[0][0],
+                    format!("inertia about the centre of mass: {message}"),
+                )
+            })?;
+        } else if let Some((a, b)) = (0..3)
+            .flat_map(|a| (0..3).map(move |b| (a, b)))
+            .find(|&(a, b)| INERTIA.check_value(inertia[a][b]).is_err())
+        {
+            return Err(fail(
+                first + INERTIA_ENTRIES[a][b],
+                format!(
+                    "inertia about the centre of mass: entry {} is out of range",
+                    inertia[a][b]
+                ),
+            ));
+        }
+        link.inertial = Some(crate::Inertial { mass, com, inertia });
+    }
+    for (index, column) in columns
+        .iter()
+        .enumerate()
+        .skip(BODY_PARAMETERS * model.dof())
+    {
+        let x = pi[index];
+        if x < 0.0 && links == Links::Physical {
+            return Err(fail(index, format!("{x} is negative")));
+        }
+        let in_range = |range: crate::validate::Range, x: f64, what: &str| {
+            range
+                .check_value(x.abs())
+                .map(|_| x)
+                .map_err(|message| fail(index, format!("{what}{message}")))
+        };
+        match *column {
+            Column::Armature(i) => {
+                if let Some(motor) = out.links[i].motor.as_mut() {
+                    let jm = x / (motor.gear * motor.gear);
+                    motor.inertia = in_range(ROTOR_INERTIA, jm, "rotor inertia Ia / G²: ")?;
+                }
+            }
+            Column::Viscous(i) => {
+                if let Some(f) = out.links[i].friction.as_mut() {
+                    f.viscous = in_range(FRICTION, x, "")?;
+                }
+            }
+            Column::Coulomb(i) => {
+                if let Some(f) = out.links[i].friction.as_mut() {
+                    f.coulomb = in_range(FRICTION, x, "")?;
+                }
+            }
+            Column::Body { .. } => {}
+        }
+    }
+    Ok(out)
+}
+
 /// The regrouping of a robot's parameters into base parameters (see the
 /// [module](self)).
 #[derive(Clone, Debug, PartialEq)]
@@ -199,6 +408,50 @@ impl BaseParameters {
             DVector::from_iterator(self.dependent.len(), self.dependent.iter().map(|&d| pi[d]));
         DVector::from_iterator(self.count(), self.independent.iter().map(|&i| pi[i]))
             + &self.beta * dependent
+    }
+
+    /// A full parameter vector with base parameters `base`: the dependent parameters taken
+    /// from `reference` (a description's, [`values`]: what motion cannot tell, left as the
+    /// description has it) and each independent one set so that [`reduce`](Self::reduce)
+    /// gives `base` (`π_i = π_b − β π_d`). Every such vector gives the same torques for every
+    /// motion (`Y π = Y_b π_b`), so the same `D(q)`, `C`, `g` and forward dynamics; a model
+    /// of it is [`with_values`]'s, usually with [`Links::AsGiven`] (see there).
+    ///
+    /// # Errors
+    /// [`ParameterError::Count`] unless `base` has [`count`](Self::count) values and
+    /// `reference` one per parameter.
+    pub fn expand(&self, base: &[f64], reference: &[f64]) -> Result<DVector<f64>, ParameterError> {
+        if base.len() != self.count() {
+            return Err(ParameterError::Count {
+                what: "base parameter values",
+                given: base.len(),
+                expected: self.count(),
+            });
+        }
+        let needed = self
+            .independent
+            .iter()
+            .chain(&self.dependent)
+            .max()
+            .map_or(0, |m| m + 1);
+        if reference.len() != needed {
+            return Err(ParameterError::Count {
+                what: "reference parameter values",
+                given: reference.len(),
+                expected: needed,
+            });
+        }
+        let mut pi = DVector::from_column_slice(reference);
+        for (k, &i) in self.independent.iter().enumerate() {
+            let regrouped: f64 = self
+                .dependent
+                .iter()
+                .enumerate()
+                .map(|(m, &d)| self.beta[(k, m)] * reference[d])
+                .sum();
+            pi[i] = base[k] - regrouped;
+        }
+        Ok(pi)
     }
 
     /// The base regressor: the independent columns of a regressor `y`, so that

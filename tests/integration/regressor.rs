@@ -430,3 +430,189 @@ fn base_parameters_hold_in_any_units() {
         assert!(counts.iter().all(|&c| c == counts[0]), "{counts:?}");
     }
 }
+
+/// `with_values` is the inverse of `values` on every robot: the same parameters back (to
+/// rounding: the centre of mass and the inertia about it are recomputed), the same torques.
+#[test]
+fn a_model_from_its_own_parameters_is_the_same_robot() {
+    use dhgen::parameters::{Links, values, with_values};
+    for (name, robot) in robots() {
+        let pi = values(robot.model()).unwrap();
+        let rebuilt = Robot::from_model(with_values(robot.model(), &pi, Links::Physical).unwrap());
+        let back = DVector::from_vec(values(rebuilt.model()).unwrap());
+        close(&name, &back, &DVector::from_vec(pi), 1e-14);
+        for seed in 0..5 {
+            let (q, qd, qdd) = state(&robot, 50 + seed);
+            close(
+                &name,
+                &rebuilt.inverse_dynamics(&q[..], &qd[..], &qdd[..]),
+                &robot.inverse_dynamics(&q[..], &qd[..], &qdd[..]),
+                1e-12,
+            );
+        }
+    }
+}
+
+/// Base parameters expanded over a reference (`BaseParameters::expand`) reduce back to
+/// themselves, and the model of the expansion moves exactly as the robot they came from,
+/// though its links differ (and are rarely all physical, which `Links::Physical` reports): on
+/// every robot, the base parameters of a heavier copy (every mass and inertia ×1.15, centres
+/// of mass ×0.95, motors and friction ×1.1) expanded over the original's values give that
+/// copy's torques, mass matrix and forward dynamics.
+#[test]
+fn expanded_base_parameters_give_the_robot_they_came_from() {
+    use dhgen::parameters::{Links, ParameterError, values, with_values};
+    let mut unphysical = 0;
+    for (name, robot) in robots() {
+        let mut heavier = robot.model().clone();
+        for link in &mut heavier.links {
+            let i = link.inertial.as_mut().unwrap();
+            i.mass *= 1.15;
+            i.com = i.com.map(|x| 0.95 * x);
+            i.inertia = i.inertia.map(|row| row.map(|x| 1.15 * x));
+            if let Some(m) = link.motor.as_mut() {
+                m.inertia *= 1.1;
+            }
+            if let Some(f) = link.friction.as_mut() {
+                f.viscous *= 1.1;
+                f.coulomb *= 1.1;
+            }
+        }
+        let truth = Robot::from_model(heavier);
+        let base = robot.base_parameters();
+        let pi_b = base.reduce(&truth.parameters());
+        let reference = values(robot.model()).unwrap();
+        let expanded = base.expand(pi_b.as_slice(), &reference).unwrap();
+        close(&name, &base.reduce(&expanded), &pi_b, 1e-13);
+        if let Err(e) = with_values(robot.model(), expanded.as_slice(), Links::Physical) {
+            println!("{name}: the expansion is not physical: {e}");
+            assert!(matches!(e, ParameterError::Value { .. }), "{e}");
+            unphysical += 1;
+        }
+        let model = with_values(robot.model(), expanded.as_slice(), Links::AsGiven).unwrap();
+        let identified = Robot::from_model(model);
+        for seed in 0..5 {
+            let (q, qd, qdd) = state(&robot, 70 + seed);
+            let tau = truth.inverse_dynamics(&q[..], &qd[..], &qdd[..]);
+            close(
+                &name,
+                &identified.inverse_dynamics(&q[..], &qd[..], &qdd[..]),
+                &tau,
+                1e-11,
+            );
+            let (d, e) = (identified.mass_matrix(&q[..]), truth.mass_matrix(&q[..]));
+            assert!((&d - &e).amax() <= 1e-11 * e.amax(), "{name}: D");
+            // Robots whose D is singular by construction (Robotics Toolbox's UR5 moves no
+            // inertia about its last axis, the weightless_wrist fixture none at its wrist): both.
+            match (
+                identified.forward_dynamics(&q[..], &qd[..], &tau),
+                truth.forward_dynamics(&q[..], &qd[..], &tau),
+            ) {
+                (Some(a), Some(b)) => drop(close(&name, &a, &b, 1e-8)),
+                (None, None) => {}
+                (a, b) => panic!("{name}: forward dynamics {a:?} against {b:?}"),
+            }
+        }
+        println!("{name}: a model of the expanded base parameters moves as the heavier copy");
+    }
+    // What `Links::AsGiven` documents.
+    assert_eq!(unphysical, 17);
+}
+
+/// Values no link can have are refused, naming the parameter.
+#[test]
+fn unphysical_parameter_values_are_refused_by_name() {
+    use dhgen::parameters::{Links, ParameterError, values, with_values};
+    let model = dhgen::RobotModel::from_toml_str(
+        r#"
+        name = "two"
+        convention = "standard"
+        [[links]]
+        joint = "revolute"
+        a = 0.5
+        alpha = 0.0
+        d = 0.0
+        theta = 0.0
+        mass = 2.0
+        com = [-0.25, 0.0, 0.0]
+        inertia = { xx = 0.01, yy = 0.05, zz = 0.05 }
+        motor = { inertia = 1e-4, gear = 50.0 }
+        friction = { viscous = 0.1, coulomb = 0.2 }
+        [[links]]
+        joint = "revolute"
+        a = 0.4
+        alpha = 0.0
+        d = 0.0
+        theta = 0.0
+        mass = 1.0
+        com = [-0.2, 0.0, 0.0]
+        inertia = { xx = 0.01, yy = 0.02, zz = 0.02 }
+        "#,
+    )
+    .unwrap();
+    let pi = values(&model).unwrap();
+    assert_eq!(pi.len(), 23);
+    let rebuilt = with_values(&model, &pi, Links::Physical).unwrap();
+    assert!((rebuilt.links[0].motor.unwrap().inertia - 1e-4).abs() < 1e-18);
+    let refused = |index: usize, value: f64| {
+        let mut p = pi.clone();
+        p[index] = value;
+        with_values(&model, &p, Links::Physical).unwrap_err()
+    };
+    let as_given = |index: usize, value: f64| {
+        let mut p = pi.clone();
+        p[index] = value;
+        with_values(&model, &p, Links::AsGiven)
+    };
+    let named = |e: ParameterError, name: &str, index: usize, words: &str| {
+        let message = e.to_string();
+        assert!(
+            matches!(&e, ParameterError::Value { name: n, index: i, .. } if n == name && *i == index),
+            "{message}"
+        );
+        assert!(message.contains(words), "{message}");
+    };
+    named(refused(10, -1.0), "m2", 10, "negative");
+    named(refused(3, f64::NAN), "mz1", 3, "not a finite number");
+    // A massless link with a first moment.
+    named(refused(10, 0.0), "mx2", 11, "massless");
+    // A centre of mass 10 km away.
+    named(refused(11, -1e4), "mx2", 11, "centre of mass");
+    // Izz about the origin below what the mass at its distance takes.
+    named(refused(19, 0.01), "Ixx2", 14, "positive semi-definite");
+    // Ixx far above Iyy + Izz.
+    named(refused(14, 1.0), "Ixx2", 14, "triangle");
+    named(refused(20, -1e-3), "Ia1", 20, "negative");
+    named(refused(22, -0.2), "fc1", 22, "negative");
+    // As given: what no equation of motion can take, still refused; the rest accepted.
+    assert!(as_given(10, -1.0).is_ok() && as_given(19, 0.01).is_ok() && as_given(22, -0.2).is_ok());
+    named(
+        as_given(3, f64::NAN).unwrap_err(),
+        "mz1",
+        3,
+        "not a finite number",
+    );
+    named(as_given(10, 0.0).unwrap_err(), "mx2", 11, "massless");
+    named(as_given(11, -1e4).unwrap_err(), "mx2", 11, "centre of mass");
+    named(as_given(10, -1e7).unwrap_err(), "m2", 10, "mass");
+    assert_eq!(
+        with_values(&model, &pi[..22], Links::AsGiven).unwrap_err(),
+        ParameterError::Count {
+            what: "parameter values",
+            given: 22,
+            expected: 23
+        }
+    );
+    let base = dhgen::Robot::from_model(model.clone()).base_parameters();
+    assert!(matches!(
+        base.expand(&[1.0], &pi),
+        Err(ParameterError::Count { .. })
+    ));
+    assert!(matches!(
+        base.expand(
+            base.reduce(&DVector::from_vec(pi.clone())).as_slice(),
+            &pi[1..]
+        ),
+        Err(ParameterError::Count { .. })
+    ));
+}
