@@ -211,11 +211,11 @@ pub enum Links {
     /// equations of motion are still the robot's. Base parameters expanded over a reference
     /// ([`BaseParameters::expand`]) usually need it: motion fixes only the base parameters'
     /// combinations, and the reference's values for the rest rarely leave every link physical
-    /// (of the 18 robots with mass properties in dhgen's tests, base parameters of a copy 15 %
-    /// heavier expanded over the original's values left 17 with an unphysical link). A model
-    /// of such links is a `dhgen::Robot` (its torques, `D(q)`, forward dynamics are the
-    /// identified robot's), not a description: [`RobotModel::to_toml`] writes it, validation
-    /// refuses it.
+    /// (of the 18 robots with mass properties in dhgen's tests on 2026-12-06, base parameters
+    /// of a copy 15 % heavier expanded over the original's values left 17 with an unphysical
+    /// link). A model of such links is a `dhgen::Robot` (its torques, `D(q)`, forward dynamics
+    /// are the identified robot's), not a description: [`RobotModel::to_toml`] writes it,
+    /// validation refuses it.
     AsGiven,
 }
 

@@ -462,7 +462,7 @@ fn a_model_from_its_own_parameters_is_the_same_robot() {
 #[test]
 fn expanded_base_parameters_give_the_robot_they_came_from() {
     use dhgen::parameters::{Links, ParameterError, values, with_values};
-    let mut unphysical = 0;
+    let (mut unphysical, mut count) = (0, 0);
     for (name, robot) in robots() {
         let mut heavier = robot.model().clone();
         for link in &mut heavier.links {
@@ -479,6 +479,7 @@ fn expanded_base_parameters_give_the_robot_they_came_from() {
             }
         }
         let truth = Robot::from_model(heavier);
+        count += 1;
         let base = robot.base_parameters();
         let pi_b = base.reduce(&truth.parameters());
         let reference = values(robot.model()).unwrap();
@@ -515,8 +516,8 @@ fn expanded_base_parameters_give_the_robot_they_came_from() {
         }
         println!("{name}: a model of the expanded base parameters moves as the heavier copy");
     }
-    // What `Links::AsGiven` documents.
-    assert_eq!(unphysical, 17);
+    // What `Links::AsGiven` documents: most (17 of 18 when it was written).
+    assert!(2 * unphysical > count, "{unphysical} of {count}");
 }
 
 /// Values no link can have are refused, naming the parameter.
