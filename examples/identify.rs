@@ -88,14 +88,26 @@ fn perturbed(nominal: &RobotModel, rng: &mut Rng) -> RobotModel {
     m
 }
 
-/// The payload: 2.5 kg, 8 cm beyond the flange on z, a 10 cm cube.
-fn payload() -> dhgen::model::Inertial {
-    let cube = 2.5 * 0.1 * 0.1 / 6.0;
+/// A 10 cm cube of `mass` kg, `z` m beyond the flange.
+fn cube(mass: f64, z: f64) -> dhgen::model::Inertial {
+    let moment = mass * 0.1 * 0.1 / 6.0;
     dhgen::model::Inertial {
-        mass: 2.5,
-        com: [0.0, 0.0, 0.08],
-        inertia: [[cube, 0.0, 0.0], [0.0, cube, 0.0], [0.0, 0.0, cube]],
+        mass,
+        com: [0.0, 0.0, z],
+        inertia: [[moment, 0.0, 0.0], [0.0, moment, 0.0], [0.0, 0.0, moment]],
     }
+}
+
+/// The payload: 2.5 kg, 8 cm beyond the flange.
+fn payload() -> dhgen::model::Inertial {
+    cube(2.5, 0.08)
+}
+
+/// A body's ten parameters, as `*_with_payload` take them.
+fn parameters(body: &dhgen::model::Inertial) -> [f64; 10] {
+    Payload::new(body.mass, body.com, body.inertia)
+        .expect("a physical payload")
+        .parameters()
 }
 
 /// The arm with the payload merged into its last link by the parallel-axis theorem, the
@@ -146,6 +158,15 @@ fn exciting(period: f64, cycles: u32, seed: f64) -> Synchronized<FourierSeries<H
     Synchronized::fourier(0.0, period, cycles, &mid, &a, &b).expect("finite coefficients")
 }
 
+/// Six joints' setpoints as `(q, q̇, q̈)`.
+fn split(s: &[Setpoint; 6]) -> (V6, V6, V6) {
+    (
+        V6::from_fn(|j, _| s[j].q),
+        V6::from_fn(|j, _| s[j].qd),
+        V6::from_fn(|j, _| s[j].qdd),
+    )
+}
+
 /// One recorded sample.
 struct Record {
     t: f64,
@@ -159,33 +180,19 @@ struct Record {
 /// is 2.5 kg at 8 cm). Computed torque scales its gains by the model's inertia, and without
 /// a payload the model's wrist (about 0.002 kg·m²) gets a stiffness of under 1 N·m/rad, which
 /// the payload's weight turns over.
-fn guessed_payload() -> [f64; 10] {
-    let cube = 2.0 * 0.1 * 0.1 / 6.0;
-    Payload::new(
-        2.0,
-        [0.0, 0.0, 0.06],
-        [[cube, 0.0, 0.0], [0.0, cube, 0.0], [0.0, 0.0, cube]],
-    )
-    .expect("a physical payload")
-    .parameters()
+fn guessed_payload() -> dhgen::model::Inertial {
+    cube(2.0, 0.06)
 }
 
 /// Computed torque on the nominal generated model with a guessed payload drives the generated
 /// plant holding the true one; RK4 at 1 kHz.
 fn record(reference: &Synchronized<FourierSeries<HARMONICS>, 6>) -> Vec<Record> {
-    let body = payload();
-    let held = Payload::new(body.mass, body.com, body.inertia)
-        .expect("a physical payload")
-        .parameters();
+    let held = parameters(&payload());
     let seconds = reference.duration();
-    let start = reference.eval(0.0);
-    let (mut q, mut qd) = (
-        V6::from_fn(|j, _| start[j].q),
-        V6::from_fn(|j, _| start[j].qd),
-    );
+    let (mut q, mut qd, _) = split(&reference.eval(0.0));
     let mut out = Vec::new();
     let steps = (seconds / DT).round() as usize;
-    let guess = guessed_payload();
+    let guess = parameters(&guessed_payload());
     for i in 0..steps {
         let t = i as f64 * DT;
         let r = reference.eval(t);
@@ -272,12 +279,7 @@ fn main() -> Result<(), Box<dyn Error>> {
         let reference = exciting(PERIOD, 1, seed);
         let mut fit = LeastSquares::new(puma560::BASE_PARAMETERS);
         for i in (0..PER_PERIOD).step_by(10) {
-            let r = reference.eval(i as f64 * DT);
-            let (q, qd, qdd) = (
-                V6::from_fn(|j, _| r[j].q),
-                V6::from_fn(|j, _| r[j].qd),
-                V6::from_fn(|j, _| r[j].qdd),
-            );
+            let (q, qd, qdd) = split(&reference.eval(i as f64 * DT));
             fit.add(&base_rows(&q, &qd, &qdd), &V6::zeros())?;
         }
         Ok(fit.condition_number())
@@ -433,12 +435,7 @@ fn main() -> Result<(), Box<dyn Error>> {
     let mut weighted = LeastSquares::new(puma560::BASE_PARAMETERS);
     for k in (0..PER_PERIOD).step_by(5) {
         let t = t0 + k as f64 * DT;
-        let states: Vec<_> = fits.iter().map(|f| f.eval(t)).collect();
-        let (q, qd, qdd) = (
-            V6::from_fn(|j, _| states[j].q),
-            V6::from_fn(|j, _| states[j].qd),
-            V6::from_fn(|j, _| states[j].qdd),
-        );
+        let (q, qd, qdd) = split(&core::array::from_fn(|j| fits[j].eval(t)));
         let torques = average.sample(k).ok_or("a sample of the period")?;
         let tau = V6::from_fn(|j, _| torques[n + j]);
         weighted.add_weighted(&base_rows(&q, &qd, &qdd), &tau, &weights)?;
@@ -498,15 +495,13 @@ fn main() -> Result<(), Box<dyn Error>> {
     let expanded = regrouping.expand(estimate.as_slice(), &reference)?;
     let physical =
         dhgen::parameters::with_values(&nominal_model, expanded.as_slice(), Links::Physical);
-    let model_of = |base: &[f64]| -> Result<Robot, Box<dyn Error>> {
-        let expanded = regrouping.expand(base, &reference)?;
-        let model =
-            dhgen::parameters::with_values(&nominal_model, expanded.as_slice(), Links::AsGiven)?;
+    let model_of = |expanded: &[f64]| -> Result<Robot, Box<dyn Error>> {
+        let model = dhgen::parameters::with_values(&nominal_model, expanded, Links::AsGiven)?;
         Ok(Robot::from_model(model))
     };
-    let identified = model_of(estimate.as_slice())?;
+    let identified = model_of(expanded.as_slice())?;
     // The same from the plant's own base parameters: its accelerations exactly.
-    let exact = model_of(truth.as_slice())?;
+    let exact = model_of(regrouping.expand(truth.as_slice(), &reference)?.as_slice())?;
     let mut error = [[0.0f64; 6]; 2];
     let mut size = [0.0f64; 6];
     for r in &validation {

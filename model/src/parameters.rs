@@ -278,12 +278,12 @@ pub fn with_values(
     if let Some(index) = pi.iter().position(|x| !x.is_finite()) {
         return Err(fail(index, format!("{} is not a finite number", pi[index])));
     }
+    let physical = links == Links::Physical;
     let mut out = model.clone();
     for (i, link) in out.links.iter_mut().enumerate() {
         let first = BODY_PARAMETERS * i;
         let p: [f64; BODY_PARAMETERS] = core::array::from_fn(|k| pi[first + k]);
         let mass = p[0];
-        let physical = links == Links::Physical;
         if physical {
             check_mass(mass).map_err(|message| fail(first, message))?;
         } else {
@@ -306,23 +306,19 @@ pub fn with_values(
                 .check_value(*c)
                 .map_err(|message| fail(first + 1 + k, format!("centre of mass: {message}")))?;
         }
-        // I_c = I_o − m (|c|² 1 − c cᵀ), written with the first moment: (|mc|² 1 − mc mcᵀ) / m.
-        let origin = inertia_of(&p);
-        let inertia: [[f64; 3]; 3] = core::array::from_fn(|a| {
-            core::array::from_fn(|b| {
-                let shift = if mass != 0.0 {
-                    let mc2: f64 = moment.iter().map(|x| x * x).sum();
-                    ((if a == b { mc2 } else { 0.0 }) - moment[a] * moment[b]) / mass
-                } else {
-                    0.0
-                };
-                origin[a][b] - shift
-            })
-        });
-        let allowed = link
-            .inertial
-            .is_some_and(|old| !crate::validate::obeys_triangle_inequality(&old.inertia, old.mass));
+        // I_c = I_o − m (|c|² 1 − c cᵀ): the parallel-axis term is body_parameters' own, of
+        // the mass at the centre with no inertia about it.
+        let (origin, shift) = (
+            inertia_of(&p),
+            inertia_of(&body_parameters(mass, &com, &[[0.0; 3]; 3])),
+        );
+        let inertia: [[f64; 3]; 3] =
+            core::array::from_fn(|a| core::array::from_fn(|b| origin[a][b] - shift[a][b]));
         if physical {
+            // The triangle inequality as the description had it (`allow_nonphysical_inertia`).
+            let allowed = link.inertial.is_some_and(|old| {
+                !crate::validate::obeys_triangle_inequality(&old.inertia, old.mass)
+            });
             check_inertia_tensor(&inertia, mass, allowed).map_err(|message| {
                 fail(
                     first + INERTIA_ENTRIES[0][0],

@@ -58,8 +58,8 @@ pub struct PeriodAverage {
     periods: usize,
     /// `N × c`, sample by sample.
     mean: Vec<f64>,
-    /// `c` entries; empty with one period.
-    variance: Vec<f64>,
+    /// `c` entries; `None` with one period.
+    variance: Option<Vec<f64>>,
 }
 
 impl PeriodAverage {
@@ -98,10 +98,11 @@ impl PeriodAverage {
         }
         let periods = samples.len() / n;
         let mut mean = vec![0.0; n * channels];
-        for (i, s) in samples.iter().enumerate() {
-            let row = (i % n) * channels;
-            for (m, x) in mean[row..row + channels].iter_mut().zip(s.as_ref()) {
-                *m += x;
+        for period in samples.chunks(n) {
+            for (row, s) in mean.chunks_mut(channels).zip(period) {
+                for (m, x) in row.iter_mut().zip(s.as_ref()) {
+                    *m += x;
+                }
             }
         }
         let m = periods as f64;
@@ -110,20 +111,18 @@ impl PeriodAverage {
         }
         // Two passes (deviations from the finished averages), not sums of squares, which
         // cancel catastrophically for small noise on large values.
-        let variance = if periods > 1 {
+        let variance = (periods > 1).then(|| {
             let mut sum = vec![0.0; channels];
-            for (i, s) in samples.iter().enumerate() {
-                let row = (i % n) * channels;
-                for (c, x) in s.as_ref().iter().enumerate() {
-                    let d = x - mean[row + c];
-                    sum[c] += d * d;
+            for period in samples.chunks(n) {
+                for (row, s) in mean.chunks(channels).zip(period) {
+                    for ((total, x), m) in sum.iter_mut().zip(s.as_ref()).zip(row) {
+                        *total += (x - m) * (x - m);
+                    }
                 }
             }
             let dof = (n * (periods - 1)) as f64;
             sum.into_iter().map(|s| s / dof).collect()
-        } else {
-            Vec::new()
-        };
+        });
         Ok(PeriodAverage {
             samples_per_period: n,
             channels,
@@ -157,7 +156,7 @@ impl PeriodAverage {
     /// Each channel's noise variance `σ̂²` (see the [type](Self)), estimated from the spread of
     /// the periods about their average; `None` for a recording of one period.
     pub fn noise_variance(&self) -> Option<&[f64]> {
-        (self.periods > 1).then_some(self.variance.as_slice())
+        self.variance.as_deref()
     }
 
     /// The variance of each channel's averaged samples, `σ̂² / M`: for a torque channel, the
@@ -208,17 +207,25 @@ impl PeriodAverage {
         }
         let values = || self.mean.iter().skip(channel).step_by(c);
         let mean = values().sum::<f64>() / n as f64;
-        // x(τ) ≈ mean + Σ_l α_l cos(l ω τ) + β_l sin(l ω τ), α_l and β_l by the DFT, each
-        // angle reduced exactly (l k mod N) before it is scaled.
+        // x(τ) ≈ mean + Σ_l α_l cos(l ω τ) + β_l sin(l ω τ), α_l and β_l by the DFT. Harmonic
+        // l at sample k turns (l k mod N) / N: one table of the N sines and cosines serves
+        // every harmonic, each angle exact in turns before it is scaled.
+        let turns: Vec<(f64, f64)> = (0..n)
+            .map(|m| (core::f64::consts::TAU * (m as f64 / n as f64)).sin_cos())
+            .collect();
         let mut alpha = [0.0; L];
         let mut beta = [0.0; L];
         for l in 1..=L {
-            let (mut sum_cos, mut sum_sin) = (0.0, 0.0);
-            for (k, x) in values().enumerate() {
-                let turn = ((l as u128 * k as u128) % n as u128) as f64 / n as f64;
-                let (s, co) = (core::f64::consts::TAU * turn).sin_cos();
+            let (mut sum_cos, mut sum_sin, mut turn) = (0.0, 0.0, 0);
+            for x in values() {
+                let (s, co) = turns[turn];
                 sum_cos += (x - mean) * co;
                 sum_sin += (x - mean) * s;
+                // (l k) mod N, k advancing; l < N / 2.
+                turn += l;
+                if turn >= n {
+                    turn -= n;
+                }
             }
             alpha[l - 1] = 2.0 * sum_cos / n as f64;
             beta[l - 1] = 2.0 * sum_sin / n as f64;

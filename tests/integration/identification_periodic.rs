@@ -7,7 +7,7 @@
 
 use super::catalogue::puma560_derivatives as puma;
 use dhgen::identification::{IdentificationError, LeastSquares, PeriodAverage};
-use dhgen::trajectory::{FourierSeries, Profile, Synchronized, TrajectoryError};
+use dhgen::trajectory::{FourierSeries, Profile, Setpoint, Synchronized, TrajectoryError};
 use dhgen_model::random::Stream;
 use proptest::prelude::*;
 use std::f64::consts::TAU;
@@ -225,6 +225,15 @@ fn bad_recordings_are_refused_naming_what_and_where() {
     assert!(one.noise_variance().is_none() && one.mean_noise_variance().is_none());
 }
 
+/// Six joints' setpoints as `(q, q̇, q̈)`.
+fn split(s: &[Setpoint; 6]) -> ([f64; 6], [f64; 6], [f64; 6]) {
+    (
+        std::array::from_fn(|j| s[j].q),
+        std::array::from_fn(|j| s[j].qd),
+        std::array::from_fn(|j| s[j].qdd),
+    )
+}
+
 /// The whole path of a real robot's identification on the PUMA 560: a periodic excitation
 /// (three harmonics per joint), positions and torques recorded over two periods (the torques
 /// of its own inverse dynamics, the velocities and accelerations not recorded), averaged, the
@@ -244,12 +253,7 @@ fn a_robots_base_parameters_from_its_positions_and_torques_alone() {
     let excitation = Synchronized::fourier(0.0, period, m as u32, &mid, &a, &b).unwrap();
     let recording: Vec<[f64; 12]> = (0..n * m)
         .map(|i| {
-            let s = excitation.eval(i as f64 * period / n as f64);
-            let (q, qd, qdd): ([f64; 6], [f64; 6], [f64; 6]) = (
-                std::array::from_fn(|j| s[j].q),
-                std::array::from_fn(|j| s[j].qd),
-                std::array::from_fn(|j| s[j].qdd),
-            );
+            let (q, qd, qdd) = split(&excitation.eval(i as f64 * period / n as f64));
             let tau = puma::inverse_dynamics(&q, &qd, &qdd);
             std::array::from_fn(|c| if c < 6 { q[c] } else { tau[c - 6] })
         })
@@ -261,10 +265,7 @@ fn a_robots_base_parameters_from_its_positions_and_torques_alone() {
     let mut fit = LeastSquares::new(puma::BASE_PARAMETERS);
     for k in 0..n {
         let t = k as f64 * period / n as f64;
-        let s: Vec<_> = fits.iter().map(|f| f.eval(t)).collect();
-        let q: [f64; 6] = std::array::from_fn(|j| s[j].q);
-        let qd: [f64; 6] = std::array::from_fn(|j| s[j].qd);
-        let qdd: [f64; 6] = std::array::from_fn(|j| s[j].qdd);
+        let (q, qd, qdd) = split(&std::array::from_fn(|j| fits[j].eval(t)));
         let tau =
             dhgen::nalgebra::SVector::<f64, 6>::from_fn(|j, _| average.sample(k).unwrap()[6 + j]);
         fit.add(&puma::base_regressor(&q, &qd, &qdd), &tau).unwrap();
