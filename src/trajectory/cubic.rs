@@ -1,7 +1,7 @@
 //! Cubic polynomial: position and velocity given at both ends (section 6.5.1.1, equation 15).
 
 use super::{
-    Profile, Setpoint, TrajectoryError, abs, displacement, finite, interval, polynomial_in_range,
+    Interval, Profile, Setpoint, TrajectoryError, abs, displacement, finite, polynomial_in_range,
 };
 
 /// The cubic `q(t)` with `q(t0) = q0`, `q̇(t0) = v0`, `q(tf) = qf`, `q̇(tf) = vf`.
@@ -14,9 +14,7 @@ use super::{
 /// `s = 0` and `s = 1` (no cancellation between large monomial coefficients).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Cubic {
-    t0: f64,
-    tf: f64,
-    duration: f64,
+    interval: Interval,
     q0: f64,
     qf: f64,
     v0: f64,
@@ -44,14 +42,13 @@ impl Cubic {
         qf: f64,
         vf: f64,
     ) -> Result<Self, TrajectoryError> {
-        let duration = interval(t0, tf)?;
+        let interval = Interval::new(t0, tf)?;
+        let duration = interval.duration();
         let dq = displacement(q0, qf)?;
         finite("v0", v0)?;
         finite("vf", vf)?;
         let cubic = Self {
-            t0,
-            tf,
-            duration,
+            interval,
             q0,
             qf,
             v0,
@@ -88,7 +85,7 @@ impl Cubic {
     /// so that no power of `T` overflows or underflows on the way: `a2 = (3 (qf - q0)/T -
     /// 2 v0 - vf)/T`, `a3 = (v0 + vf - 2 (qf - q0)/T)/T²`.
     pub fn coefficients(&self) -> [f64; 4] {
-        let (t, slope, v0, vf) = (self.duration, self.slope, self.v0, self.vf);
+        let (t, slope, v0, vf) = (self.interval.duration(), self.slope, self.v0, self.vf);
         [
             self.q0,
             v0,
@@ -99,28 +96,21 @@ impl Cubic {
 }
 
 impl Profile for Cubic {
-    fn start_time(&self) -> f64 {
-        self.t0
-    }
-
-    fn duration(&self) -> f64 {
-        self.duration
-    }
-
-    fn end_time(&self) -> f64 {
-        self.tf
+    fn interval(&self) -> Interval {
+        self.interval
     }
 
     fn eval(&self, t: f64) -> Setpoint {
-        if t < self.t0 {
+        let Interval { t0, tf, duration } = self.interval;
+        if t < t0 {
             return Setpoint::rest(self.q0);
         }
-        if t > self.tf {
+        if t > tf {
             return Setpoint::rest(self.qf);
         }
-        let s = (t - self.t0) / self.duration;
+        let s = (t - t0) / duration;
         let r = 1.0 - s;
-        let big_t = self.duration;
+        let big_t = duration;
         // Hermite basis: h01 carries qf, h00 = 1 - h01 carries q0, h10/h11 carry T v0 / T vf.
         let h01 = s * s * (3.0 - 2.0 * s);
         let h00 = 1.0 - h01;

@@ -1,7 +1,8 @@
 //! Finite Fourier series: the periodic exciting trajectories of parameter identification.
 
 use super::{
-    Location, Profile, Setpoint, TrajectoryError, abs, finite, polynomial_in_range, positive,
+    Interval, Location, Profile, Setpoint, TrajectoryError, abs, finite, polynomial_in_range,
+    positive,
 };
 
 /// One joint's finite Fourier series of `L` harmonics of `ω = 2π / period` about `q0`, run for
@@ -41,11 +42,10 @@ use super::{
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct FourierSeries<const L: usize> {
-    t0: f64,
-    /// `t0 + duration`, as [`Profile::end_time`] gives it (the interval's test uses it).
-    tf: f64,
+    /// `cycles · period` from `t0`, ending at `t0 + duration` rounded (the interval's test
+    /// uses that end).
+    interval: Interval,
     period: f64,
-    duration: f64,
     /// `2π / period`.
     omega: f64,
     q0: f64,
@@ -89,10 +89,8 @@ impl<const L: usize> FourierSeries<L> {
         let duration = finite("cycles · period", f64::from(cycles) * period)?;
         let tf = finite("tf = t0 + cycles · period", t0 + duration)?;
         let series = Self {
-            t0,
-            tf,
+            interval: Interval::timed(t0, tf, duration),
             period,
-            duration,
             omega: core::f64::consts::TAU / period,
             q0,
             a,
@@ -163,28 +161,21 @@ impl<const L: usize> FourierSeries<L> {
 }
 
 impl<const L: usize> Profile for FourierSeries<L> {
-    fn start_time(&self) -> f64 {
-        self.t0
-    }
-
-    fn duration(&self) -> f64 {
-        self.duration
-    }
-
-    fn end_time(&self) -> f64 {
-        self.tf
+    fn interval(&self) -> Interval {
+        self.interval
     }
 
     fn eval(&self, t: f64) -> Setpoint {
         if t.is_nan() {
             return Setpoint::NAN;
         }
-        if t < self.t0 || t > self.tf {
+        let Interval { t0, tf, .. } = self.interval;
+        if t < t0 || t > tf {
             return Setpoint::rest(self.at_phase(0.0).q);
         }
         // Into one period, so that the sines' arguments stay small over many cycles; the end
         // time is the start of a period.
-        let tau = t - self.t0;
+        let tau = t - t0;
         let phase = tau - self.period * libm::floor(tau / self.period);
         self.at_phase(if phase < self.period { phase } else { 0.0 })
     }

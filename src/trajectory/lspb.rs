@@ -1,7 +1,7 @@
 //! Linear segment with parabolic blends (section 6.5.1.2, with the erratum for the third segment).
 
 use super::{
-    Location, Profile, Setpoint, TrajectoryError, abs, displacement, finite, interval, positive,
+    Interval, Location, Profile, Setpoint, TrajectoryError, abs, displacement, finite, positive,
     sqrt,
 };
 
@@ -22,9 +22,7 @@ use super::{
 /// [`Lspb::velocity_limited`].
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Lspb {
-    t0: f64,
-    tf: f64,
-    duration: f64,
+    interval: Interval,
     q0: f64,
     qf: f64,
     /// Signed cruise velocity `V`.
@@ -40,7 +38,8 @@ pub struct Lspb {
 /// rounded): `T` and `T'` differ by the rounding of `tf`, up to half an ulp of `|tf|`, which
 /// is large against `T` when the move starts late (`t0 = 1e4` s, `T = 0.5` s: 4e-12), plus a
 /// few roundings of the bound's own arithmetic.
-fn duration_rounding(t0: f64, tf: f64, duration: f64) -> f64 {
+fn duration_rounding(interval: Interval) -> f64 {
+    let Interval { t0, tf, duration } = interval;
     8.0 * f64::EPSILON * (1.0 + (abs(t0) + abs(tf)) / duration)
 }
 
@@ -59,14 +58,15 @@ impl Lspb {
         qf: f64,
         v: f64,
     ) -> Result<Self, TrajectoryError> {
-        let duration = interval(t0, tf)?;
+        let interval = Interval::new(t0, tf)?;
+        let duration = interval.duration();
         let dq = displacement(q0, qf)?;
         finite("V", v)?;
         let average = dq / duration;
         let max = 2.0 * average;
         // The bang-bang end 2Δ/T as the caller computes it, with its own duration, lies
         // within `duration_rounding` of the one here, and is taken as that.
-        let near_max = abs(v - max) <= duration_rounding(t0, tf, duration) * abs(max);
+        let near_max = abs(v - max) <= duration_rounding(interval) * abs(max);
         let v = if near_max { max } else { v };
         // Written so that it is the same test for either sign of the move.
         let inside = if dq > 0.0 {
@@ -85,7 +85,7 @@ impl Lspb {
             });
         }
         if dq == 0.0 {
-            return Ok(Self::stationary(t0, tf, duration, q0));
+            return Ok(Self::stationary(interval, q0));
         }
         // tb = (V T - Δ)/V; rounding may push it a hair past T/2 at V = 2Δ/T.
         let blend_time = ((v * duration - dq) / v).min(0.5 * duration);
@@ -95,9 +95,7 @@ impl Lspb {
             return Err(out_of_float_range(blend_time));
         }
         Ok(Self {
-            t0,
-            tf,
-            duration,
+            interval,
             q0,
             qf,
             velocity: v,
@@ -120,31 +118,29 @@ impl Lspb {
         qf: f64,
         alpha: f64,
     ) -> Result<Self, TrajectoryError> {
-        let duration = interval(t0, tf)?;
-        Self::with_acceleration_over(t0, tf, duration, q0, qf, alpha)
+        Self::with_acceleration_over(Interval::new(t0, tf)?, q0, qf, alpha)
     }
 
-    /// [`with_acceleration`](Self::with_acceleration) over `duration` exactly, ending at `tf`
-    /// (`t0 + duration` rounded): for a joint synchronized to another's duration, which
-    /// `tf - t0` gives only to the rounding of `tf`.
+    /// [`with_acceleration`](Self::with_acceleration) over `interval`, whose duration may be
+    /// given exactly with `tf = t0 + duration` rounded ([`Interval::timed`]): for a joint
+    /// synchronized to another's duration, which `tf - t0` gives only to the rounding of `tf`.
     pub(crate) fn with_acceleration_over(
-        t0: f64,
-        tf: f64,
-        duration: f64,
+        interval: Interval,
         q0: f64,
         qf: f64,
         alpha: f64,
     ) -> Result<Self, TrajectoryError> {
+        let duration = interval.duration();
         let dq = displacement(q0, qf)?;
         positive("alpha", alpha)?;
         if dq == 0.0 {
-            return Ok(Self::stationary(t0, tf, duration, q0));
+            return Ok(Self::stationary(interval, q0));
         }
         let distance = abs(dq);
         let min = 4.0 * distance / (duration * duration);
         // Accept the bang-bang acceleration computed by the caller with its own rounding (of
         // the move and of the duration), and take it as the one here.
-        if alpha < min * (1.0 - duration_rounding(t0, tf, duration)) {
+        if alpha < min * (1.0 - duration_rounding(interval)) {
             return Err(TrajectoryError::LspbAccelerationTooSmall {
                 alpha,
                 min,
@@ -163,9 +159,7 @@ impl Lspb {
         }
         let sign = if dq > 0.0 { 1.0 } else { -1.0 };
         Ok(Self {
-            t0,
-            tf,
-            duration,
+            interval,
             q0,
             qf,
             velocity: sign * alpha * blend_time,
@@ -174,20 +168,13 @@ impl Lspb {
         })
     }
 
-    /// The LSPB of duration `duration > 0` with blend time `blend_time` in `(0, duration/2]`:
-    /// the shape shared by the minimum-time profiles. `dq = qf - q0` must be non-zero.
-    pub(crate) fn from_blend_time(
-        t0: f64,
-        duration: f64,
-        q0: f64,
-        qf: f64,
-        blend_time: f64,
-    ) -> Self {
-        let velocity = (qf - q0) / (duration - blend_time);
+    /// The LSPB over `interval` (of positive duration) with blend time `blend_time` in
+    /// `(0, duration/2]`: the shape shared by the minimum-time profiles. `dq = qf - q0` must
+    /// be non-zero.
+    pub(crate) fn from_blend_time(interval: Interval, q0: f64, qf: f64, blend_time: f64) -> Self {
+        let velocity = (qf - q0) / (interval.duration() - blend_time);
         Self {
-            t0,
-            tf: t0 + duration,
-            duration,
+            interval,
             q0,
             qf,
             velocity,
@@ -199,8 +186,7 @@ impl Lspb {
     /// The same profile with explicitly given signed velocity and acceleration (used where these
     /// are limits that must be reproduced exactly rather than recomputed with rounding).
     pub(crate) fn from_parts(
-        t0: f64,
-        duration: f64,
+        interval: Interval,
         q0: f64,
         qf: f64,
         blend_time: f64,
@@ -208,9 +194,7 @@ impl Lspb {
         acceleration: f64,
     ) -> Self {
         Self {
-            t0,
-            tf: t0 + duration,
-            duration,
+            interval,
             q0,
             qf,
             velocity,
@@ -219,12 +203,11 @@ impl Lspb {
         }
     }
 
-    /// Holding `q` from `t0` to `tf` (a zero move; `duration` may be 0 for minimum-time profiles).
-    pub(crate) fn stationary(t0: f64, tf: f64, duration: f64, q: f64) -> Self {
+    /// Holding `q` over `interval` (a zero move; its duration may be 0 for minimum-time
+    /// profiles).
+    pub(crate) fn stationary(interval: Interval, q: f64) -> Self {
         Self {
-            t0,
-            tf,
-            duration,
+            interval,
             q0: q,
             qf: q,
             velocity: 0.0,
@@ -250,23 +233,16 @@ impl Lspb {
 }
 
 impl Profile for Lspb {
-    fn start_time(&self) -> f64 {
-        self.t0
-    }
-
-    fn duration(&self) -> f64 {
-        self.duration
-    }
-
-    fn end_time(&self) -> f64 {
-        self.tf
+    fn interval(&self) -> Interval {
+        self.interval
     }
 
     fn eval(&self, t: f64) -> Setpoint {
-        if t < self.t0 {
+        let Interval { t0, tf, duration } = self.interval;
+        if t < t0 {
             return Setpoint::rest(self.q0);
         }
-        if t > self.tf {
+        if t > tf {
             return Setpoint::rest(self.qf);
         }
         if t.is_nan() {
@@ -275,8 +251,8 @@ impl Profile for Lspb {
         }
         // Time since the start and time to go, each measured from its own end so that both
         // boundary setpoints are exact even when tf = t0 + T was rounded.
-        let tau = t - self.t0;
-        let to_go = self.tf - t;
+        let tau = t - t0;
+        let to_go = tf - t;
         let (alpha, tb) = (self.acceleration, self.blend_time);
         if tau <= tb {
             Setpoint {
@@ -285,7 +261,7 @@ impl Profile for Lspb {
                 qdd: alpha,
             }
         } else if to_go > tb {
-            let q = 0.5 * (self.q0 + self.qf - self.velocity * self.duration) + self.velocity * tau;
+            let q = 0.5 * (self.q0 + self.qf - self.velocity * duration) + self.velocity * tau;
             Setpoint {
                 q,
                 qd: self.velocity,

@@ -1,7 +1,7 @@
 //! Minimum-time rest-to-rest profiles (section 6.5.1.3): bang-bang under an acceleration limit,
 //! and its velocity-limited variant, the trapezoid.
 
-use super::{Lspb, TrajectoryError, abs, displacement, finite, positive, sqrt};
+use super::{Interval, Lspb, TrajectoryError, abs, displacement, finite, positive, sqrt};
 
 /// The minimum duration of a rest-to-rest move from `q0` to `qf` with `|q̈| ≤ amax`:
 /// `2 sqrt(|qf - q0| / amax)` (the text's `ts = sqrt((qf - q0)/α)`, twice).
@@ -40,16 +40,15 @@ impl Lspb {
     pub fn bang_bang(t0: f64, q0: f64, qf: f64, amax: f64) -> Result<Self, TrajectoryError> {
         finite("t0", t0)?;
         let duration = bang_bang_duration(q0, qf, amax)?;
-        let end = finite("t0 + duration", t0 + duration)?;
+        let interval = Interval::timed(t0, finite("t0 + duration", t0 + duration)?, duration);
         let dq = qf - q0;
         if dq == 0.0 {
-            return Ok(Self::stationary(t0, end, 0.0, q0));
+            return Ok(Self::stationary(interval, q0));
         }
         let sign = if dq > 0.0 { 1.0 } else { -1.0 };
         let switch = 0.5 * duration;
         Ok(Self::from_parts(
-            t0,
-            duration,
+            interval,
             q0,
             qf,
             switch,
@@ -71,15 +70,14 @@ impl Lspb {
     ) -> Result<Self, TrajectoryError> {
         finite("t0", t0)?;
         let duration = velocity_limited_duration(q0, qf, vmax, amax)?;
-        finite("t0 + duration", t0 + duration)?;
+        let interval = Interval::timed(t0, finite("t0 + duration", t0 + duration)?, duration);
         let dq = qf - q0;
         if amax * abs(dq) <= vmax * vmax {
             return Self::bang_bang(t0, q0, qf, amax);
         }
         let sign = if dq > 0.0 { 1.0 } else { -1.0 };
         Ok(Self::from_parts(
-            t0,
-            duration,
+            interval,
             q0,
             qf,
             vmax / amax,

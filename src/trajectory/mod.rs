@@ -106,18 +106,89 @@ impl From<Setpoint> for (f64, f64, f64) {
     }
 }
 
+/// The time interval `[t0, tf]` a trajectory runs over, with its duration.
+///
+/// The three are stored as the trajectory computed them: the duration is `tf − t0`, or, for a
+/// trajectory timed by its duration (a joint synchronized to another's, a minimum-time move, a
+/// whole number of periods), that duration exactly with `tf = t0 + duration` rounded. Every
+/// profile answers [`start_time`](Profile::start_time), [`duration`](Profile::duration) and
+/// [`end_time`](Profile::end_time) from its interval.
+///
+/// ```
+/// use dhgen::trajectory::{Interval, Profile, Quintic};
+///
+/// let span = Interval::new(1.0, 3.5)?;
+/// assert_eq!((span.start(), span.end(), span.duration()), (1.0, 3.5, 2.5));
+/// let move_ = Quintic::rest_to_rest(1.0, 3.5, 0.0, 1.0)?;
+/// assert_eq!(move_.interval(), span);
+/// assert!(Interval::new(2.0, 2.0).is_err());
+/// # Ok::<(), dhgen::trajectory::TrajectoryError>(())
+/// ```
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Interval {
+    t0: f64,
+    tf: f64,
+    duration: f64,
+}
+
+impl Interval {
+    /// `[t0, tf]`; needs finite times with `tf > t0` a finite distance apart.
+    ///
+    /// # Errors
+    /// [`TrajectoryError::NonFinite`] naming `t0`, `tf` or `tf - t0`;
+    /// [`TrajectoryError::EmptyTimeInterval`] for `tf <= t0`.
+    pub fn new(t0: f64, tf: f64) -> Result<Self, TrajectoryError> {
+        finite("t0", t0)?;
+        finite("tf", tf)?;
+        if tf <= t0 {
+            return Err(TrajectoryError::EmptyTimeInterval { t0, tf });
+        }
+        // Two huge finite times can still be infinitely far apart.
+        let duration = finite("tf - t0", tf - t0)?;
+        Ok(Self { t0, tf, duration })
+    }
+
+    /// The interval of the given `duration` (finite, non-negative: zero for a minimum-time
+    /// profile of a zero move) ending at `tf`, which the caller has checked is `t0 + duration`
+    /// rounded, or `tf − t0` exactly.
+    pub(crate) const fn timed(t0: f64, tf: f64, duration: f64) -> Self {
+        Self { t0, tf, duration }
+    }
+
+    /// The start time `t0`.
+    pub const fn start(&self) -> f64 {
+        self.t0
+    }
+
+    /// The end time `tf`.
+    pub const fn end(&self) -> f64 {
+        self.tf
+    }
+
+    /// The duration (zero only for a minimum-time profile of a zero move).
+    pub const fn duration(&self) -> f64 {
+        self.duration
+    }
+}
+
 /// A trajectory of one joint: `q(t)`, `q̇(t)`, `q̈(t)` on `[start_time, end_time]`.
 ///
 /// Outside that interval the joint is at rest at the nearest end (see the
 /// [module documentation](self)).
 pub trait Profile {
+    /// The time interval the profile runs over.
+    fn interval(&self) -> Interval;
     /// The start time `t0`.
-    fn start_time(&self) -> f64;
+    fn start_time(&self) -> f64 {
+        self.interval().start()
+    }
     /// The duration `tf - t0` (zero only for a minimum-time profile of a zero move).
-    fn duration(&self) -> f64;
+    fn duration(&self) -> f64 {
+        self.interval().duration()
+    }
     /// The end time `tf`.
     fn end_time(&self) -> f64 {
-        self.start_time() + self.duration()
+        self.interval().end()
     }
     /// Position, velocity and acceleration at time `t`.
     fn eval(&self, t: f64) -> Setpoint;
@@ -127,13 +198,19 @@ pub trait Profile {
 pub trait MultiProfile {
     /// Number of joints.
     fn dof(&self) -> usize;
+    /// The common time interval.
+    fn interval(&self) -> Interval;
     /// The common start time `t0`.
-    fn start_time(&self) -> f64;
+    fn start_time(&self) -> f64 {
+        self.interval().start()
+    }
     /// The common duration `tf - t0`.
-    fn duration(&self) -> f64;
+    fn duration(&self) -> f64 {
+        self.interval().duration()
+    }
     /// The common end time `tf`.
     fn end_time(&self) -> f64 {
-        self.start_time() + self.duration()
+        self.interval().end()
     }
     /// Writes the state of every joint at time `t` into `out` (`out.len()` must equal
     /// [`dof`](MultiProfile::dof)).
@@ -490,17 +567,6 @@ pub(crate) fn positive(name: &'static str, value: f64) -> Result<f64, Trajectory
             at: Location::NONE,
         })
     }
-}
-
-/// Checks `t0` and `tf` and returns the duration `tf - t0`.
-pub(crate) fn interval(t0: f64, tf: f64) -> Result<f64, TrajectoryError> {
-    finite("t0", t0)?;
-    finite("tf", tf)?;
-    if tf <= t0 {
-        return Err(TrajectoryError::EmptyTimeInterval { t0, tf });
-    }
-    // Two huge finite times can still be infinitely far apart.
-    finite("tf - t0", tf - t0)
 }
 
 /// Checks `q0` and `qf` and returns the move `qf - q0`.

@@ -1,7 +1,7 @@
 //! Many joints moving together: one profile per joint over one common time interval.
 
 use super::{
-    Cubic, FourierSeries, Location, Lspb, MultiProfile, Profile, Quintic, Setpoint,
+    Cubic, FourierSeries, Interval, Location, Lspb, MultiProfile, Profile, Quintic, Setpoint,
     TrajectoryError, bang_bang_duration, finite, velocity_limited_duration,
 };
 
@@ -82,16 +82,10 @@ impl<P: Profile, const N: usize> MultiProfile for Synchronized<P, N> {
         N
     }
 
-    fn start_time(&self) -> f64 {
-        self.joints.first().map_or(0.0, Profile::start_time)
-    }
-
-    fn duration(&self) -> f64 {
-        self.joints.first().map_or(0.0, Profile::duration)
-    }
-
-    fn end_time(&self) -> f64 {
-        self.joints.first().map_or(0.0, Profile::end_time)
+    fn interval(&self) -> Interval {
+        self.joints
+            .first()
+            .map_or(Interval::default(), Profile::interval)
     }
 
     fn eval_into(&self, t: f64, out: &mut [Setpoint]) -> Result<(), TrajectoryError> {
@@ -208,17 +202,16 @@ impl<const N: usize> Synchronized<Lspb, N> {
             return Err(TrajectoryError::NoJoints);
         }
         let duration = slowest(&durations);
-        let end = finite("t0 + duration", t0 + duration)?;
+        let interval = Interval::timed(t0, finite("t0 + duration", t0 + duration)?, duration);
         let joints = try_joints(|j| {
             if durations[j] == duration {
                 // The slowest joint keeps its own profile: exactly amax, no re-rounding.
                 Lspb::bang_bang(t0, q0[j], qf[j], amax[j])
             } else if q0[j] == qf[j] {
-                Ok(Lspb::stationary(t0, end, duration, q0[j]))
+                Ok(Lspb::stationary(interval, q0[j]))
             } else {
                 Ok(Lspb::from_blend_time(
-                    t0,
-                    duration,
+                    interval,
                     q0[j],
                     qf[j],
                     0.5 * duration,
@@ -251,18 +244,18 @@ impl<const N: usize> Synchronized<Lspb, N> {
             return Err(TrajectoryError::NoJoints);
         }
         let duration = slowest(&durations);
-        let end = finite("t0 + duration", t0 + duration)?;
+        let interval = Interval::timed(t0, finite("t0 + duration", t0 + duration)?, duration);
         let joints = try_joints(|j| {
             if durations[j] == duration {
                 Lspb::velocity_limited(t0, q0[j], qf[j], vmax[j], amax[j])
             } else if q0[j] == qf[j] {
-                Ok(Lspb::stationary(t0, end, duration, q0[j]))
+                Ok(Lspb::stationary(interval, q0[j]))
             } else {
                 // Over the slowest joint's duration T itself, ending at its end time t0 + T
                 // (end − t0 is T only to the rounding of the end, which the square root of
                 // the blend time can amplify past a limit where a joint's move is nearly the
                 // slowest one's).
-                Lspb::with_acceleration_over(t0, end, duration, q0[j], qf[j], amax[j])
+                Lspb::with_acceleration_over(interval, q0[j], qf[j], amax[j])
             }
         })?;
         Self::new(joints)

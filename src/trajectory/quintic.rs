@@ -1,7 +1,7 @@
 //! Quintic polynomial: position, velocity and acceleration given at both ends (section 6.5.1.1).
 
 use super::{
-    Profile, Setpoint, TrajectoryError, abs, displacement, finite, interval, polynomial_in_range,
+    Interval, Profile, Setpoint, TrajectoryError, abs, displacement, finite, polynomial_in_range,
 };
 
 /// The quintic `q(t)` matching position, velocity and acceleration at `t0` and `tf`.
@@ -13,9 +13,7 @@ use super::{
 /// reproduces all six boundary values exactly at `s = 0` and `s = 1`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Quintic {
-    t0: f64,
-    tf: f64,
-    duration: f64,
+    interval: Interval,
     start: Setpoint,
     end: Setpoint,
     /// `(qf - q0) / (tf - t0)`, the average velocity.
@@ -35,16 +33,15 @@ impl Quintic {
     /// [`TrajectoryError::OutOfFloatRange`] naming it. A quintic it returns evaluates to finite
     /// values at every finite time.
     pub fn new(t0: f64, tf: f64, start: Setpoint, end: Setpoint) -> Result<Self, TrajectoryError> {
-        let duration = interval(t0, tf)?;
+        let interval = Interval::new(t0, tf)?;
+        let duration = interval.duration();
         let dq = displacement(start.q, end.q)?;
         finite("v0", start.qd)?;
         finite("a0", start.qdd)?;
         finite("vf", end.qd)?;
         finite("af", end.qdd)?;
         let quintic = Self {
-            t0,
-            tf,
-            duration,
+            interval,
             start,
             end,
             slope: dq / duration,
@@ -85,7 +82,7 @@ impl Quintic {
     /// `a4 = ((16 v0 + 14 vf - 30 Δ/T)/T + 3 a0 - 2 af)/(2T²)`,
     /// `a5 = ((12 Δ/T - 6 (v0 + vf))/T - a0 + af)/(2T³)`.
     pub fn coefficients(&self) -> [f64; 6] {
-        let (t, slope) = (self.duration, self.slope);
+        let (t, slope) = (self.interval.duration(), self.slope);
         let (q0, v0, a0) = (self.start.q, self.start.qd, self.start.qdd);
         let (v1, a1) = (self.end.qd, self.end.qdd);
         let two_t = 2.0 * t;
@@ -101,27 +98,20 @@ impl Quintic {
 }
 
 impl Profile for Quintic {
-    fn start_time(&self) -> f64 {
-        self.t0
-    }
-
-    fn duration(&self) -> f64 {
-        self.duration
-    }
-
-    fn end_time(&self) -> f64 {
-        self.tf
+    fn interval(&self) -> Interval {
+        self.interval
     }
 
     fn eval(&self, t: f64) -> Setpoint {
-        if t < self.t0 {
+        let Interval { t0, tf, duration } = self.interval;
+        if t < t0 {
             return Setpoint::rest(self.start.q);
         }
-        if t > self.tf {
+        if t > tf {
             return Setpoint::rest(self.end.q);
         }
-        let big_t = self.duration;
-        let s = (t - self.t0) / big_t;
+        let big_t = duration;
+        let s = (t - t0) / big_t;
         let r = 1.0 - s;
         let (s2, s3) = (s * s, s * s * s);
         let (v0, a0, v1, a1) = (self.start.qd, self.start.qdd, self.end.qd, self.end.qdd);

@@ -4,7 +4,8 @@
 //! Both store their knots on the heap, so they need the `std` feature.
 
 use super::{
-    Location, MultiProfile, Profile, Setpoint, TrajectoryError, abs, finite, positive, sqrt,
+    Interval, Location, MultiProfile, Profile, Setpoint, TrajectoryError, abs, finite, positive,
+    sqrt,
 };
 
 /// Checks the via points and returns the number of joints: at least two points, all finite and
@@ -692,16 +693,10 @@ impl<P: ViaPath> MultiProfile for P {
         self.joints()
     }
 
-    fn start_time(&self) -> f64 {
-        self.knot_times()[0]
-    }
-
-    fn duration(&self) -> f64 {
-        self.end_time() - self.start_time()
-    }
-
-    fn end_time(&self) -> f64 {
-        self.knot_times()[self.knot_times().len() - 1]
+    fn interval(&self) -> Interval {
+        let times = self.knot_times();
+        let (t0, tf) = (times[0], times[times.len() - 1]);
+        Interval::timed(t0, tf, tf - t0)
     }
 
     fn eval_into(&self, t: f64, out: &mut [Setpoint]) -> Result<(), TrajectoryError> {
@@ -721,16 +716,8 @@ impl<P: ViaPath> MultiProfile for P {
 }
 
 impl<P: ViaPath> Profile for JointView<'_, P> {
-    fn start_time(&self) -> f64 {
-        MultiProfile::start_time(self.path)
-    }
-
-    fn duration(&self) -> f64 {
-        MultiProfile::duration(self.path)
-    }
-
-    fn end_time(&self) -> f64 {
-        MultiProfile::end_time(self.path)
+    fn interval(&self) -> Interval {
+        MultiProfile::interval(self.path)
     }
 
     fn eval(&self, t: f64) -> Setpoint {

@@ -3,7 +3,10 @@
 
 use crate::trajectory_support::*;
 use dhgen::nalgebra::{SMatrix, SVector};
-use dhgen::trajectory::{Cubic, Profile, Quintic, Setpoint, Synchronized, TrajectoryError};
+use dhgen::trajectory::{
+    Cubic, FourierSeries, Interval, Lspb, MultiProfile, Profile, Quintic, Setpoint, Synchronized,
+    TrajectoryError,
+};
 use proptest::prelude::*;
 
 /// Coefficients `c` of `q = Σ c_k s^k` in the normalized time `s = (t - t0)/T`, solved by LU from
@@ -288,6 +291,76 @@ fn tf_not_after_t0_is_rejected() {
             format!("final time tf = {tf} must be greater than start time t0 = {t0}")
         );
         assert_eq!(Quintic::rest_to_rest(t0, tf, 0.0, 1.0).unwrap_err(), e);
+    }
+}
+
+/// `Interval::new` refuses what every timed profile refuses, naming the same thing, and every
+/// profile reports the interval it was built on: `[t0, tf]` with `tf − t0`, or, timed by its
+/// duration, that duration with the end `t0 + duration` rounded.
+#[test]
+fn intervals_are_checked_and_reported() {
+    for (t0, tf) in [(1.0, 1.0), (2.0, 1.0)] {
+        let e = Interval::new(t0, tf).unwrap_err();
+        assert_eq!(e, TrajectoryError::EmptyTimeInterval { t0, tf });
+        assert_eq!(Cubic::rest_to_rest(t0, tf, 0.0, 1.0).unwrap_err(), e);
+    }
+    for (name, t0, tf) in [
+        ("t0", f64::NAN, 1.0),
+        ("tf", 0.0, f64::INFINITY),
+        ("tf - t0", -1e308, 1e308),
+    ] {
+        let e = Interval::new(t0, tf).unwrap_err();
+        assert!(
+            matches!(e, TrajectoryError::NonFinite { name: n, .. } if n == name),
+            "{name}: {e:?}"
+        );
+        let quintic = Quintic::rest_to_rest(t0, tf, 0.0, 1.0).unwrap_err();
+        assert_eq!(quintic.to_string(), e.to_string());
+    }
+
+    let (t0, tf) = (0.1, 0.7);
+    let span = Interval::new(t0, tf).unwrap();
+    assert_eq!(
+        (span.start(), span.end(), span.duration()),
+        (t0, tf, tf - t0)
+    );
+    let check = |what: &str, p: &dyn Profile, expected: Interval| {
+        assert_eq!(p.interval(), expected, "{what}");
+        let times = (p.start_time(), p.duration(), p.end_time());
+        assert_eq!(
+            times,
+            (expected.start(), expected.duration(), expected.end()),
+            "{what}"
+        );
+    };
+    check(
+        "cubic",
+        &Cubic::rest_to_rest(t0, tf, 0.0, 1.0).unwrap(),
+        span,
+    );
+    check(
+        "quintic",
+        &Quintic::rest_to_rest(t0, tf, 0.0, 1.0).unwrap(),
+        span,
+    );
+    check(
+        "lspb",
+        &Lspb::with_velocity(t0, tf, 0.0, 1.0, 2.0).unwrap(),
+        span,
+    );
+    // Timed by their durations: 3 periods of 0.1 s end at 0.1 + 0.30000000000000004, and a
+    // bang-bang move of 2 sqrt(1/3) s at 0.1 plus that, each rounded.
+    let periods = 3.0 * 0.1;
+    let series = FourierSeries::new(t0, 0.1, 3, 0.0, [0.1], [0.0]).unwrap();
+    assert_eq!(series.duration(), periods);
+    assert_eq!(series.end_time(), t0 + periods);
+    let fastest = Lspb::bang_bang(t0, 0.0, 1.0, 3.0).unwrap();
+    let bang = 2.0 * (1.0f64 / 3.0).sqrt();
+    assert_eq!((fastest.duration(), fastest.end_time()), (bang, t0 + bang));
+    let joints = Synchronized::bang_bang(t0, &[0.0, 0.0], &[1.0, 0.5], &[3.0, 3.0]).unwrap();
+    assert_eq!(MultiProfile::interval(&joints), fastest.interval());
+    for joint in joints.joints() {
+        check("synchronized joint", joint, fastest.interval());
     }
 }
 
