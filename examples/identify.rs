@@ -484,57 +484,70 @@ fn main() -> Result<(), Box<dyn Error>> {
         );
     }
 
-    // The identified arm as a model: the base parameters expanded over the nominal values
-    // (what motion cannot tell kept as the description has it; the links need not each be
-    // physical, `Links::AsGiven`), a `dhgen::Robot` whose forward dynamics are the identified
-    // robot's. Its accelerations under the validation run's torques against the plant's: the
-    // wrist's inertia is so small (no motors in this description) that errors too small to
-    // show in the torques show in D⁻¹.
+    // The identified arm as a model, two ways: the base parameters expanded over the nominal
+    // values (what motion cannot tell kept as the description has it; the links need not
+    // each be physical, `Links::AsGiven`), and the nearest expansion whose every link is
+    // physical (`expand_physical`). Each is a `dhgen::Robot` whose forward dynamics are the
+    // identified robot's. Their accelerations under the validation run's torques against the
+    // plant's: the wrist's inertia is so small (no motors in this description) that errors
+    // too small to show in the torques show in D⁻¹.
     let regrouping = Robot::from_model(nominal_model.clone()).base_parameters();
     let reference = dhgen::parameters::values(&nominal_model).ok_or("mass properties")?;
     let expanded = regrouping.expand(estimate.as_slice(), &reference)?;
-    let physical =
+    let over_nominal =
         dhgen::parameters::with_values(&nominal_model, expanded.as_slice(), Links::Physical);
-    let model_of = |expanded: &[f64]| -> Result<Robot, Box<dyn Error>> {
-        let model = dhgen::parameters::with_values(&nominal_model, expanded, Links::AsGiven)?;
+    let model_of = |expanded: &[f64], links: Links| -> Result<Robot, Box<dyn Error>> {
+        let model = dhgen::parameters::with_values(&nominal_model, expanded, links)?;
         Ok(Robot::from_model(model))
     };
-    let identified = model_of(expanded.as_slice())?;
+    let physical = regrouping.expand_physical(estimate.as_slice(), &nominal_model);
+    let mut models = vec![(
+        match &over_nominal {
+            Ok(_) => "over the nominal values (every link physical)".to_string(),
+            Err(e) => format!("over the nominal values (not every link physical: {e})"),
+        },
+        model_of(expanded.as_slice(), Links::AsGiven)?,
+    )];
+    match &physical {
+        Ok(pi) => models.push((
+            "the nearest with every link physical".to_string(),
+            model_of(pi.as_slice(), Links::Physical)?,
+        )),
+        Err(e) => println!("no expansion of the estimate has physical links: {e}"),
+    }
     // The same from the plant's own base parameters: its accelerations exactly.
-    let exact = model_of(regrouping.expand(truth.as_slice(), &reference)?.as_slice())?;
-    let mut error = [[0.0f64; 6]; 2];
+    models.push((
+        "from the plant's own base parameters".to_string(),
+        model_of(
+            regrouping.expand(truth.as_slice(), &reference)?.as_slice(),
+            Links::AsGiven,
+        )?,
+    ));
     let mut size = [0.0f64; 6];
     for r in &validation {
-        for (e, robot) in error.iter_mut().zip([&identified, &exact]) {
-            let qdd = robot
-                .forward_dynamics(&r.q, &r.qd, &r.tau)
-                .ok_or("the identified D(q) is singular")?;
-            for j in 0..n {
-                e[j] += (qdd[j] - r.qdd[j]).powi(2);
-            }
-        }
         for (s, x) in size.iter_mut().zip(r.qdd.iter()) {
             *s += x * x;
         }
     }
-    let relative = |e: &[f64; 6]| -> Vec<f64> { (0..n).map(|j| (e[j] / size[j]).sqrt()).collect() };
     println!(
-        "the identified arm as a model: the base parameters expanded over the nominal values ({})",
-        match &physical {
-            Ok(_) => "every link physical".to_string(),
-            Err(e) => format!("not every link physical: {e}"),
+        "the identified arm as a model, forward dynamics on the validation run, RMS error of q̈ \
+         joint by joint:"
+    );
+    for (what, robot) in &models {
+        let mut error = [0.0f64; 6];
+        for r in &validation {
+            let qdd = robot
+                .forward_dynamics(&r.q, &r.qd, &r.tau)
+                .ok_or("the identified D(q) is singular")?;
+            for j in 0..n {
+                error[j] += (qdd[j] - r.qdd[j]).powi(2);
+            }
         }
-    );
-    println!(
-        "  forward dynamics on the validation run, RMS error of q̈ joint by joint: [{}] %; from \
-         the plant's own base parameters: {:.0e} at most",
-        relative(&error[0])
-            .iter()
-            .map(|x| format!("{:.1}", 100.0 * x))
-            .collect::<Vec<_>>()
-            .join(", "),
-        relative(&error[1]).iter().fold(0.0, |m: f64, x| m.max(*x))
-    );
+        let relative: Vec<String> = (0..n)
+            .map(|j| format!("{:.1e}", (error[j] / size[j]).sqrt()))
+            .collect();
+        println!("  {what}: [{}]", relative.join(", "));
+    }
 
     // The payload alone, the arm's own parameters known: τ − Y π_arm = Y_6 π_payload with Y_6
     // the last link's ten columns (the payload's parameters in link 6's frame, the tool's).

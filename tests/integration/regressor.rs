@@ -464,21 +464,7 @@ fn expanded_base_parameters_give_the_robot_they_came_from() {
     use dhgen::parameters::{Links, ParameterError, values, with_values};
     let (mut unphysical, mut count) = (0, 0);
     for (name, robot) in robots() {
-        let mut heavier = robot.model().clone();
-        for link in &mut heavier.links {
-            let i = link.inertial.as_mut().unwrap();
-            i.mass *= 1.15;
-            i.com = i.com.map(|x| 0.95 * x);
-            i.inertia = i.inertia.map(|row| row.map(|x| 1.15 * x));
-            if let Some(m) = link.motor.as_mut() {
-                m.inertia *= 1.1;
-            }
-            if let Some(f) = link.friction.as_mut() {
-                f.viscous *= 1.1;
-                f.coulomb *= 1.1;
-            }
-        }
-        let truth = Robot::from_model(heavier);
+        let truth = heavier_copy(&robot);
         count += 1;
         let base = robot.base_parameters();
         let pi_b = base.reduce(&truth.parameters());
@@ -518,6 +504,160 @@ fn expanded_base_parameters_give_the_robot_they_came_from() {
     }
     // What `Links::AsGiven` documents: most (17 of 18 when it was written).
     assert!(2 * unphysical > count, "{unphysical} of {count}");
+}
+
+/// The heavier copy of `robot` of [`expanded_base_parameters_give_the_robot_they_came_from`]:
+/// every mass and inertia ×1.15, centres of mass ×0.95, motors and friction ×1.1.
+fn heavier_copy(robot: &Robot) -> Robot {
+    let mut heavier = robot.model().clone();
+    for link in &mut heavier.links {
+        let i = link.inertial.as_mut().unwrap();
+        i.mass *= 1.15;
+        i.com = i.com.map(|x| 0.95 * x);
+        i.inertia = i.inertia.map(|row| row.map(|x| 1.15 * x));
+        if let Some(m) = link.motor.as_mut() {
+            m.inertia *= 1.1;
+        }
+        if let Some(f) = link.friction.as_mut() {
+            f.viscous *= 1.1;
+            f.coulomb *= 1.1;
+        }
+    }
+    Robot::from_model(heavier)
+}
+
+/// The distance `BaseParameters::expand_physical` documents between two parameter vectors:
+/// over the dependent parameters, each difference in its scale (the mean link mass `M` for a
+/// mass, `M L` for a first moment, `M L²` for an inertia, `L² = Σ ∫|r|² dm / Σ m`; a
+/// joint-side term's own reference value), squared and summed.
+fn physical_distance(
+    model: &dhgen::RobotModel,
+    base: &dhgen::parameters::BaseParameters,
+    a: &[f64],
+    reference: &[f64],
+) -> f64 {
+    let n = model.dof();
+    let mass: f64 = (0..n).map(|i| reference[10 * i]).sum();
+    let second: f64 = (0..n)
+        .map(|i| 0.5 * (reference[10 * i + 4] + reference[10 * i + 6] + reference[10 * i + 9]))
+        .sum();
+    let (big_m, big_l) = (mass / n as f64, (second / mass).sqrt());
+    base.dependent
+        .iter()
+        .map(|&j| {
+            let scale = match (j < 10 * n, j % 10) {
+                (true, 0) => big_m,
+                (true, 1..=3) => big_m * big_l,
+                (true, _) => big_m * big_l * big_l,
+                (false, _) if reference[j] != 0.0 => reference[j].abs(),
+                (false, _) => 1.0,
+            };
+            ((a[j] - reference[j]) / scale).powi(2)
+        })
+        .sum()
+}
+
+/// `BaseParameters::expand_physical` on every robot. The base parameters of its heavier copy
+/// (a physical robot has them) come back as physical links (`Links::Physical` accepts them)
+/// with the same base parameters, which move as the copy, and at least as near the
+/// original's values as the copy itself is (the nearest physical vector is no farther than
+/// any physical one); a robot's own base parameters come back as its own values.
+#[test]
+fn physical_expansion_finds_the_nearest_physical_links() {
+    use dhgen::parameters::{Links, values, with_values};
+    for (name, robot) in robots() {
+        let truth = heavier_copy(&robot);
+        let base = robot.base_parameters();
+        let pi_b = base.reduce(&truth.parameters());
+        let reference = values(robot.model()).unwrap();
+        let expanded = base
+            .expand_physical(pi_b.as_slice(), robot.model())
+            .unwrap_or_else(|e| panic!("{name}: {e}"));
+        close(&name, &base.reduce(&expanded), &pi_b, 1e-12);
+        let model = with_values(robot.model(), expanded.as_slice(), Links::Physical)
+            .unwrap_or_else(|e| panic!("{name}: {e}"));
+        let identified = Robot::from_model(model);
+        for seed in 0..3 {
+            let (q, qd, qdd) = state(&robot, 90 + seed);
+            let tau = truth.inverse_dynamics(&q[..], &qd[..], &qdd[..]);
+            let got = identified.inverse_dynamics(&q[..], &qd[..], &qdd[..]);
+            close(&name, &got, &tau, 1e-11);
+        }
+        let model = robot.model();
+        let found = physical_distance(model, &base, expanded.as_slice(), &reference);
+        let copy = physical_distance(model, &base, truth.parameters().as_slice(), &reference);
+        println!("{name}: distance {found:.4e}, the heavier copy's {copy:.4e}");
+        assert!(found <= copy + 1e-9, "{name}: {found} against {copy}");
+        let own = DVector::from_vec(reference.clone());
+        let again = base
+            .expand_physical(base.reduce(&own).as_slice(), model)
+            .unwrap();
+        close(&name, &again, &own, 1e-12);
+    }
+}
+
+/// Base parameters no physical robot has are refused, naming the link: a last link's lumped
+/// mass made negative, or a lumped inertia below what the masses beyond it already carry; a
+/// reference without mass properties and a wrong count are refused too.
+#[test]
+fn physical_expansion_refuses_base_parameters_no_body_has() {
+    use dhgen::parameters::{ParameterError, names};
+    for (name, robot) in robots() {
+        let base = robot.base_parameters();
+        let names = names(robot.model());
+        let pi_b = base.reduce(&robot.parameters());
+        let n = robot.dof();
+        // The last link's mass as a base parameter of its own (nothing regrouped into it).
+        let mass = |k: usize| {
+            names[base.independent[k]] == format!("m{n}")
+                && base.beta.row(k).iter().all(|b| *b == 0.0)
+        };
+        if let Some(k) = (0..base.count()).find(|&k| mass(k)) {
+            let mut b = pi_b.clone();
+            b[k] = -0.1;
+            match base.expand_physical(b.as_slice(), robot.model()) {
+                Err(ParameterError::Infeasible {
+                    name: what,
+                    message,
+                }) => {
+                    println!("{name}: m{n} = -0.1: {what}: {message}");
+                    assert!(what.starts_with("link "), "{name}: {what}");
+                }
+                other => panic!("{name}: m{n} = -0.1 gave {other:?}"),
+            }
+        }
+    }
+    let planar = robots()
+        .into_iter()
+        .find(|(name, _)| name == "planar_elbow")
+        .unwrap()
+        .1;
+    let base = planar.base_parameters();
+    let names = names(planar.model());
+    let mut pi_b = base.reduce(&planar.parameters());
+    // The lumped ZZ of link 1 (Izz1 + ...), far below zero.
+    let k = (0..base.count())
+        .find(|&k| names[base.independent[k]] == "Izz1")
+        .expect("Izz1 is a base parameter of the planar elbow");
+    pi_b[k] = -10.0;
+    let e = base
+        .expand_physical(pi_b.as_slice(), planar.model())
+        .unwrap_err();
+    assert!(
+        matches!(&e, ParameterError::Infeasible { name, .. } if name.starts_with("link ")),
+        "{e}"
+    );
+    assert!(e.to_string().contains("cannot be made physical"), "{e}");
+    let mut bare = planar.model().clone();
+    bare.links[1].inertial = None;
+    assert_eq!(
+        base.expand_physical(pi_b.as_slice(), &bare).unwrap_err(),
+        ParameterError::NoMassProperties { link: 2 }
+    );
+    assert!(matches!(
+        base.expand_physical(&pi_b.as_slice()[1..], planar.model()),
+        Err(ParameterError::Count { .. })
+    ));
 }
 
 /// Values no link can have are refused, naming the parameter.

@@ -51,6 +51,9 @@
 //! ```
 
 #[cfg(feature = "std")]
+mod physical;
+
+#[cfg(feature = "std")]
 use crate::random::Stream;
 #[cfg(feature = "std")]
 use crate::{ChainRef, RobotModel};
@@ -196,6 +199,24 @@ pub enum ParameterError {
         /// Its index in `π`.
         index: usize,
         /// What is wrong.
+        message: String,
+    },
+    /// A link of the reference model has no mass properties to take the values motion
+    /// cannot tell from ([`BaseParameters::expand_physical`]).
+    #[error("link {link} has no mass properties to take the values motion cannot tell from")]
+    NoMassProperties {
+        /// The link, from 1.
+        link: usize,
+    },
+    /// No parameters with the given base parameters make every link physical
+    /// ([`BaseParameters::expand_physical`]).
+    #[error(
+        "no physical robot has these base parameters: {name} cannot be made physical ({message})"
+    )]
+    Infeasible {
+        /// What cannot be made physical: `link 3`, or a joint-side term's name (`Ia1`).
+        name: String,
+        /// How far from physical it stays.
         message: String,
     },
 }
