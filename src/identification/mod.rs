@@ -17,6 +17,12 @@
 //! recording that does not excite every base parameter is refused, with that condition number,
 //! rather than answered with arbitrary values in the directions it left free.
 //!
+//! Least squares knows nothing of bodies: with noise, an estimate's base parameters may belong
+//! to no physical robot (a lumped inertia below what the masses beyond it carry), and a model
+//! of them then has links no body has. [`Estimate::physical`] is the constrained fit instead:
+//! the base parameters nearest the estimate, in the metric of its covariance, whose expansion
+//! has every link physical (Wensing, Kim and Slotine's pseudo-inertia condition).
+//!
 //! [`PeriodAverage`] prepares a periodic recording: its periods averaged, each channel's noise
 //! variance estimated from their spread (the weights below), and the positions' harmonics as a
 //! [`FourierSeries`](crate::trajectory::FourierSeries) that gives velocities and
@@ -194,6 +200,41 @@ pub struct Estimate {
     pub condition_number: f64,
     /// The rows the estimate is from.
     pub rows: usize,
+}
+
+impl Estimate {
+    /// The physically consistent estimate: the full parameters `π`, every link physical,
+    /// whose base parameters are nearest these in the metric of their covariance (the
+    /// least-squares fit of the same rows under the constraint that the robot be one, as
+    /// Wensing, Kim and Slotine identify), the directions motion cannot tell settled nearest
+    /// `model`'s own values: [`BaseParameters::nearest_physical`] with the inverse covariance.
+    /// `regrouping` is the one the rows were stacked by (`base_parameters()` of the robot or
+    /// the generated module) and `model` the description it is of. With a zero residual (no
+    /// noise) the base parameters are kept exactly ([`BaseParameters::expand_physical`]).
+    /// [`BaseParameters::reduce`] gives the base parameters of the result, and
+    /// `dhgen::parameters::with_values` with `Links::Physical` its model.
+    ///
+    /// # Errors
+    /// [`ParameterError::Infeasible`] when no physical robot is near enough to be found
+    /// (see [`BaseParameters::expand_physical`]), and the other errors of
+    /// [`BaseParameters::nearest_physical`].
+    ///
+    /// [`BaseParameters::nearest_physical`]: crate::parameters::BaseParameters::nearest_physical
+    /// [`BaseParameters::expand_physical`]: crate::parameters::BaseParameters::expand_physical
+    /// [`BaseParameters::reduce`]: crate::parameters::BaseParameters::reduce
+    /// [`ParameterError::Infeasible`]: crate::parameters::ParameterError::Infeasible
+    pub fn physical(
+        &self,
+        regrouping: &crate::parameters::BaseParameters,
+        model: &crate::RobotModel,
+    ) -> Result<DVector<f64>, crate::parameters::ParameterError> {
+        match self.covariance.clone().cholesky() {
+            Some(factor) => {
+                regrouping.nearest_physical(self.parameters.as_slice(), &factor.inverse(), model)
+            }
+            None => regrouping.expand_physical(self.parameters.as_slice(), model),
+        }
+    }
 }
 
 impl LeastSquares {

@@ -194,7 +194,9 @@ pub enum ParameterError {
     /// about it), breaks a rule of the description format.
     #[error("parameter {name} (index {index}): {message}")]
     Value {
-        /// The parameter's name ([`names`]), e.g. `mx3`, `Izz2`, `fv1`.
+        /// The parameter's name ([`names`]), e.g. `mx3`, `Izz2`, `fv1`; for values given as
+        /// base parameters, `base parameter 4` (from 1), or `information` for the matrix of
+        /// [`BaseParameters::nearest_physical`].
         name: String,
         /// Its index in `π`.
         index: usize,

@@ -29,8 +29,12 @@ const GAP: f64 = 1e-10;
 const NEWTON_STEPS: usize = 100;
 /// How fast the barrier's weight grows.
 const GROWTH: f64 = 10.0;
-/// The first phase's pull toward the reference: small, so that it cannot hide a margin.
+/// The first phase's pull toward its start, in each variable's scale: small, so that it
+/// cannot hide a margin.
 const PHASE_ONE_PULL: f64 = 1e-8;
+/// The weight of the distance from the description in [`BaseParameters::nearest_physical`],
+/// against the fit's `(π_b − π̂)ᵀ Λ (π_b − π̂)` (of order the number of base parameters).
+const PULL: f64 = 1e-6;
 /// How far below zero a constraint's least eigenvalue may be, in its own units (a link's
 /// mass and the robot's length, a joint-side term's scale): positive semi-definite to
 /// rounding, as a description's links are, so that a link may be a point mass, a rod or a
@@ -41,6 +45,8 @@ const MARGIN: f64 = 1e-13;
 struct Constraint {
     /// What it keeps physical, for errors: `link 3`, `Ia2`.
     name: String,
+    /// How far below zero its least eigenvalue may go, included in `f0`.
+    margin: f64,
     f0: DMatrix<f64>,
     /// The non-zero `f_a`, with the index `a` of their variable.
     terms: Vec<(usize, DMatrix<f64>)>,
@@ -248,7 +254,7 @@ impl BaseParameters {
     /// negative. The distance is measured in each parameter's scale: the robot's mean link
     /// mass `M` for masses, `M L` for first moments, `M L²` for inertias (`L` the root mean
     /// square distance of the robot's mass from its links' frames), a joint-side term's own
-    /// value; its square is within `1e-10` of the least. Where [`expand`](Self::expand)'s
+    /// value; its square is found to about `1e-10` of the least. Where [`expand`](Self::expand)'s
     /// vector is physical it is the one returned. Where the links can be physical only as
     /// limits of bodies (a point mass, a rod, a plane or a massless link, as descriptions
     /// often have them), the search keeps a margin of `1e-13` of each link's mass and may end
@@ -268,13 +274,8 @@ impl BaseParameters {
         base: &[f64],
         model: &RobotModel,
     ) -> Result<DVector<f64>, ParameterError> {
-        let reference = super::values(model).ok_or_else(|| ParameterError::NoMassProperties {
-            link: model
-                .links
-                .iter()
-                .position(|l| l.inertial.is_none())
-                .map_or(0, |i| i + 1),
-        })?;
+        let reference = reference_values(model)?;
+        finite_base(base)?;
         // π(x) = π0 + A x over the dependent parameters x; expand checks the counts.
         let zero_dependents = {
             let mut r = reference.clone();
@@ -289,7 +290,98 @@ impl BaseParameters {
         if super::with_values(model, plain.as_slice(), super::Links::Physical).is_ok() {
             return Ok(plain);
         }
-        let (p, d) = (reference.len(), self.dependent.len());
+        let a = self.dependent_directions(reference.len());
+        // The distance Σ ((x − r)/s)², as ½ xᵀ Q x + cᵀ x.
+        let (q, c, r) = self.distance(model, &reference);
+        let (scale, ..) = scales(model, &reference);
+        let units = self.dependent.iter().map(|&dep| scale[dep]).collect();
+        search(model, &reference, pi0, a, (q, c), r, units)
+    }
+
+    /// Identified base parameters made physical: the base parameters `π_b` and their
+    /// expansion `π` with every link physical (as [`expand_physical`](Self::expand_physical)
+    /// asks) that minimize `(π_b − π̂)ᵀ Λ (π_b − π̂)`, with `π̂` the least-squares `estimate`
+    /// and `Λ` its `information` (the inverse of its covariance: the minimum is then the
+    /// constrained least-squares fit of the same rows, Wensing, Kim and Slotine's
+    /// physically consistent identification), plus `1e-6` times
+    /// [`expand_physical`](Self::expand_physical)'s distance of `π` from `model`'s values,
+    /// which settles the directions motion cannot tell. Returns `π` ([`reduce`](Self::reduce)
+    /// gives its base parameters). Where the estimate's own expansion over `model`'s values
+    /// is physical, that is returned.
+    ///
+    /// # Errors
+    /// As [`expand_physical`](Self::expand_physical); [`ParameterError::Count`] also when
+    /// `information` is not square of the base parameters' count.
+    pub fn nearest_physical(
+        &self,
+        estimate: &[f64],
+        information: &DMatrix<f64>,
+        model: &RobotModel,
+    ) -> Result<DVector<f64>, ParameterError> {
+        let reference = reference_values(model)?;
+        finite_base(estimate)?;
+        if let Some(index) = information.iter().position(|x| !x.is_finite()) {
+            return Err(ParameterError::Value {
+                name: "information".into(),
+                index,
+                message: format!("entry {} is not a finite number", information[index]),
+            });
+        }
+        let plain = self.expand(estimate, &reference)?;
+        let b = self.count();
+        if information.shape() != (b, b) {
+            return Err(ParameterError::Count {
+                what: "rows and columns of the information matrix",
+                given: information.nrows().max(information.ncols()),
+                expected: b,
+            });
+        }
+        if super::with_values(model, plain.as_slice(), super::Links::Physical).is_ok() {
+            return Ok(plain);
+        }
+        // Variables v = (π_b, x), π = E π_b + A x with E placing π_b at the independent
+        // parameters.
+        let p = reference.len();
+        let d = self.dependent.len();
+        let mut g = DMatrix::zeros(p, b + d);
+        for (k, &i) in self.independent.iter().enumerate() {
+            g[(i, k)] = 1.0;
+        }
+        g.columns_mut(b, d).copy_from(&self.dependent_directions(p));
+        let (qx, cx, r) = self.distance(model, &reference);
+        let symmetric = (information + information.transpose()) * 0.5;
+        let pi_hat = DVector::from_column_slice(estimate);
+        let mut q = DMatrix::zeros(b + d, b + d);
+        q.view_mut((0, 0), (b, b)).copy_from(&(&symmetric * 2.0));
+        q.view_mut((b, b), (d, d)).copy_from(&(qx * PULL));
+        let mut c = DVector::zeros(b + d);
+        c.rows_mut(0, b).copy_from(&(&symmetric * &pi_hat * -2.0));
+        c.rows_mut(b, d).copy_from(&(cx * PULL));
+        let mut start = DVector::zeros(b + d);
+        start.rows_mut(0, b).copy_from(&pi_hat);
+        start.rows_mut(b, d).copy_from(&r);
+        let (scale, ..) = scales(model, &reference);
+        let units = self
+            .independent
+            .iter()
+            .chain(&self.dependent)
+            .map(|&i| scale[i])
+            .collect();
+        search(
+            model,
+            &reference,
+            DVector::zeros(p),
+            g,
+            (q, c),
+            start,
+            units,
+        )
+    }
+
+    /// `A`, `p × d`: how `π` moves with the dependent parameters `x` at fixed base
+    /// parameters (`π_d = x`, `π_i = π_b − β x`).
+    fn dependent_directions(&self, p: usize) -> DMatrix<f64> {
+        let d = self.dependent.len();
         let mut a = DMatrix::zeros(p, d);
         for (m, &dep) in self.dependent.iter().enumerate() {
             a[(dep, m)] = 1.0;
@@ -297,79 +389,18 @@ impl BaseParameters {
                 a[(i, m)] = -self.beta[(k, m)];
             }
         }
-        let (scale, big_m, big_l) = scales(model, &reference);
-        let names = names(model);
-        let infeasible =
-            |name: String, message: String| ParameterError::Infeasible { name, message };
-        let mut constraints = Vec::new();
-        for (link, l) in model.links.iter().enumerate() {
-            let rows = BODY_PARAMETERS * link..BODY_PARAMETERS * (link + 1);
-            let varies = |row: usize| a.row(row).iter().any(|x| *x != 0.0);
-            let triangle = l
-                .inertial
-                .is_some_and(|i| crate::validate::obeys_triangle_inequality(&i.inertia, i.mass));
-            let first = rows.start;
-            let massless = !varies(first) && pi0[first] == 0.0;
-            if massless && (first + 1..first + 4).any(|r| varies(r) || pi0[r] != 0.0) {
-                return Err(infeasible(
-                    format!("link {}", link + 1),
-                    "its mass is fixed at zero but not its first moment".into(),
-                ));
-            }
-            let own = l.inertial.map_or(0.0, |i| i.mass);
-            let mass = if own > 0.0 { own } else { big_m };
-            let matrix = |v: &[f64]| link_matrix(v, triangle, massless, mass, big_l);
-            let f0 = matrix(&pi0.as_slice()[rows.clone()]);
-            let terms: Vec<(usize, DMatrix<f64>)> = (0..d)
-                .filter(|&m| rows.clone().any(|r| a[(r, m)] != 0.0))
-                .map(|m| {
-                    let column: Vec<f64> = rows.clone().map(|r| a[(r, m)]).collect();
-                    (m, matrix(&column))
-                })
-                .collect();
-            constraints.push(Constraint {
-                name: format!("link {}", link + 1),
-                f0,
-                terms,
-            });
-        }
-        for (index, column) in columns(model).iter().enumerate() {
-            if matches!(column, Column::Body { .. }) {
-                continue;
-            }
-            let unit = DMatrix::from_element(1, 1, 1.0 / scale[index]);
-            constraints.push(Constraint {
-                name: names[index].clone(),
-                f0: &unit * pi0[index],
-                terms: (0..d)
-                    .filter(|&m| a[(index, m)] != 0.0)
-                    .map(|m| (m, &unit * a[(index, m)]))
-                    .collect(),
-            });
-        }
-        // Semi-definite to rounding: F(x) + MARGIN 1 positive definite.
-        for k in &mut constraints {
-            let size = k.f0.nrows();
-            k.f0 += DMatrix::identity(size, size) * MARGIN;
-        }
-        // Constraints the free values cannot move are checked as they stand; the others go
-        // to the barrier.
-        let (fixed, free): (Vec<Constraint>, Vec<Constraint>) =
-            constraints.into_iter().partition(|k| k.terms.is_empty());
-        let none = DVector::zeros(d);
-        for k in &fixed {
-            let least = k.least(&none);
-            if least <= 0.0 {
-                return Err(infeasible(
-                    k.name.clone(),
-                    format!(
-                        "base parameters alone fix it, {:.3e} below physical",
-                        least - MARGIN
-                    ),
-                ));
-            }
-        }
-        // The distance Σ ((x − r)/s)², as ½ xᵀ Q x + cᵀ x.
+        a
+    }
+
+    /// The distance of the dependent parameters `x` from the reference's `r`,
+    /// `Σ ((x − r)/s)²` in the [`scales`], as `½ xᵀ Q x + cᵀ x` (plus a constant): `(Q, c, r)`.
+    fn distance(
+        &self,
+        model: &RobotModel,
+        reference: &[f64],
+    ) -> (DMatrix<f64>, DVector<f64>, DVector<f64>) {
+        let d = self.dependent.len();
+        let (scale, ..) = scales(model, reference);
         let weights = DVector::from_iterator(
             d,
             self.dependent
@@ -377,85 +408,218 @@ impl BaseParameters {
                 .map(|&dep| 2.0 / (scale[dep] * scale[dep])),
         );
         let r = DVector::from_iterator(d, self.dependent.iter().map(|&dep| reference[dep]));
-        let q = DMatrix::from_diagonal(&weights);
         let c = -weights.component_mul(&r);
-        let size: usize = free.iter().map(|k| k.f0.nrows()).sum();
-        let mut x = r.clone();
-        let worst = |x: &DVector<f64>| {
-            free.iter()
-                .map(|k| (k.least(x), k))
-                .min_by(|a, b| a.0.total_cmp(&b.0))
-        };
-        if let Some((least, _)) = worst(&x).filter(|(least, _)| *least <= 0.0) {
-            // Phase one: the least s with every F(x) + s 1 positive definite, from x = r; a
-            // negative s is a strictly physical start.
-            let shifted: Vec<Constraint> = free
-                .iter()
-                .map(|k| Constraint {
-                    name: k.name.clone(),
-                    f0: k.f0.clone(),
-                    terms: k
-                        .terms
-                        .iter()
-                        .cloned()
-                        .chain(core::iter::once((
-                            d,
-                            DMatrix::identity(k.f0.nrows(), k.f0.nrows()),
-                        )))
-                        .collect(),
-                })
-                .collect();
-            let mut qs = DMatrix::zeros(d + 1, d + 1);
-            qs.view_mut((0, 0), (d, d))
-                .copy_from(&(&q * PHASE_ONE_PULL));
-            let mut cs = DVector::zeros(d + 1);
-            cs.rows_mut(0, d).copy_from(&(&c * PHASE_ONE_PULL));
-            cs[d] = 1.0;
-            let phase_one = Barrier {
-                constraints: &shifted,
-                q: qs,
-                c: cs,
-            };
-            let mut y = DVector::zeros(d + 1);
-            y.rows_mut(0, d).copy_from(&r);
-            y[d] = 1.0 - least;
-            let found = |y: &DVector<f64>| y[d] < 0.0;
-            phase_one.minimize(&mut y, size, &found);
-            x = y.rows(0, d).into_owned();
+        (DMatrix::from_diagonal(&weights), c, r)
+    }
+}
+
+/// `model`'s own parameter values, or the error naming its first link without mass
+/// properties.
+fn reference_values(model: &RobotModel) -> Result<Vec<f64>, ParameterError> {
+    super::values(model).ok_or_else(|| ParameterError::NoMassProperties {
+        link: model
+            .links
+            .iter()
+            .position(|l| l.inertial.is_none())
+            .map_or(0, |i| i + 1),
+    })
+}
+
+/// `Ok` if every base parameter value is finite, else the error naming the first that is not.
+fn finite_base(base: &[f64]) -> Result<(), ParameterError> {
+    match base.iter().position(|x| !x.is_finite()) {
+        Some(index) => Err(ParameterError::Value {
+            name: format!("base parameter {}", index + 1),
+            index,
+            message: format!("{} is not a finite number", base[index]),
+        }),
+        None => Ok(()),
+    }
+}
+
+/// The search: over variables `v` with `π = π0 + G v`, the least `½ vᵀ Q v + cᵀ v` whose `π`
+/// has physical links, from `start`; `π` of the best. `units` holds each variable's scale,
+/// in which the first phase keeps near the start.
+fn search(
+    model: &RobotModel,
+    reference: &[f64],
+    pi0: DVector<f64>,
+    a: DMatrix<f64>,
+    (q, c): (DMatrix<f64>, DVector<f64>),
+    start: DVector<f64>,
+    units: Vec<f64>,
+) -> Result<DVector<f64>, ParameterError> {
+    let d = a.ncols();
+    let (scale, big_m, big_l) = scales(model, reference);
+    let names = names(model);
+    let infeasible = |name: String, message: String| ParameterError::Infeasible { name, message };
+    let mut constraints = Vec::new();
+    for (link, l) in model.links.iter().enumerate() {
+        let rows = BODY_PARAMETERS * link..BODY_PARAMETERS * (link + 1);
+        let varies = |row: usize| a.row(row).iter().any(|x| *x != 0.0);
+        let triangle = l
+            .inertial
+            .is_some_and(|i| crate::validate::obeys_triangle_inequality(&i.inertia, i.mass));
+        let first = rows.start;
+        let massless = !varies(first) && pi0[first] == 0.0;
+        if massless && (first + 1..first + 4).any(|r| varies(r) || pi0[r] != 0.0) {
+            return Err(infeasible(
+                format!("link {}", link + 1),
+                "its mass is fixed at zero but not its first moment".into(),
+            ));
         }
-        let physical = |x: &DVector<f64>| {
-            let pi = &pi0 + &a * x;
-            super::with_values(model, pi.as_slice(), super::Links::Physical)
-                .is_ok()
-                .then_some(pi)
+        let own = l.inertial.map_or(0.0, |i| i.mass);
+        let mass = if own > 0.0 { own } else { big_m };
+        let matrix = |v: &[f64]| link_matrix(v, triangle, massless, mass, big_l);
+        let f0 = matrix(&pi0.as_slice()[rows.clone()]);
+        let size = f0.nrows();
+        let terms: Vec<(usize, DMatrix<f64>)> = (0..d)
+            .filter(|&m| rows.clone().any(|r| a[(r, m)] != 0.0))
+            .map(|m| {
+                let column: Vec<f64> = rows.clone().map(|r| a[(r, m)]).collect();
+                (m, matrix(&column))
+            })
+            .collect();
+        constraints.push(Constraint {
+            name: format!("link {}", link + 1),
+            margin: MARGIN,
+            f0: f0 + DMatrix::identity(size, size) * MARGIN,
+            terms,
+        });
+    }
+    for (index, column) in columns(model).iter().enumerate() {
+        if matches!(column, Column::Body { .. }) {
+            continue;
+        }
+        let unit = DMatrix::from_element(1, 1, 1.0 / scale[index]);
+        constraints.push(Constraint {
+            name: names[index].clone(),
+            margin: 0.0,
+            f0: &unit * pi0[index],
+            terms: (0..d)
+                .filter(|&m| a[(index, m)] != 0.0)
+                .map(|m| (m, &unit * a[(index, m)]))
+                .collect(),
+        });
+    }
+    // Constraints the free values cannot move are checked as they stand; the others go
+    // to the barrier.
+    let (fixed, free): (Vec<Constraint>, Vec<Constraint>) =
+        constraints.into_iter().partition(|k| k.terms.is_empty());
+    let none = DVector::zeros(d);
+    for k in &fixed {
+        let least = k.least(&none);
+        if least < 0.0 {
+            return Err(infeasible(
+                k.name.clone(),
+                format!(
+                    "base parameters alone fix it, {:.3e} below physical",
+                    least - k.margin
+                ),
+            ));
+        }
+    }
+    let size: usize = free.iter().map(|k| k.f0.nrows()).sum();
+    let mut x = start.clone();
+    let worst = |x: &DVector<f64>| {
+        free.iter()
+            .map(|k| (k.least(x), k))
+            .min_by(|a, b| a.0.total_cmp(&b.0))
+    };
+    if let Some((least, _)) = worst(&x).filter(|(least, _)| *least <= 0.0) {
+        // Phase one: the least s with every F(x) + s 1 positive definite, from x = r; a
+        // negative s is a strictly physical start.
+        let shifted: Vec<Constraint> = free
+            .iter()
+            .map(|k| Constraint {
+                name: k.name.clone(),
+                margin: k.margin,
+                f0: k.f0.clone(),
+                terms: k
+                    .terms
+                    .iter()
+                    .cloned()
+                    .chain(core::iter::once((
+                        d,
+                        DMatrix::identity(k.f0.nrows(), k.f0.nrows()),
+                    )))
+                    .collect(),
+            })
+            .collect();
+        // s plus PHASE_ONE_PULL Σ ((v − start)/unit)², which keeps the Hessian positive
+        // definite along directions no constraint sees, whatever the objective's units.
+        let mut qs = DMatrix::zeros(d + 1, d + 1);
+        let mut cs = DVector::zeros(d + 1);
+        for (k, unit) in units.iter().enumerate() {
+            let w = 2.0 * PHASE_ONE_PULL / (unit * unit);
+            qs[(k, k)] = w;
+            cs[k] = -w * start[k];
+        }
+        cs[d] = 1.0;
+        let phase_one = Barrier {
+            constraints: &shifted,
+            q: qs,
+            c: cs,
         };
-        // Phase two from a start inside every constraint. Where the links can be physical
-        // only as limits of bodies (a point mass, a rod, a plane, a massless link: a singular
-        // pseudo-inertia), that inside is as thin as the margin and the first phase may not
-        // reach it; its best point is then returned if the description's rules (semi-definite
-        // to rounding) accept it.
-        if worst(&x).is_none_or(|(least, _)| least > 0.0) {
-            let mut nearest = x.clone();
-            Barrier {
-                constraints: &free,
-                q,
-                c,
+        let mut y = DVector::zeros(d + 1);
+        y.rows_mut(0, d).copy_from(&start);
+        y[d] = 1.0 - least;
+        let found = |y: &DVector<f64>| y[d] < 0.0;
+        phase_one.minimize(&mut y, size, &found);
+        x = y.rows(0, d).into_owned();
+    }
+    let physical = |x: &DVector<f64>| {
+        let pi = &pi0 + &a * x;
+        super::with_values(model, pi.as_slice(), super::Links::Physical)
+            .is_ok()
+            .then_some(pi)
+    };
+    // Phase two from a start inside every constraint. Where the links can be physical
+    // only as limits of bodies (a point mass, a rod, a plane, a massless link: a singular
+    // pseudo-inertia), that inside is as thin as the margin and the first phase may not
+    // reach it; its best point is then returned if the description's rules (semi-definite
+    // to rounding) accept it.
+    if worst(&x).is_none_or(|(least, _)| least > 0.0) {
+        let mut nearest = x.clone();
+        Barrier {
+            constraints: &free,
+            q,
+            c,
+        }
+        .minimize(&mut nearest, size, &|_| false);
+        if let Some(pi) = physical(&nearest) {
+            return Ok(pi);
+        }
+        // Within the margin but not by the description's rules (a friction coefficient or
+        // a massless link's mass a rounding below zero): the nearest point toward the start
+        // that is, by bisection on the segment (the rules are convex).
+        if physical(&x).is_some() {
+            let (mut outside, mut inside) = (0.0, 1.0);
+            for _ in 0..60 {
+                let mid = 0.5 * (outside + inside);
+                if physical(&(&nearest + (&x - &nearest) * mid)).is_some() {
+                    inside = mid;
+                } else {
+                    outside = mid;
+                }
             }
-            .minimize(&mut nearest, size, &|_| false);
-            if let Some(pi) = physical(&nearest) {
+            if let Some(pi) = physical(&(&nearest + (&x - &nearest) * inside)) {
                 return Ok(pi);
             }
         }
-        physical(&x).ok_or_else(|| {
-            let (least, k) = worst(&x).expect("a constraint is violated");
-            infeasible(
-                k.name.clone(),
-                format!(
-                    "at best {:.3e} below physical, in units of its mass and the robot's \
-                     length {big_l:.4} m",
-                    least - MARGIN
-                ),
-            )
-        })
     }
+    physical(&x).ok_or_else(|| match worst(&x) {
+        Some((least, k)) => infeasible(
+            k.name.clone(),
+            format!(
+                "at best {:.3e} below physical, in units of its mass and the robot's \
+                     length {big_l:.4} m",
+                least - k.margin
+            ),
+        ),
+        None => infeasible(
+            "a link".into(),
+            "the base parameters fix every link, and one breaks a rule of the description".into(),
+        ),
+    })
 }
