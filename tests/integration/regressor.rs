@@ -682,6 +682,56 @@ fn physically_consistent_identification_is_the_constrained_fit() {
     assert!(2 * searched > robots().len(), "{searched}");
 }
 
+/// Whatever base parameters it is given, `expand_physical` and `nearest_physical` answer:
+/// physical links (`Links::Physical` accepts them) with the given base parameters (expand) or
+/// an `Infeasible` error naming a link or term, never a panic: on every robot, base parameters
+/// perturbed at random by up to their own size (and some by a hundred times it).
+#[test]
+fn physical_expansion_answers_any_base_parameters() {
+    use dhgen::parameters::{Links, ParameterError, with_values};
+    let mut gaussian = gaussians(0x0BAD_5EED);
+    let (mut found, mut refused) = (0, 0);
+    for (name, robot) in robots() {
+        let base = robot.base_parameters();
+        let b = base.count();
+        let truth = base.reduce(&robot.parameters());
+        let scale = truth.amax();
+        for case in 0..4 {
+            let size = if case < 3 { 1.0 } else { 100.0 };
+            let pi_b = DVector::from_fn(b, |k, _| {
+                truth[k] + size * gaussian() * truth[k].abs().max(1e-3 * scale)
+            });
+            let information =
+                DMatrix::from_fn(b, b, |r, c| if r == c { 1.0 + case as f64 } else { 0.0 });
+            let results = [
+                base.expand_physical(pi_b.as_slice(), robot.model()),
+                base.nearest_physical(pi_b.as_slice(), &information, robot.model()),
+            ];
+            for (expanded, result) in [true, false].into_iter().zip(results) {
+                match result {
+                    Ok(pi) => {
+                        with_values(robot.model(), pi.as_slice(), Links::Physical)
+                            .unwrap_or_else(|e| panic!("{name} case {case}: {e}"));
+                        if expanded {
+                            close(&name, &base.reduce(&pi), &pi_b, 1e-12);
+                        }
+                        found += 1;
+                    }
+                    Err(ParameterError::Infeasible {
+                        name: what,
+                        message,
+                    }) => {
+                        assert!(!what.is_empty() && !message.is_empty(), "{name}");
+                        refused += 1;
+                    }
+                    Err(e) => panic!("{name} case {case}: {e}"),
+                }
+            }
+        }
+    }
+    println!("{found} physical, {refused} refused");
+}
+
 /// Base parameters no physical robot has are refused, naming the link: a last link's lumped
 /// mass made negative, or a lumped inertia below what the masses beyond it already carry; a
 /// reference without mass properties and a wrong count are refused too.

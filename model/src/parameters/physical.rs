@@ -143,11 +143,19 @@ impl Barrier<'_> {
     }
 
     /// Centres for growing weights from `t = 1` until `size / t` (the gap to the least
-    /// objective) is below [`GAP`] or `stop(y)`.
-    fn minimize(&self, y: &mut DVector<f64>, size: usize, stop: &dyn Fn(&DVector<f64>) -> bool) {
+    /// objective) is below [`GAP`], or `stop(y)`, or `settled(y, gap)` at a centre (where the
+    /// objective is within `gap = size / t` of its least).
+    fn minimize(
+        &self,
+        y: &mut DVector<f64>,
+        size: usize,
+        stop: &dyn Fn(&DVector<f64>) -> bool,
+        settled: &dyn Fn(&DVector<f64>, f64) -> bool,
+    ) {
         let mut t = 1.0;
         loop {
-            if !self.centre(t, y, stop) || stop(y) || size as f64 / t < GAP {
+            let gap = size as f64 / t;
+            if !self.centre(t, y, stop) || stop(y) || settled(y, gap) || gap < GAP {
                 return;
             }
             t *= GROWTH;
@@ -565,7 +573,11 @@ fn search(
         y.rows_mut(0, d).copy_from(&start);
         y[d] = 1.0 - least;
         let found = |y: &DVector<f64>| y[d] < 0.0;
-        phase_one.minimize(&mut y, size, &found);
+        // At a centre the least s is within the gap of s itself (to the pull's share, at most
+        // PHASE_ONE_PULL times the distance moved): when s less the gap stays well above zero
+        // no physical start exists, and the rest of the first phase is spared.
+        let hopeless = |y: &DVector<f64>, gap: f64| y[d] - gap > 1e-6;
+        phase_one.minimize(&mut y, size, &found, &hopeless);
         x = y.rows(0, d).into_owned();
     }
     let physical = |x: &DVector<f64>| {
@@ -586,7 +598,7 @@ fn search(
             q,
             c,
         }
-        .minimize(&mut nearest, size, &|_| false);
+        .minimize(&mut nearest, size, &|_| false, &|_, _| false);
         if let Some(pi) = physical(&nearest) {
             return Ok(pi);
         }
