@@ -284,26 +284,20 @@ impl BaseParameters {
     ) -> Result<DVector<f64>, ParameterError> {
         let reference = reference_values(model)?;
         finite_base(base)?;
-        // π(x) = π0 + A x over the dependent parameters x; expand checks the counts.
-        let zero_dependents = {
-            let mut r = reference.clone();
-            for &d in &self.dependent {
-                r[d] = 0.0;
-            }
-            r
-        };
-        let pi0 = self.expand(base, &zero_dependents)?;
-        // The reference's own values, where they leave every link physical: the nearest.
+        // The reference's own values, where they leave every link physical: the nearest
+        // (expand checks the counts).
         let plain = self.expand(base, &reference)?;
         if super::with_values(model, plain.as_slice(), super::Links::Physical).is_ok() {
             return Ok(plain);
         }
+        let scales = scales(model, &reference);
+        // π(x) = π0 + A x over the dependent parameters x, through π(r) = plain.
         let a = self.dependent_directions(reference.len());
         // The distance Σ ((x − r)/s)², as ½ xᵀ Q x + cᵀ x.
-        let (q, c, r) = self.distance(model, &reference);
-        let (scale, ..) = scales(model, &reference);
-        let units = self.dependent.iter().map(|&dep| scale[dep]).collect();
-        search(model, &reference, pi0, a, (q, c), r, units)
+        let (q, c, r) = self.distance(&scales.0, &reference);
+        let pi0 = plain - &a * &r;
+        let units = self.dependent.iter().map(|&dep| scales.0[dep]).collect();
+        search(model, &scales, pi0, a, (q, c), r, units)
     }
 
     /// Identified base parameters made physical: the base parameters `π_b` and their
@@ -356,7 +350,8 @@ impl BaseParameters {
             g[(i, k)] = 1.0;
         }
         g.columns_mut(b, d).copy_from(&self.dependent_directions(p));
-        let (qx, cx, r) = self.distance(model, &reference);
+        let scales = scales(model, &reference);
+        let (qx, cx, r) = self.distance(&scales.0, &reference);
         let symmetric = (information + information.transpose()) * 0.5;
         let pi_hat = DVector::from_column_slice(estimate);
         let mut q = DMatrix::zeros(b + d, b + d);
@@ -368,22 +363,13 @@ impl BaseParameters {
         let mut start = DVector::zeros(b + d);
         start.rows_mut(0, b).copy_from(&pi_hat);
         start.rows_mut(b, d).copy_from(&r);
-        let (scale, ..) = scales(model, &reference);
         let units = self
             .independent
             .iter()
             .chain(&self.dependent)
-            .map(|&i| scale[i])
+            .map(|&i| scales.0[i])
             .collect();
-        search(
-            model,
-            &reference,
-            DVector::zeros(p),
-            g,
-            (q, c),
-            start,
-            units,
-        )
+        search(model, &scales, DVector::zeros(p), g, (q, c), start, units)
     }
 
     /// `A`, `p × d`: how `π` moves with the dependent parameters `x` at fixed base
@@ -401,14 +387,14 @@ impl BaseParameters {
     }
 
     /// The distance of the dependent parameters `x` from the reference's `r`,
-    /// `Σ ((x − r)/s)²` in the [`scales`], as `½ xᵀ Q x + cᵀ x` (plus a constant): `(Q, c, r)`.
+    /// `Σ ((x − r)/s)²` in the parameters' scales `scale` ([`scales`]), as `½ xᵀ Q x + cᵀ x`
+    /// (plus a constant): `(Q, c, r)`.
     fn distance(
         &self,
-        model: &RobotModel,
+        scale: &[f64],
         reference: &[f64],
     ) -> (DMatrix<f64>, DVector<f64>, DVector<f64>) {
         let d = self.dependent.len();
-        let (scale, ..) = scales(model, reference);
         let weights = DVector::from_iterator(
             d,
             self.dependent
@@ -450,7 +436,7 @@ fn finite_base(base: &[f64]) -> Result<(), ParameterError> {
 /// in which the first phase keeps near the start.
 fn search(
     model: &RobotModel,
-    reference: &[f64],
+    (scale, big_m, big_l): &(Vec<f64>, f64, f64),
     pi0: DVector<f64>,
     a: DMatrix<f64>,
     (q, c): (DMatrix<f64>, DVector<f64>),
@@ -458,7 +444,7 @@ fn search(
     units: Vec<f64>,
 ) -> Result<DVector<f64>, ParameterError> {
     let d = a.ncols();
-    let (scale, big_m, big_l) = scales(model, reference);
+    let (big_m, big_l) = (*big_m, *big_l);
     let names = names(model);
     let infeasible = |name: String, message: String| ParameterError::Infeasible { name, message };
     let mut constraints = Vec::new();
