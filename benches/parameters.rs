@@ -2,6 +2,11 @@
 //! runtime), the payload's C and q̈ against the plain ones, and the regressor `Y` and base
 //! regressor (generated and runtime), for the PUMA 560 and the Panda:
 //! `{robot}/{quantity}/{variant}`. Every call takes the next of 64 fixed random states.
+//! Then identified parameters back to physical links (`{robot}/physical/...`): the base
+//! parameters of a 15 % heavier copy expanded by `BaseParameters::expand_physical`, and a
+//! noisy least-squares estimate of them made physically consistent by `Estimate::physical`
+//! (`BaseParameters::nearest_physical` in its inverse covariance), each the search the
+//! identify example runs once.
 //!
 //! `cargo bench --bench parameters`.
 
@@ -127,7 +132,60 @@ macro_rules! bench_robot {
         run($c, name, "base_regressor", "runtime", &d, |[q, qd, qdd]| {
             base.base_regressor(&robot.regressor(q, qd, qdd))
         });
+        physical($c, name, &robot, &d);
     }};
+}
+
+/// The identified parameters' way back to physical links, on a 15 % heavier copy of `robot`
+/// (masses and inertias ×1.15, centres ×0.95): `expand_physical` of its exact base parameters,
+/// and `Estimate::physical` of an estimate from its torques at `states` with 2 % noise
+/// (deterministic), whose own expansion has unphysical links.
+fn physical(c: &mut Criterion, name: &str, robot: &Robot, states: &[[DVector<f64>; 3]]) {
+    use dhgen::identification::LeastSquares;
+    use dhgen::parameters::{Links, values, with_values};
+    let mut heavier = robot.model().clone();
+    for link in &mut heavier.links {
+        let i = link
+            .inertial
+            .as_mut()
+            .expect("the catalogue's links have mass");
+        i.mass *= 1.15;
+        i.com = i.com.map(|x| 0.95 * x);
+        i.inertia = i.inertia.map(|row| row.map(|x| 1.15 * x));
+    }
+    let truth = Robot::from_model(heavier);
+    let base = robot.base_parameters();
+    let exact = base.reduce(&truth.parameters());
+    let mut rng = StdRng::seed_from_u64(0x9415);
+    let mut fit = LeastSquares::new(base.count());
+    for [q, qd, qdd] in states {
+        let tau = truth.inverse_dynamics(q, qd, qdd);
+        let noisy = tau.map(|t| t * (1.0 + rng.random_range(-0.02..0.02)));
+        let y = base.base_regressor(&robot.regressor(q, qd, qdd));
+        fit.add(&y, &noisy).expect("one row per joint");
+    }
+    let estimate = fit
+        .estimate()
+        .expect("the states excite every base parameter");
+    let reference = values(robot.model()).expect("the catalogue's links have mass");
+    let plain = base
+        .expand(estimate.parameters.as_slice(), &reference)
+        .expect("counts match");
+    assert!(
+        with_values(robot.model(), plain.as_slice(), Links::Physical).is_err(),
+        "{name}: the estimate's own expansion is physical; the search would not run"
+    );
+    let mut group = c.benchmark_group(name);
+    // Milliseconds per call: ten samples.
+    group
+        .sample_size(10)
+        .measurement_time(Duration::from_secs(3));
+    group.bench_function(BenchmarkId::new("physical", "expand_physical"), |b| {
+        b.iter(|| base.expand_physical(black_box(exact.as_slice()), robot.model()))
+    });
+    group.bench_function(BenchmarkId::new("physical", "estimate_physical"), |b| {
+        b.iter(|| black_box(&estimate).physical(&base, robot.model()))
+    });
 }
 
 fn parameters(c: &mut Criterion) {

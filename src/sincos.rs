@@ -23,7 +23,13 @@
 //! FMA, fused):
 //! it has no branch to mispredict but a longer dependency chain, which only a pack amortises.
 //! A scalar-only variant (the quadrant from the integer bits, no pack selects) was tried: 116
-//! instructions per call against `libm`'s 99 for angles in [−π, π], and twice its time.
+//! instructions per call against `libm`'s 99 for angles in [−π, π], and twice its time. A
+//! leaner one (2026-12-07: fdlibm's one-step reduction by 33 + 53 bits of π/2 with a branch to
+//! this four-piece one where it cancels, the kernels by Horner's rule, the quadrant by a table
+//! of the sine and cosine of n·π/2 and two multiply-adds) took 95 instructions inlined against
+//! `libm`'s 105 called (angles in [−2, 2], callgrind), but 817 ns per 64 angles against 686:
+//! the kernels with their tails are 50-odd instructions of SSE2 on their own, so the issue's
+//! 50 per joint needs fused multiply-adds or a shorter polynomial than one ulp allows.
 //!
 //! `f32` arguments get fdlibm's `f32` reduction and kernels evaluated in `f64` lanes
 //! ([`sincosf_lanes`]: what `libm`'s `sincosf` computes, less its branches) where the target

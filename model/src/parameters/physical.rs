@@ -56,7 +56,8 @@ impl Constraint {
     fn at(&self, y: &DVector<f64>) -> DMatrix<f64> {
         let mut f = self.f0.clone();
         for (a, fa) in &self.terms {
-            f += fa * y[*a];
+            let ya = y[*a];
+            f.zip_apply(fa, |x, b| *x += b * ya);
         }
         f
     }
@@ -65,6 +66,19 @@ impl Constraint {
     fn least(&self, y: &DVector<f64>) -> f64 {
         self.at(y).symmetric_eigenvalues().min()
     }
+}
+
+/// `tr(A B)` of two square matrices of one size, without forming the product (the sum over
+/// `A`'s entries in storage order of `A_rc B_cr`).
+fn trace_of_product(a: &DMatrix<f64>, b: &DMatrix<f64>) -> f64 {
+    let m = a.nrows();
+    let mut sum = 0.0;
+    for c in 0..m {
+        for r in 0..m {
+            sum += a[(r, c)] * b[(c, r)];
+        }
+    }
+    sum
 }
 
 /// `½ yᵀ Q y + cᵀ y` plus `−log det F(y)` of every constraint over `1/t`.
@@ -104,7 +118,7 @@ impl Barrier<'_> {
                 for (i, (a, _)) in k.terms.iter().enumerate() {
                     g[*a] -= p[i].trace();
                     for (j, (b, _)) in k.terms.iter().enumerate().skip(i) {
-                        let hab = p[i].component_mul(&p[j].transpose()).sum();
+                        let hab = trace_of_product(&p[i], &p[j]);
                         h[(*a, *b)] += hab;
                         if i != j {
                             h[(*b, *a)] += hab;
