@@ -12,7 +12,7 @@
 //! - `dhgen latex ROBOT.toml`: D(q), c_ijk, g(q) and P(q) as LaTeX equations;
 //! - `dhgen ops ROBOT.toml`: operation counts of the generated functions;
 //! - `dhgen convert ROBOT --to dh|mdh|toml|urdf`: between URDF and the description format;
-//! - `dhgen params ROBOT [--latex]`: the inertial parameters and the base parameters;
+//! - `dhgen params ROBOT [--latex | --json]`: the inertial parameters and the base parameters;
 //! - `dhgen random --dof N [--style general|industrial] [--seed S]`: a random valid arm.
 //!
 //! Any failure is one line on stderr and a non-zero exit status: 2 for a malformed command
@@ -212,8 +212,14 @@ enum Command {
         #[command(flatten)]
         robot: Source,
         /// Print the base parameters as LaTeX equations.
-        #[arg(long)]
+        #[arg(long, conflicts_with = "json")]
         latex: bool,
+        /// Print JSON instead: `names` and `values` of π, and `base` with the regrouping
+        /// (`independent` and `dependent` indices into π, `beta` by rows, so that base
+        /// parameter k is `values[independent[k]] + Σ_m beta[k][m] values[dependent[m]]`),
+        /// `values` and `rules`, for tools outside Rust.
+        #[arg(long)]
+        json: bool,
     },
     /// Write a random valid arm (a seeded, reproducible description) for scale tests and
     /// benchmarks: `general` (no exact angles, full inertias) or `industrial` (twists and
@@ -495,7 +501,7 @@ fn run(command: Command) -> Result<String, String> {
             };
             deliver(output, text)
         }
-        Command::Params { robot, latex } => {
+        Command::Params { robot, latex, json } => {
             let r = load(&robot)?;
             if !r.has_dynamics() {
                 return Err(format!(
@@ -513,7 +519,11 @@ fn run(command: Command) -> Result<String, String> {
                     r.dof()
                 ));
             }
-            Ok(params_report(&r, latex))
+            Ok(if json {
+                format!("{}\n", params_json(&r))
+            } else {
+                params_report(&r, latex)
+            })
         }
         Command::Random {
             dof,
@@ -606,6 +616,31 @@ fn params_report(r: &Robot, latex: bool) -> String {
         let _ = writeln!(out, "  πb{} = {rule} = {:.6}", k + 1, pi_b[k]);
     }
     out
+}
+
+/// `dhgen params --json`: π by name and the regrouping, exactly (shortest round-trip
+/// decimals), as `dhgen_model::parameters::BaseParameters` holds it.
+fn params_json(r: &Robot) -> serde_json::Value {
+    let names = r.parameter_names();
+    let pi = r.parameters();
+    let base = r.base_parameters();
+    let beta: Vec<Vec<f64>> = base
+        .beta
+        .row_iter()
+        .map(|row| row.iter().copied().collect())
+        .collect();
+    serde_json::json!({
+        "robot": r.model().name,
+        "names": names,
+        "values": pi.as_slice(),
+        "base": {
+            "independent": base.independent,
+            "dependent": base.dependent,
+            "beta": beta,
+            "values": base.reduce(&pi).as_slice(),
+            "rules": base.rules(&names),
+        },
+    })
 }
 
 fn main() -> ExitCode {

@@ -54,6 +54,15 @@ fn failure(args: &[&str]) -> String {
     err
 }
 
+/// The numbers of a JSON array.
+fn numbers(v: &serde_json::Value) -> Vec<f64> {
+    v.as_array()
+        .unwrap()
+        .iter()
+        .map(|x| x.as_f64().unwrap())
+        .collect()
+}
+
 fn puma() -> Robot {
     Robot::from_toml_file(root().join("robots/puma560.toml")).unwrap()
 }
@@ -189,13 +198,6 @@ fn eval_gives_the_tools_acceleration_at_zero_joint_acceleration() {
         &std::fs::read_to_string(root().join("tests/data/pinocchio_kinematics.json")).unwrap(),
     )
     .unwrap();
-    let numbers = |v: &serde_json::Value| -> Vec<f64> {
-        v.as_array()
-            .unwrap()
-            .iter()
-            .map(|x| x.as_f64().unwrap())
-            .collect()
-    };
     for name in ["puma560", "panda"] {
         let file = format!("robots/{name}.toml");
         let robot = Robot::from_toml_file(root().join(&file)).unwrap();
@@ -1123,6 +1125,64 @@ fn params_prints_the_parameters_and_the_base_set() {
     assert_eq!(tex.matches("\\pi_{b,").count(), 36, "{tex}");
     let e = failure(&["params", "tests/fixtures/bare.toml"]);
     assert!(e.contains("no mass properties"), "{e}");
+}
+
+/// `params --json` gives π and the regrouping exactly: the library's own values and base
+/// parameters, and β such that `π[independent[k]] + Σ_m β[k][m] π[dependent[m]]` is base
+/// parameter k, on a robot with friction and motors; `--latex` and `--json` exclude each other.
+#[test]
+fn params_json_is_the_regrouping_exactly() {
+    for file in [
+        "robots/puma560.toml",
+        "robots/scara.toml",
+        "tests/fixtures/driven.toml",
+    ] {
+        let v: serde_json::Value =
+            serde_json::from_str(&stdout(&["params", "--json", file])).expect("JSON");
+        let robot = Robot::from_toml_file(root().join(file)).unwrap();
+        let indices = |x: &serde_json::Value| -> Vec<usize> {
+            x.as_array()
+                .unwrap()
+                .iter()
+                .map(|e| e.as_u64().unwrap() as usize)
+                .collect()
+        };
+        let pi = numbers(&v["values"]);
+        assert_eq!(pi, robot.parameters().as_slice(), "{file}");
+        let names: Vec<&str> = v["names"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|n| n.as_str().unwrap())
+            .collect();
+        assert_eq!(names, robot.parameter_names(), "{file}");
+        let base = robot.base_parameters();
+        let b = &v["base"];
+        let (independent, dependent) = (indices(&b["independent"]), indices(&b["dependent"]));
+        assert_eq!(
+            (&independent, &dependent),
+            (&base.independent, &base.dependent),
+            "{file}"
+        );
+        let pi_b = numbers(&b["values"]);
+        assert_eq!(pi_b, base.reduce(&robot.parameters()).as_slice(), "{file}");
+        for (k, row) in b["beta"].as_array().unwrap().iter().enumerate() {
+            let row = numbers(row);
+            let sum = pi[independent[k]]
+                + row
+                    .iter()
+                    .zip(&dependent)
+                    .map(|(beta, &d)| beta * pi[d])
+                    .sum::<f64>();
+            assert!(
+                (sum - pi_b[k]).abs() <= 1e-12 * (1.0 + pi_b[k].abs()),
+                "{file}: {k}"
+            );
+        }
+        assert_eq!(b["rules"].as_array().unwrap().len(), base.count(), "{file}");
+    }
+    let e = failure(&["params", "--json", "--latex", "robots/puma560.toml"]);
+    assert!(e.contains("cannot be used with"), "{e}");
 }
 
 /// A description's text goes into the emitted file's doc attributes, and its file name into
