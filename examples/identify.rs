@@ -451,9 +451,12 @@ fn main() -> Result<(), Box<dyn Error>> {
         fit.rows, fit.condition_number, fit.residual_variance
     );
     println!("  k   truth         estimate      error      predicted σ   |error|/σ");
+    // The standard deviation least squares predicts for each base parameter.
+    let predicted_sd: Vec<f64> = (0..puma560::BASE_PARAMETERS)
+        .map(|k| (fit.covariance[(k, k)] / fit.residual_variance).sqrt())
+        .collect();
     let mut worst_z = 0.0f64;
-    for k in 0..puma560::BASE_PARAMETERS {
-        let sd = (fit.covariance[(k, k)] / fit.residual_variance).sqrt();
+    for (k, &sd) in predicted_sd.iter().enumerate() {
         let z = (estimate[k] - truth[k]).abs() / sd;
         worst_z = worst_z.max(z);
         println!(
@@ -509,11 +512,10 @@ fn main() -> Result<(), Box<dyn Error>> {
     let consistent = fit.physical(&regrouping, &nominal_model);
     if let Ok(pi) = &consistent {
         let base = regrouping.reduce(pi);
-        let worst = (0..puma560::BASE_PARAMETERS)
-            .map(|k| {
-                let sd = (fit.covariance[(k, k)] / fit.residual_variance).sqrt();
-                (base[k] - truth[k]).abs() / sd
-            })
+        let worst = predicted_sd
+            .iter()
+            .enumerate()
+            .map(|(k, sd)| (base[k] - truth[k]).abs() / sd)
             .fold(0.0, f64::max);
         println!(
             "physically consistent estimate: largest |error| / predicted σ {worst:.2} (unconstrained \

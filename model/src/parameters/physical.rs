@@ -535,7 +535,7 @@ fn search(
             .min_by(|a, b| a.0.total_cmp(&b.0))
     };
     if let Some((least, _)) = worst(&x).filter(|(least, _)| *least <= 0.0) {
-        // Phase one: the least s with every F(x) + s 1 positive definite, from x = r; a
+        // Phase one: the least s with every F(x) + s 1 positive definite, from the start; a
         // negative s is a strictly physical start.
         let shifted: Vec<Constraint> = free
             .iter()
