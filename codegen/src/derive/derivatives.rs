@@ -256,7 +256,7 @@ pub fn mass_matrix_rate(
 
 /// Cᵀ(q, q̇) q̇ (entry j is Σ_k C_kj q̇_k), the cheapest of: contracted from each derivation
 /// of C in `coriolis`, or the gradient ∂T/∂q of the kinetic energy `T = ½ q̇ᵀ D q̇`, which
-/// it equals for the Christoffel-consistent C (Panda 1,888 → 1,177 operations, PUMA 560
+/// it equals for the Christoffel-consistent C (Panda 1,690 → 1,177 operations, PUMA 560
 /// 651 → 259).
 pub fn coriolis_transpose_qd(
     chain: ChainRef<'_>,

@@ -53,8 +53,8 @@ pub fn coriolis(chain: ChainRef<'_>) -> (SharedGraph, Vec<E>) {
 /// terms (∂τ/∂q̇ = 2C + viscous) in joint frames and in each frame's coordinates. No joint is
 /// dropped as a symmetry of the dynamics: the last link's symmetry about its axis, which
 /// lets the plain derivations drop its joint, is broken by the payload. The closed form in
-/// joint frames wins on the PUMA 560 (2,439 operations, where the plain derivatives cost
-/// 1,531), the Panda (3,639 against 3,399) and the Stanford arm, in one frame's coordinates on
+/// joint frames wins on the PUMA 560 (2,352 operations, where the plain derivatives cost
+/// 1,531), the Panda (3,515 against 3,271) and the Stanford arm, in one frame's coordinates on
 /// the UR5, the SCARA and random general arms; the dual lanes, built as every candidate is,
 /// cost 1.1–2.9× the best.
 pub fn inverse_dynamics_derivatives(chain: ChainRef<'_>) -> (SharedGraph, Vec<E>) {
