@@ -1351,3 +1351,68 @@ impl<R: Ring> SpatialTerms<R> {
         add3(&pt_w, &cross(&self.linear[j], u))
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// `MassMoments::coriolis_factor` is `½(İ_ωω − n̂)` as defined (the ωω block of the rate
+    /// `v ×* I − I v ×` of the spatial inertia, and the angular momentum `n = Īω + h × u`),
+    /// written here entry by entry, for bodies with full inertia tensors (symmetric, not
+    /// necessarily physical: the identity needs only symmetry) and arbitrary motions.
+    #[test]
+    fn coriolis_factor_is_half_the_inertia_rate_less_the_angular_momentum() {
+        let mut state = 0x2545_f491_4f6c_dd1d_u64;
+        let mut next = || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state >> 11) as f64 / (1u64 << 53) as f64 * 4.0 - 2.0
+        };
+        let mut worst: f64 = 0.0;
+        for _ in 0..200 {
+            // A symmetric Ī from its six entries.
+            let upper: [f64; 6] = core::array::from_fn(|_| next());
+            let at = |a: usize, b: usize| match (a.min(b), a.max(b)) {
+                (0, 0) => 0,
+                (0, 1) => 1,
+                (0, _) => 2,
+                (1, 1) => 3,
+                (1, _) => 4,
+                _ => 5,
+            };
+            let i: [[f64; 3]; 3] =
+                core::array::from_fn(|a| core::array::from_fn(|b| upper[at(a, b)]));
+            let body = MassMoments {
+                m: next().abs(),
+                h: [next(), next(), next()],
+                i,
+            };
+            let (w, u) = ([next(), next(), next()], [next(), next(), next()]);
+            let p = body.coriolis_factor(&(w, u));
+            let h = body.h;
+            let skew = |a: [f64; 3]| [[0.0, -a[2], a[1]], [a[2], 0.0, -a[0]], [-a[1], a[0], 0.0]];
+            let product = |x: [[f64; 3]; 3], y: [[f64; 3]; 3]| -> [[f64; 3]; 3] {
+                core::array::from_fn(|r| {
+                    core::array::from_fn(|c| (0..3).map(|k| x[r][k] * y[k][c]).sum())
+                })
+            };
+            let (wi, iw) = (product(skew(w), i), product(i, skew(w)));
+            let hu: f64 = (0..3).map(|k| h[k] * u[k]).sum();
+            let n: [f64; 3] = core::array::from_fn(|r| {
+                (0..3).map(|k| i[r][k] * w[k]).sum::<f64>() + cross(&h, &u)[r]
+            });
+            let nhat = skew(n);
+            for r in 0..3 {
+                for c in 0..3 {
+                    let rate = wi[r][c] - iw[r][c] + if r == c { 2.0 * hu } else { 0.0 }
+                        - u[r] * h[c]
+                        - h[r] * u[c];
+                    let expected = 0.5 * (rate - nhat[r][c]);
+                    worst = worst.max((p[r][c] - expected).abs());
+                }
+            }
+        }
+        assert!(worst < 1e-13, "largest difference {worst:e}");
+    }
+}
