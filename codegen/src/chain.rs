@@ -730,7 +730,8 @@ impl<'c, R: Ring> RingChain<'c, R> {
 
     /// The terms of Echeandia and Wensing's Coriolis algorithm at `qd`, in the coordinates
     /// `at`: every joint axis and body carried into that frame once, the velocities, the
-    /// axes' rates, and the composites (inertias, İ_ωω, momenta) summed tip to base.
+    /// axes' rates, and the composites (inertias, the Coriolis factors' `P`, linear momenta) summed
+    /// tip to base.
     fn spatial_terms(&self, at: Coordinates, qd: &[R]) -> SpatialTerms<R> {
         let n = self.dof();
         let z = || k::<R>(0.0);
@@ -824,7 +825,7 @@ impl<'c, R: Ring> RingChain<'c, R> {
     /// C(q, q̇) row by row, the Christoffel-consistent Coriolis matrix, by Echeandia and
     /// Wensing's O(n²) algorithm (the runtime path's, written here over any ring): in root-frame
     /// coordinates, each body's `B = ½(v×* I − I v× + (I v)×̄)`, held as the 3×3 `P = ½(İ_ωω −
-    /// n̂)` and the linear momentum `l`, summed tip to base with the inertias; then
+    /// n̂)` ([`MassMoments::coriolis_factor`]) and the linear momentum `l`, summed tip to base with the inertias; then
     /// `C_kj = S_k·(I^C_j Ṡ_j + B^C_j S_j)` for `k ≤ j` and `C_jk = Ṡ_k·I^C_j S_j +
     /// S_k·B^C_jᵀ S_j` for `k < j`, with `Ṡ_j = v_j × S_j`. Every joint axis and body is
     /// carried into the root frame once, so a pair (k, j) costs a few dot products: the
