@@ -46,20 +46,12 @@ fn scale3<R: Ring>(s: &R, a: &V3<R>) -> V3<R> {
 
 /// `R v`
 pub fn rot<R: Ring>(f: &Frame<R>, v: &V3<R>) -> V3<R> {
-    core::array::from_fn(|i| {
-        f.r[i][0].clone() * v[0].clone()
-            + f.r[i][1].clone() * v[1].clone()
-            + f.r[i][2].clone() * v[2].clone()
-    })
+    mat_vec(&f.r, v)
 }
 
 /// `Rᵀ v`
 pub fn rot_t<R: Ring>(f: &Frame<R>, v: &V3<R>) -> V3<R> {
-    core::array::from_fn(|i| {
-        f.r[0][i].clone() * v[0].clone()
-            + f.r[1][i].clone() * v[1].clone()
-            + f.r[2][i].clone() * v[2].clone()
-    })
+    mat_t_vec(&f.r, v)
 }
 
 /// Mass properties about a frame's origin: mass, first moment `h = m c`, and the
@@ -939,11 +931,7 @@ impl<'c, R: Ring> RingChain<'c, R> {
             let ic = &inertias[j];
             // B^C S = (P ω, ω × l), the moment of Bᵀ S = Pᵀ ω + l × u; B^C Ψ̇ likewise.
             let b_times = |(w, _): &Sv<R>| (mat_vec(p, w), cross(w, l));
-            let pt = core::array::from_fn(|r| {
-                p[0][r].clone() * s.0[0].clone()
-                    + p[1][r].clone() * s.0[1].clone()
-                    + p[2][r].clone() * s.0[2].clone()
-            });
+            let pt = mat_t_vec(p, &s.0);
             let mut f1 = add_sv(&ic.momentum(&rates[j]), &b_times(&s));
             let mut f2 = ic.momentum(&s);
             let mut f3 = add3(&pt, &cross(l, &s.1));
@@ -1233,11 +1221,21 @@ fn joint_acceleration<R: Ring>(
     psi_dd
 }
 
+/// `M v`
 fn mat_vec<R: Ring>(m: &[[R; 3]; 3], v: &V3<R>) -> V3<R> {
     core::array::from_fn(|i| {
         m[i][0].clone() * v[0].clone()
             + m[i][1].clone() * v[1].clone()
             + m[i][2].clone() * v[2].clone()
+    })
+}
+
+/// `Mᵀ v`
+fn mat_t_vec<R: Ring>(m: &[[R; 3]; 3], v: &V3<R>) -> V3<R> {
+    core::array::from_fn(|i| {
+        m[0][i].clone() * v[0].clone()
+            + m[1][i].clone() * v[1].clone()
+            + m[2][i].clone() * v[2].clone()
     })
 }
 
@@ -1344,12 +1342,7 @@ impl<R: Ring> SpatialTerms<R> {
 
     /// The angular part of `B^C_jᵀ s` (its linear part is zero): `Pᵀ ω + l × u`.
     fn coriolis_transpose_action(&self, j: usize, (w, u): &Sv<R>) -> V3<R> {
-        let pt_w = core::array::from_fn(|r| {
-            self.p[j][0][r].clone() * w[0].clone()
-                + self.p[j][1][r].clone() * w[1].clone()
-                + self.p[j][2][r].clone() * w[2].clone()
-        });
-        add3(&pt_w, &cross(&self.linear[j], u))
+        add3(&mat_t_vec(&self.p[j], w), &cross(&self.linear[j], u))
     }
 }
 

@@ -68,19 +68,6 @@ impl Constraint {
     }
 }
 
-/// `tr(A B)` of two square matrices of one size, without forming the product (the sum over
-/// `A`'s entries in storage order of `A_rc B_cr`).
-fn trace_of_product(a: &DMatrix<f64>, b: &DMatrix<f64>) -> f64 {
-    let m = a.nrows();
-    let mut sum = 0.0;
-    for c in 0..m {
-        for r in 0..m {
-            sum += a[(r, c)] * b[(c, r)];
-        }
-    }
-    sum
-}
-
 /// `½ yᵀ Q y + cᵀ y` plus `−log det F(y)` of every constraint over `1/t`.
 struct Barrier<'a> {
     constraints: &'a [Constraint],
@@ -118,7 +105,8 @@ impl Barrier<'_> {
                 for (i, (a, _)) in k.terms.iter().enumerate() {
                     g[*a] -= p[i].trace();
                     for (j, (b, _)) in k.terms.iter().enumerate().skip(i) {
-                        let hab = trace_of_product(&p[i], &p[j]);
+                        // tr(A B) without forming the product: nalgebra's `tr_dot`.
+                        let hab = p[i].tr_dot(&p[j]);
                         h[(*a, *b)] += hab;
                         if i != j {
                             h[(*b, *a)] += hab;
