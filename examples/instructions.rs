@@ -9,7 +9,10 @@
 //!   valgrind --tool=callgrind --callgrind-out-file=/dev/null $B puma560 $args 2>&1 | grep Collected
 //! done
 //! ```
-//! Instructions per call = (count − count of the quantity `none`) / 1000. `batch` evaluates the same 1,000
+//! Instructions per call = (count − count of the quantity `none`) / 1000. Read large counts
+//! with `callgrind_annotate`: glibc's `memset` zeroes some arrays of a few KB (a split
+//! function's scratch array, a regressor's output) with `rep stosb`: one instruction, which
+//! valgrind counts once per byte it stores. `batch` evaluates the same 1,000
 //! configurations through the module's `batch` functions (SIMD packs of four `f64`): its
 //! count per configuration is the same formula. `packs` calls the generated functions on the
 //! packs themselves (what `batch` does before unpacking each lane's value). `f32` and

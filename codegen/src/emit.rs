@@ -1,8 +1,9 @@
 //! Emission: expressions become straight-line Rust, one immutable `let` per shared node.
 //!
 //! rustc's debug-info generation overflows its stack on functions with a few thousand
-//! `let`s (the Panda's ∂τ whole, about 3,380, with rustc 1.89 and 1.95, with or without
-//! optimisation), and release compile time grows superlinearly with function size, so the outputs
+//! `let`s (the Panda's ∂τ whole, about 3,380, with rustc 1.89 and 1.95, in debug builds and in
+//! optimised ones with debug information), and release compile time grows superlinearly with
+//! function size, so the outputs
 //! of one quantity of more than [`WHOLE_STATEMENTS`] statements are split into parts of at
 //! most [`MAX_STATEMENTS`] statements, each its own function writing into the caller's
 //! output.
@@ -27,8 +28,8 @@ pub const MAX_STATEMENTS: usize = 900;
 /// on 2026-12-07, default target: Panda C 4,170 → 3,896, base regressor 6,648 → 3,688 (3,977
 /// → 3,688 without the zeroing of the parts' arrays, which `rep stosb` does and valgrind
 /// counts byte by byte); PUMA 560 ∂τ 3,785 → 3,609, ∂q̈ 5,748 → 5,463; a general 8-joint arm's
-/// q̈ with a payload 5,873 → 5,618; nothing more. The bound is also
-/// a debug build's: whole, the Panda's ∂τ (3,476 statements, about 3,380 `let`s) overflows
+/// q̈ with a payload 5,873 → 5,618; nothing more. The bound is also a debug build's: whole,
+/// the Panda's ∂τ (3,476 statements, about 3,380 `let`s) overflows
 /// rustc's stack when it writes debug information (1.89 and 1.95, `debug` or `release` with
 /// debug information), its c_ijk (2,091) does not, and the Panda's debug build with this bound
 /// still succeeds with `RUST_MIN_STACK` lowered to 1.25 MiB, as it did with 1,300
