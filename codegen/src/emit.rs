@@ -3,10 +3,9 @@
 //! rustc's debug-info generation overflows its stack on functions with a few thousand
 //! `let`s (the Panda's ∂τ whole, about 3,380, with rustc 1.89 and 1.95, in debug builds and in
 //! optimised ones with debug information), and release compile time grows superlinearly with
-//! function size, so the outputs
-//! of one quantity of more than [`WHOLE_STATEMENTS`] statements are split into parts of at
-//! most [`MAX_STATEMENTS`] statements, each its own function writing into the caller's
-//! output.
+//! function size, so the outputs of one quantity of more than [`WHOLE_STATEMENTS`] statements
+//! are split into parts of at most [`MAX_STATEMENTS`] statements, each its own function writing
+//! into the caller's output.
 
 use crate::graph::{E, Id, Node, OpCount, SharedGraph, Sym, count};
 use proc_macro2::{Ident, Literal, Span, TokenStream};
@@ -25,15 +24,11 @@ pub const MAX_STATEMENTS: usize = 900;
 /// 1,179 on x86-64-v3; Panda D 1,598 → 1,512 and q̈ 2,145 → 2,024 (x86-64-v3); Panda τ
 /// 2,042 → 2,104 on the default target, 1,213 → 1,123 on x86-64-v3; with parts of up to
 /// 1,500 statements for every function, Panda ∂τ took 8 % more). Raised from 1,300 to 2,000
-/// on 2026-12-07, default target: Panda C 4,170 → 3,896, base regressor 6,648 → 3,688 (3,977
-/// → 3,688 without the zeroing of the parts' arrays, which `rep stosb` does and valgrind
-/// counts byte by byte); PUMA 560 ∂τ 3,785 → 3,609, ∂q̈ 5,748 → 5,463; a general 8-joint arm's
-/// q̈ with a payload 5,873 → 5,618; nothing more. The bound is also a debug build's: whole,
-/// the Panda's ∂τ (3,476 statements, about 3,380 `let`s) overflows
-/// rustc's stack when it writes debug information (1.89 and 1.95, `debug` or `release` with
-/// debug information), its c_ijk (2,091) does not, and the Panda's debug build with this bound
-/// still succeeds with `RUST_MIN_STACK` lowered to 1.25 MiB, as it did with 1,300
-/// (docs/performance.md).
+/// on 2026-12-07 (Panda C 4,170 → 3,896 instructions, PUMA 560 ∂τ 3,785 → 3,609; nothing
+/// executes more). The bound also keeps debug builds from crashing: it caps the `let`s of one
+/// function, and whole, the Panda's ∂τ (3,476 statements) overflows rustc's stack; with 2,000
+/// the Panda's debug build keeps the margin it had with 1,300. Figures in
+/// docs/performance.md ("Derivatives of the dynamics against Pinocchio", its last paragraphs).
 pub const WHOLE_STATEMENTS: usize = 2_000;
 
 /// One output: where to store it (an lvalue) and its expression.
