@@ -14,8 +14,6 @@
 use crate::graph::{E, SharedGraph, Sym};
 use dhgen_model::Ring;
 use std::cell::Cell;
-use std::collections::HashMap;
-use std::hash::{BuildHasherDefault, Hasher};
 use std::rc::Rc;
 
 /// Variables per polynomial: two per joint.
@@ -25,32 +23,7 @@ pub const MAX_VARS: usize = 32;
 const CANCEL: f64 = 64.0 * f64::EPSILON;
 
 /// Sums of coefficients (and of their magnitudes, for the cancellation test) per monomial.
-type Accumulator = HashMap<Mono, (f64, f64), BuildHasherDefault<MonoHasher>>;
-
-/// A fast hash of a monomial (Fx-style multiply-rotate over 8-byte words): the default
-/// SipHash guards maps against adversarial keys, which exponent vectors are not, at several
-/// times the cost.
-#[derive(Default)]
-struct MonoHasher(u64);
-
-impl Hasher for MonoHasher {
-    fn write(&mut self, bytes: &[u8]) {
-        for chunk in bytes.chunks(8) {
-            let mut word = [0u8; 8];
-            word[..chunk.len()].copy_from_slice(chunk);
-            self.0 = (self.0.rotate_left(5) ^ u64::from_le_bytes(word))
-                .wrapping_mul(0x51_7c_c1_b7_27_22_0a_95);
-        }
-    }
-
-    fn write_usize(&mut self, i: usize) {
-        self.write(&(i as u64).to_le_bytes());
-    }
-
-    fn finish(&self) -> u64 {
-        self.0
-    }
-}
+type Accumulator = crate::graph::FastMap<Mono, (f64, f64)>;
 
 /// Exponents, indexed by variable: `2j` is `cos θ_j` (or `d_j`), `2j + 1` is `sin θ_j`.
 pub type Mono = [u8; MAX_VARS];
