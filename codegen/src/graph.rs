@@ -17,10 +17,11 @@ use std::rc::Rc;
 /// Index of a node in a [`Graph`].
 pub type Id = u32;
 
-/// A hash map with a fast hasher (foldhash's, with a fixed seed), for the engine's keys: nodes,
-/// node ids and monomials. std's default SipHash guards a map against keys chosen to collide,
-/// which these, built by the engine, are not; and the proc macro runs unoptimised, where
-/// SipHash took a third of the Panda's expansion (1.5 s with its derivatives).
+/// A hash map with a fast hasher (foldhash's, with a fixed seed, so expansion is
+/// deterministic), for the engine's keys: nodes, node ids and monomials. std's default SipHash
+/// guards a map against keys chosen to collide, which these, built by the engine, are not; and
+/// the proc macro runs unoptimised, where SipHash took about a third of the generator's
+/// instructions (docs/performance.md, "Expansion time").
 pub(crate) type FastMap<K, V> = HashMap<K, V, foldhash::fast::FixedState>;
 
 /// An input of a generated function.
