@@ -25,10 +25,10 @@ pub const MAX_STATEMENTS: usize = 900;
 /// 2,042 → 2,104 on the default target, 1,213 → 1,123 on x86-64-v3; with parts of up to
 /// 1,500 statements for every function, Panda ∂τ took 8 % more). Raised from 1,300 to 2,000
 /// on 2026-12-07 (Panda C 4,170 → 3,896 instructions, PUMA 560 ∂τ 3,785 → 3,609; nothing
-/// executes more). The bound also keeps debug builds from crashing: it caps the `let`s of one
-/// function, and whole, the Panda's ∂τ (3,476 statements) overflows rustc's stack; with 2,000
-/// the Panda's debug build keeps the margin it had with 1,300. Figures in
-/// docs/performance.md ("Derivatives of the dynamics against Pinocchio", its last paragraphs).
+/// executes more). The bound also caps the `let`s of one function, which keeps debug builds
+/// from crashing (module documentation); with 2,000 the Panda's debug build keeps the margin it
+/// had with 1,300. Figures in docs/performance.md ("Derivatives of the dynamics against
+/// Pinocchio", its last paragraphs).
 pub const WHOLE_STATEMENTS: usize = 2_000;
 
 /// One output: where to store it (an lvalue) and its expression.
