@@ -61,9 +61,26 @@
 //! # Singular poses: the documented choices
 //! - Wrist singularity (axes 4 and 6 aligned): only `q4 ± q6` is determined; the solver sets
 //!   **q4 = 0** and gives q6 the whole rotation. For the UR type, when axis 6 is parallel to
-//!   axes 2–4, **q6 = 0**.
-//! - Shoulder singularity (wrist centre on axis 1): q1 is free; the solver sets **q1 = 0**.
-//! - Wrist centre on axis 2: q2 is free; the solver sets **q2 = 0**.
+//!   axes 2–4, only `ψ = q2 + q3 + q4` and q6 together are; the solver sets **q6 = 0**, or,
+//!   where the planar arm cannot then reach (the point where axes 5 and 6 meet is off axis 4,
+//!   so ψ moves its target), the value nearest 0 at which it can.
+//! - Shoulder singularity (wrist centre on axis 1; for the UR type, that point on axis 1):
+//!   q1 is free for the position; the solver sets **q1 = 0**, or, where the wrist cannot then
+//!   turn the tool into place (oblique wrist axes reach only some orientations), the value
+//!   nearest 0 at which it can.
+//! - Wrist centre on axis 2: q2 is free; likewise **q2 = 0** or the value nearest 0 that the
+//!   wrist completes.
+//!
+//! # Near-degenerate equations
+//! At a singular pose the subproblems meet double roots: `a cos x + b sin x = c` with `|c|`
+//! at `√(a² + b²)` (the wrist's q5, the elbow stretched or folded), a polynomial's pair of
+//! roots (a skew shoulder's quartic at the workspace boundary). Rounding splits a double root
+//! into two a `√ε ≈ 1.5e-8` apart, or into a complex pair, and neither reproduces the pose
+//! to the tolerance below. Each root finder takes a root within rounding of a double one
+//! (known from the size of the terms its coefficients came from) as that double root as well
+//! as the pair beside it, and a candidate that misses the pose by more than the arithmetic
+//! does is polished by Gauss–Newton steps on the pose before it is verified: no solution is
+//! lost to rounding. Candidates closer than 1e-7 in every joint are one solution.
 //!
 //! Every candidate is checked by forward kinematics and dropped unless it reproduces the pose
 //! to [`VERIFY_TOLERANCE`]. Revolute joint values are wrapped into (−π, π], then shifted by
@@ -72,13 +89,23 @@
 
 use crate::{ChainRef, JointKind, NotSpherical, Rigid};
 use core::f64::consts::{PI, TAU};
-use nalgebra::{Complex, Isometry3, Matrix3, SVector, Vector2, Vector3};
+use nalgebra::{Complex, Isometry3, Matrix3, Matrix6, SVector, Vector2, Vector3, Vector6};
 #[cfg(not(feature = "std"))]
 use nalgebra::{ComplexField as _, RealField as _};
 
 /// A returned solution reproduces the pose to this: position error in metres and orientation
 /// error in radians, each.
 pub const VERIFY_TOLERANCE: f64 = 1e-9;
+
+/// A candidate reproducing the pose to this (m, relative to the arm's length scale, and rad)
+/// is as exact as the arithmetic makes it and is not polished; one missing it by more, by
+/// rounding the closed forms could not avoid, is (`DecoupledIk::polished`).
+const POLISHED: f64 = 1e-14;
+
+/// Two solutions closer than this in every joint (rad, or m) are one: a double root leaves a
+/// joint uncertain to about √ε ≈ 1.5e-8 (times its conditioning), and two genuine solutions
+/// this close are one to any controller.
+const SAME_SOLUTION: f64 = 1e-7;
 
 /// The arm geometry [`DecoupledIk`] solves.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -320,12 +347,23 @@ impl<'a> IntoIterator for &'a Solutions {
 struct Roots<const N: usize> {
     x: [f64; N],
     len: usize,
+    /// The equation does not depend on the unknown: every value solves it, and the one value
+    /// held, 0, stands for them (a joint the pose leaves free).
+    free: bool,
 }
 
 impl<const N: usize> Roots<N> {
     const NONE: Self = Roots {
         x: [0.0; N],
         len: 0,
+        free: false,
+    };
+
+    /// Every value: 0 stands for them.
+    const FREE: Self = Roots {
+        x: [0.0; N],
+        len: 1,
+        free: true,
     };
 
     fn one(x: f64) -> Self {
@@ -346,20 +384,55 @@ impl<const N: usize> Roots<N> {
     }
 }
 
-/// The solutions of `a cos x + b sin x = c` (0, 1 or 2). A right-hand side outside the range
-/// by no more than rounding is clamped to the boundary (one double root).
-fn solve_trig(a: f64, b: f64, c: f64) -> Roots<2> {
+/// How well the coefficients of a trigonometric equation are known, relative to the size of
+/// the terms they were computed from: 64 ulp. They come from the target pose and the arm's
+/// constants through one or two products of rotations (a few ulp each), the pose itself from
+/// forward kinematics of six joints (tens of ulp at most).
+const EQUATION_ROUNDING: f64 = 64.0 * f64::EPSILON;
+
+/// How far (relative) a right-hand side may lie beyond the range of `a cos x + b sin x` and
+/// still be taken as touching it: a pose out of reach by a hair (a description or target
+/// rounded to twelve digits) gets the double root, which verification then judges.
+const BEYOND_RANGE: f64 = 1e-12;
+
+/// The solutions of `a cos x + b sin x = c`, whose coefficients were computed from terms of
+/// magnitude up to `size`, each to [`EQUATION_ROUNDING`].
+///
+/// With `ρ = √(a² + b²)` and `φ = atan2(b, a)` the roots are `φ ± acos(c/ρ)`. Coefficients
+/// known to `η = EQUATION_ROUNDING · size` make `c/ρ` known to about `η/ρ`; near ±1 its two
+/// roots `φ ± γ` (`γ ≈ √(2(1 − |c/ρ|))`) are then not told apart from the double root: with
+/// `|c/ρ|` within `η/ρ` of 1 the double root (`φ`, or `φ + π`) is returned as well as the two
+/// roots (a pose at a singularity has the double root, one beside it the two; the caller
+/// verifies each). With `ρ` itself below `η` the equation does not depend on `x`: every `x`
+/// solves it when `c` is below `η` too, and `x = 0` is returned to stand for them (a joint the
+/// pose leaves free), else none.
+fn solve_trig(a: f64, b: f64, c: f64, size: f64) -> Roots<3> {
     let rho = a.hypot(b);
-    let base = b.atan2(a);
-    let ratio = c / rho;
-    if !ratio.is_finite() || ratio.abs() > 1.0 + 1e-12 {
+    let noise = EQUATION_ROUNDING * size;
+    if !(rho.is_finite() && c.is_finite()) {
         return Roots::NONE;
     }
-    let ratio = ratio.clamp(-1.0, 1.0);
-    // acos through atan2 keeps full accuracy away from the boundary.
-    let gamma = (1.0 - ratio * ratio).max(0.0).sqrt().atan2(ratio);
-    let mut out = Roots::one(base + gamma);
-    if gamma != 0.0 {
+    if rho <= noise {
+        return if c.abs() <= noise {
+            Roots::FREE
+        } else {
+            Roots::NONE
+        };
+    }
+    let base = b.atan2(a);
+    let ratio = c / rho;
+    let band = noise / rho;
+    if ratio.abs() > 1.0 + band.max(BEYOND_RANGE) {
+        return Roots::NONE;
+    }
+    let mut out = Roots::NONE;
+    if ratio.abs() >= 1.0 - band {
+        out.push(if ratio > 0.0 { base } else { base + PI });
+    }
+    if ratio.abs() < 1.0 {
+        // acos through atan2 keeps full accuracy away from the boundary.
+        let gamma = (1.0 - ratio * ratio).sqrt().atan2(ratio);
+        out.push(base + gamma);
         out.push(base - gamma);
     }
     out
@@ -372,17 +445,18 @@ fn trig_coefficients(f: impl Fn(f64, f64) -> f64) -> (f64, f64, f64) {
     (0.5 * (f0 - f180), f90 - c0, c0)
 }
 
-/// The angles where the affine trigonometric function `f(cos x, sin x)` vanishes.
-fn trig_roots(f: impl Fn(f64, f64) -> f64) -> Roots<2> {
+/// The angles where the affine trigonometric function `f(cos x, sin x)`, made of terms of
+/// magnitude up to `size`, vanishes (see [`solve_trig`]).
+fn trig_roots(f: impl Fn(f64, f64) -> f64, size: f64) -> Roots<3> {
     let (a, b, c0) = trig_coefficients(f);
-    solve_trig(a, b, -c0)
+    solve_trig(a, b, -c0, size)
 }
 
 /// The real roots of the polynomial `Σ c[k] x^k` (degree at most 4, leading coefficients
 /// that vanish relative to the others dropped), by Aberth–Ehrlich iteration on the complex
 /// roots, those with a negligible imaginary part polished by Newton's method on the real
 /// polynomial.
-fn real_polynomial_roots(c: [f64; 5]) -> Roots<4> {
+fn real_polynomial_roots(c: [f64; 5], size: f64) -> Roots<6> {
     let scale = c.iter().fold(0.0_f64, |m, x| m.max(x.abs()));
     if scale == 0.0 || !scale.is_finite() {
         return Roots::NONE;
@@ -391,39 +465,37 @@ fn real_polynomial_roots(c: [f64; 5]) -> Roots<4> {
     while degree > 0 && c[degree].abs() <= 1e-13 * scale {
         degree -= 1;
     }
-    let eval = |x: f64| -> (f64, f64) {
-        let (mut v, mut d) = (0.0, 0.0);
+    // The value and its first two derivatives, by Horner's scheme.
+    let eval = |x: f64| -> (f64, f64, f64) {
+        let (mut v, mut d, mut dd) = (0.0, 0.0, 0.0);
         for k in (0..=degree).rev() {
+            dd = dd * x + 2.0 * d;
             d = d * x + v;
             v = v * x + c[k];
         }
-        (v, d)
+        (v, d, dd)
+    };
+    // The coefficients' own rounding (`size`) and that of the terms at x.
+    let noise = |x: f64| {
+        let terms = (0..=degree).fold(0.0, |sum, k| sum + (c[k] * x.powi(k as i32)).abs());
+        EQUATION_ROUNDING * (size + terms)
     };
     let mut out = Roots::NONE;
     let coefficients: [Complex<f64>; 5] = core::array::from_fn(|k| Complex::new(c[k], 0.0));
     for z in complex_roots(&coefficients, degree).as_slice() {
-        if z.im.abs() > 1e-6 * (1.0 + z.re.abs()) {
-            continue;
-        }
-        let mut x = z.re;
-        for _ in 0..50 {
-            let (v, d) = eval(x);
-            if d == 0.0 {
-                break;
-            }
-            let step = v / d;
-            x -= step;
-            if step.abs() <= 1e-16 * (1.0 + x.abs()) {
-                break;
-            }
-        }
-        if x.is_finite()
-            && !out
+        // Each complex root's real part, polished on the real polynomial, is a real root if
+        // the polynomial vanishes there (a pair a rounding off the axis gives its double root).
+        let near_axis = z.im.abs() <= 1e-6 * (1.0 + z.re.abs());
+        let small = |x: f64| 1e-16 * (1.0 + x.abs());
+        let near = real_roots_near(z.re, near_axis, eval, noise(z.re), small);
+        for x in near.into_iter().flatten() {
+            if !out
                 .as_slice()
                 .iter()
                 .any(|y| (y - x).abs() <= 1e-9 * (1.0 + x.abs()))
-        {
-            out.push(x);
+            {
+                out.push(x);
+            }
         }
     }
     out
@@ -433,7 +505,7 @@ fn real_polynomial_roots(c: [f64; 5]) -> Roots<4> {
 /// `f = a0 + a1 cos x + b1 sin x + a2 cos 2x + b2 sin 2x` (given as a function), vanishes:
 /// the roots on the unit circle of `z² f(z)`, `z = e^{ix}`, polished by Newton's method on
 /// `f` itself.
-fn trig2_roots(f: impl Fn(f64) -> f64) -> Roots<4> {
+fn trig2_roots(f: impl Fn(f64) -> f64, size: f64) -> Roots<6> {
     // The coefficients from five samples (exact for degree 2).
     let samples: [f64; 5] = core::array::from_fn(|k| f(TAU * k as f64 / 5.0));
     let coefficient = |harmonic: f64, sine: bool| -> f64 {
@@ -458,7 +530,7 @@ fn trig2_roots(f: impl Fn(f64) -> f64) -> Roots<4> {
         return out;
     }
     if a2.hypot(b2) <= 1e-13 * scale {
-        for x in solve_trig(a1, b1, -a0).as_slice() {
+        for x in solve_trig(a1, b1, -a0, size).as_slice() {
             out.push(*x);
         }
         return out;
@@ -471,42 +543,86 @@ fn trig2_roots(f: impl Fn(f64) -> f64) -> Roots<4> {
         Complex::new(a1, -b1),
         Complex::new(a2, -b2),
     ];
-    let value = |x: f64| -> (f64, f64) {
+    let value = |x: f64| -> (f64, f64, f64) {
         let (c1, s1) = (x.cos(), x.sin());
         let (c2, s2) = ((2.0 * x).cos(), (2.0 * x).sin());
         (
             a0 + a1 * c1 + b1 * s1 + a2 * c2 + b2 * s2,
             -a1 * s1 + b1 * c1 - 2.0 * a2 * s2 + 2.0 * b2 * c2,
+            -a1 * c1 - b1 * s1 - 4.0 * a2 * c2 - 4.0 * b2 * s2,
         )
     };
+    let noise = EQUATION_ROUNDING * size;
     for z in complex_roots(&p, 4).as_slice() {
-        let r = modulus(*z);
-        if (r - 1.0).abs() > 1e-3 {
-            continue;
-        }
-        let mut x = z.im.atan2(z.re);
-        for _ in 0..50 {
-            let (v, d) = value(x);
-            if d == 0.0 {
-                break;
-            }
-            let step = v / d;
-            x -= step;
-            if step.abs() <= 1e-16 {
-                break;
-            }
-        }
-        let x = wrap_angle(x);
-        if x.is_finite()
-            && !out
+        // Each root's angle, polished on f, is a real root if f vanishes there (a pair of
+        // roots a rounding off the unit circle gives its double root).
+        let near_circle = (modulus(*z) - 1.0).abs() <= 1e-3;
+        let near = real_roots_near(z.im.atan2(z.re), near_circle, value, noise, |_| 1e-16);
+        for x in near.into_iter().flatten() {
+            let x = wrap_angle(x);
+            if !out
                 .as_slice()
                 .iter()
                 .any(|y| wrap_angle(y - x).abs() <= 1e-9)
-        {
-            out.push(x);
+            {
+                out.push(x);
+            }
         }
     }
     out
+}
+
+/// Real roots of `f` (which gives its value and first two derivatives) from the estimate
+/// `x`, known to `noise`: `x` polished by [`newton`], and, where `x` or the polished root is a
+/// near-double root — the parabola through it has its extremum within `noise` of zero, so
+/// that the pair of roots beside the extremum cannot be told from a double root — the
+/// extremum (Newton's method on `f′`, a simple root there) if `f` vanishes there to `noise`:
+/// a double root accurate to rounding rather than to √ε. Both are candidates (the noise is a
+/// bound: a pair that is told apart is kept as well). The polished root is kept if `x` came
+/// from a root `near_axis` of the real line (or of the unit circle) or if `f` vanishes there
+/// to `noise` (a complex pair a rounding off the axis); the extremum if `f` vanishes there.
+fn real_roots_near(
+    x: f64,
+    near_axis: bool,
+    f: impl Fn(f64) -> (f64, f64, f64),
+    noise: f64,
+    small: impl Fn(f64) -> f64,
+) -> [Option<f64>; 2] {
+    let double_root = |x: f64| {
+        let (v, d, dd) = f(x);
+        if dd != 0.0 && (v - d * d / (2.0 * dd)).abs() <= noise {
+            Some(newton(x, |x| (f(x).1, f(x).2), &small))
+        } else {
+            None
+        }
+    };
+    // Near a double root Newton's first step on f leaps away (f′ nearly vanishes there), so
+    // the estimate is tried as one before polishing too.
+    let extremum = double_root(x);
+    let root = newton(x, |x| (f(x).0, f(x).1), &small);
+    let extremum = extremum.or_else(|| double_root(root));
+    let vanishes = |x: &f64| x.is_finite() && f(*x).0.abs() <= noise;
+    [
+        Some(root).filter(|x| x.is_finite() && (near_axis || vanishes(x))),
+        extremum.filter(vanishes),
+    ]
+}
+
+/// A root of `f` polished by Newton's method from `x` (`f` gives the value and the
+/// derivative), at most 50 steps, until a step is below `small(x)`.
+fn newton(mut x: f64, f: impl Fn(f64) -> (f64, f64), small: impl Fn(f64) -> f64) -> f64 {
+    for _ in 0..50 {
+        let (v, d) = f(x);
+        if d == 0.0 {
+            break;
+        }
+        let step = v / d;
+        x -= step;
+        if step.abs() <= small(x) {
+            break;
+        }
+    }
+    x
 }
 
 /// `|z|`.
@@ -593,6 +709,45 @@ impl Roots4C {
     }
 }
 
+/// Newton-type refinement: `attempt(q)` gives the error at `q` and the next iterate (none when
+/// the step cannot be taken); an iterate is accepted while the error falls (a NaN is no fall),
+/// at most 8 times, stopping once the error is at most `done`.
+fn refine<Q: Copy>(mut q: Q, done: f64, attempt: impl Fn(&Q) -> (f64, Option<Q>)) -> Q {
+    let (mut error, mut next) = attempt(&q);
+    for _ in 0..8 {
+        if error <= done {
+            break;
+        }
+        let Some(candidate) = next else {
+            break;
+        };
+        let (e, n) = attempt(&candidate);
+        if e.partial_cmp(&error) != Some(core::cmp::Ordering::Less) {
+            break;
+        }
+        (q, error, next) = (candidate, e, n);
+    }
+    q
+}
+
+/// `[Δp; Δθ]` taking `a` to `b`: the difference of origins and the rotation vector of
+/// `R_b R_aᵀ`, both in the outer frame (the angle from `atan2(|v|, (tr R − 1)/2)`, `v` the
+/// axial vector of its skew part, accurate at small angles).
+fn pose_difference(a: &Rigid, b: &Rigid) -> Vector6<f64> {
+    let r = b.r * a.r.transpose();
+    let v = 0.5
+        * Vector3::new(
+            r[(2, 1)] - r[(1, 2)],
+            r[(0, 2)] - r[(2, 0)],
+            r[(1, 0)] - r[(0, 1)],
+        );
+    let sin = v.norm();
+    let angle = sin.atan2(0.5 * (r.trace() - 1.0));
+    let w = if sin > 0.0 { v * (angle / sin) } else { v };
+    let dp = b.p - a.p;
+    Vector6::new(dp.x, dp.y, dp.z, w.x, w.y, w.z)
+}
+
 /// Position error and rotation angle between two frames; the angle from
 /// `‖Ra − Rb‖_F = 2√2 sin(θ/2)`, accurate for small angles.
 fn frame_error(a: &Rigid, b: &Rigid) -> (f64, f64) {
@@ -616,17 +771,40 @@ fn z_angle(m: &Matrix3<f64>) -> f64 {
     m[(1, 0)].atan2(m[(0, 0)])
 }
 
-/// The angle turning the xy part of `from` onto that of `to` about z; `None` when one of them
-/// is (relative to `tiny`) on the axis and the other not; 0 when both are.
-fn azimuth(to: &Vector3<f64>, from: &Vector3<f64>, tiny: f64) -> Option<f64> {
+/// The angle turning the xy part of `from` onto that of `to` about z, and whether it is free.
+/// With `to` on the axis (relative to `tiny`) every angle does: 0 stands for them (`from`,
+/// made of roots that a singular pose leaves accurate only to √ε, may miss the axis by more;
+/// polishing on the pose settles it); `None` when `from` is on the axis and `to` is not.
+fn azimuth(to: &Vector3<f64>, from: &Vector3<f64>, tiny: f64) -> Option<(f64, bool)> {
     let (a, b) = (to.xy().norm(), from.xy().norm());
-    if a < tiny && b < tiny {
-        Some(0.0)
-    } else if a < tiny || b < tiny {
+    if a < tiny {
+        Some((0.0, true))
+    } else if b < tiny {
         None
     } else {
-        Some(to.y.atan2(to.x) - from.y.atan2(from.x))
+        Some((to.y.atan2(to.x) - from.y.atan2(from.x), false))
     }
+}
+
+/// The value nearest 0 of a joint the position leaves free at which `g` (affine in the
+/// joint's cosine and sine, made of terms of magnitude `size`) lies in `[lo, hi]`, where the
+/// rest of the arm can then complete the pose: 0 when it does there, else the nearest value
+/// where `g` reaches `lo` or `hi` (the completing joint then at a double root); 0 when none.
+fn nearest_within(g: impl Fn(f64, f64) -> f64, lo: f64, hi: f64, size: f64) -> f64 {
+    if (lo..=hi).contains(&g(1.0, 0.0)) {
+        return 0.0;
+    }
+    let (a, b, c0) = trig_coefficients(g);
+    let mut nearest: Option<f64> = None;
+    for bound in [lo, hi] {
+        for &x in solve_trig(a, b, bound - c0, size).as_slice() {
+            let x = wrap_angle(x);
+            if nearest.is_none_or(|y| x.abs() < y.abs()) {
+                nearest = Some(x);
+            }
+        }
+    }
+    nearest.unwrap_or(0.0)
 }
 
 fn kinds(prismatic: &[bool; 6]) -> [u8; 3] {
@@ -839,30 +1017,39 @@ impl DecoupledIk {
         (centre, Matrix3::from_columns(&columns))
     }
 
+    /// `q` refined by Gauss–Newton steps on the whole pose ([`refine`]; the pseudo-inverse of
+    /// the arm's Jacobian, singular values below 1e-12 of the largest dropped, so that a
+    /// singular configuration moves least along the directions the pose leaves free). A
+    /// singular pose leaves a double root's joint accurate to √ε only, and the rest of the
+    /// candidate inherits the error; two or three steps restore full precision.
+    fn polished(&self, q: SVector<f64, 6>, target: &Rigid) -> SVector<f64, 6> {
+        refine(q, POLISHED, |q| {
+            let (frame, jacobian) = self.fk_and_jacobian(q);
+            let error = pose_difference(&frame, target);
+            let svd = jacobian.svd(true, true);
+            let cutoff = 1e-12 * svd.singular_values.max();
+            (
+                error.norm(),
+                svd.solve(&error, cutoff).ok().map(|step| q + step),
+            )
+        })
+    }
+
     /// `q` refined by Newton's method on the wrist centre's position `p` (in the frame joint 1
-    /// turns), while each step lessens the error: the closed forms divide by quantities that
-    /// can be small (a skew shoulder's offset, squared), which the rounding of their inputs
-    /// does not survive; two or three steps restore full precision.
-    fn polished(&self, w: &Vector3<f64>, p: &Vector3<f64>, mut q: [f64; 3]) -> [f64; 3] {
-        let (centre, mut jacobian) = self.wrist_centre(w, &q);
-        let mut error = centre - p;
-        for _ in 0..4 {
-            if error.norm() <= 1e-14 * self.scale {
-                break;
-            }
-            let Some(step) = jacobian.lu().solve(&error) else {
-                break;
-            };
-            let next: [f64; 3] = core::array::from_fn(|i| q[i] - step[i]);
-            let (centre, next_jacobian) = self.wrist_centre(w, &next);
-            let next_error = centre - p;
-            // (A NaN error is no improvement either.)
-            if next_error.norm().partial_cmp(&error.norm()) != Some(core::cmp::Ordering::Less) {
-                break;
-            }
-            (q, jacobian, error) = (next, next_jacobian, next_error);
-        }
-        q
+    /// turns, [`refine`]): a skew shoulder's closed form divides by its offset squared, which
+    /// the rounding of its inputs does not survive when the offset is small (CAD's tens of
+    /// micrometres for a zero), leaving q2 far from the root; the pose's Jacobian is then too
+    /// ill-conditioned for [`polished`](Self::polished), the position's is not.
+    fn polished_arm(&self, w: &Vector3<f64>, p: &Vector3<f64>, q: [f64; 3]) -> [f64; 3] {
+        refine(q, 1e-14 * self.scale, |q| {
+            let (centre, jacobian) = self.wrist_centre(w, q);
+            let error = centre - p;
+            let next = jacobian
+                .lu()
+                .solve(&error)
+                .map(|step| core::array::from_fn(|i| q[i] - step[i]));
+            (error.norm(), next)
+        })
     }
 
     /// Why an arm with axes 2, 3, 4 parallel loses a direction at every configuration, if it
@@ -975,11 +1162,35 @@ impl DecoupledIk {
     }
 
     fn fk_frame(&self, q: &SVector<f64, 6>) -> Rigid {
+        self.walk(q, |_, _| {})
+    }
+
+    /// `T(q)`, calling `at_joint(i, frame)` with the frame joint `i` moves (its z axis the
+    /// joint's, in the world) on the way.
+    fn walk(&self, q: &SVector<f64, 6>, mut at_joint: impl FnMut(usize, &Rigid)) -> Rigid {
         let mut f = self.chain[0];
         for i in 0..6 {
+            at_joint(i, &f);
             f = f.moved(self.joint(i), q[i]).compose(&self.chain[i + 1]);
         }
         f
+    }
+
+    /// `T(q)` and the geometric Jacobian of the tool's origin, world axes, rows `[v; ω]`.
+    fn fk_and_jacobian(&self, q: &SVector<f64, 6>) -> (Rigid, Matrix6<f64>) {
+        let mut axes = [(Vector3::zeros(), Vector3::zeros()); 6];
+        let tool = self.walk(q, |i, f| axes[i] = (f.r.column(2).into_owned(), f.p));
+        let mut jacobian = Matrix6::zeros();
+        for (i, (z, o)) in axes.iter().enumerate() {
+            let (v, w) = if self.prismatic[i] {
+                (*z, Vector3::zeros())
+            } else {
+                (z.cross(&(tool.p - o)), *z)
+            };
+            jacobian.fixed_view_mut::<3, 1>(0, i).copy_from(&v);
+            jacobian.fixed_view_mut::<3, 1>(3, i).copy_from(&w);
+        }
+        (tool, jacobian)
     }
 
     /// The frame after joint 3 (`P0 Z1 P1 Z2 P2 Z3`), in the world.
@@ -1037,12 +1248,10 @@ impl DecoupledIk {
         w: &Vector3<f64>,
         p: &Vector3<f64>,
     ) -> ArmSolutions {
-        let mut out = ArmSolutions {
-            q: [[0.0; 3]; 4],
-            len: 0,
-        };
-        let mut push = |q: [f64; 3]| out.push(q);
+        let mut out = ArmSolutions::NONE;
+        let mut push = |q: [f64; 3], free: [bool; 3]| out.push(q, free);
         let tiny = 1e-12 * self.scale;
+        let (length, area) = (self.scale, self.scale * self.scale);
         match *shoulder {
             Shoulder::Revolute { shift, t1, u, n } => {
                 let joint3 = self.joint(2);
@@ -1056,25 +1265,16 @@ impl DecoupledIk {
                     ps.norm_squared() - h.norm_squared() - t1.norm_squared() - 2.0 * u.z * h.z
                 };
                 let l2 = |h: &Vector3<f64>| ps.z - t1.z - n.z * h.z;
-                // Given q3, q2 from `k · Rz(q2) h = rhs` for a direction k in the xy plane.
-                let q2_from = |k: &Vector2<f64>, h: &Vector3<f64>, rhs: f64| -> Roots<2> {
+                // Given q3, q2 from `k · Rz(q2) h = rhs` for a direction k in the xy plane, of
+                // terms of magnitude `size`; with the wrist centre on axis 2 the equation does
+                // not depend on q2, which is free (0) where it holds.
+                let q2_from = |k: &Vector2<f64>, h: &Vector3<f64>, rhs: f64, size: f64| {
                     let (hx, hy) = (h.x, h.y);
-                    let alpha = k.x * hx + k.y * hy;
-                    let beta = k.y * hx - k.x * hy;
-                    if alpha.hypot(beta) < tiny {
-                        // The wrist centre is on axis 2: q2 is free where the equation holds.
-                        if rhs.abs() < tiny {
-                            Roots::one(0.0)
-                        } else {
-                            Roots::NONE
-                        }
-                    } else {
-                        solve_trig(alpha, beta, rhs)
-                    }
+                    solve_trig(k.x * hx + k.y * hy, k.y * hx - k.x * hy, rhs, size)
                 };
                 let q3s = match self.kind {
-                    ArmKind::IntersectingShoulder => self.joint3_roots(&|q3| l1(&h(q3))),
-                    ArmKind::ParallelShoulder => self.joint3_roots(&|q3| l2(&h(q3))),
+                    ArmKind::IntersectingShoulder => self.joint3_roots(&|q3| l1(&h(q3)), area),
+                    ArmKind::ParallelShoulder => self.joint3_roots(&|q3| l2(&h(q3)), length),
                     _ => {
                         let residual = |q3: f64| {
                             let hv = h(q3);
@@ -1082,24 +1282,26 @@ impl DecoupledIk {
                             let y = l2(&hv) / b;
                             x * x + y * y - hv.xy().norm_squared()
                         };
+                        // Terms of the size of X², Y² and |h|².
+                        let size = (area / a).powi(2) + (length / b).powi(2) + area;
                         if self.prismatic[2] {
-                            quartic_in_displacement(&residual)
+                            quartic_in_displacement(&residual, size)
                         } else {
-                            trig2_roots(residual)
+                            trig2_roots(residual, size)
                         }
                     }
                 };
                 for &q3 in q3s.as_slice() {
                     let hv = h(q3);
                     let q2s = match self.kind {
-                        ArmKind::IntersectingShoulder => q2_from(&n.xy(), &hv, l2(&hv)),
-                        ArmKind::ParallelShoulder => q2_from(&u.xy(), &hv, 0.5 * l1(&hv)),
+                        ArmKind::IntersectingShoulder => q2_from(&n.xy(), &hv, l2(&hv), length),
+                        ArmKind::ParallelShoulder => q2_from(&u.xy(), &hv, 0.5 * l1(&hv), area),
                         _ => {
                             // Rz(q2) h_xy = X û + Y n̂ (û ⟂ n̂ in the plane).
                             let (x, y) = (l1(&hv) / (2.0 * a), l2(&hv) / b);
                             let target = u.xy() * (x / a) + n.xy() * (y / b);
                             if hv.xy().norm() < tiny {
-                                Roots::one(0.0)
+                                Roots::<3>::FREE
                             } else {
                                 Roots::one(target.y.atan2(target.x) - hv.y.atan2(hv.x))
                             }
@@ -1107,13 +1309,15 @@ impl DecoupledIk {
                     };
                     for &q2 in q2s.as_slice() {
                         let g = self.chain[1].moved(JointKind::Revolute, q2).point(&hv);
-                        if let Some(q1) = azimuth(p, &g, tiny) {
-                            push(match self.kind {
-                                // q2 and q3 went through X/a and Y/b: refined where a or b
-                                // (the shoulder's offset, the sine of its angle) is small.
-                                ArmKind::OffsetShoulder => self.polished(w, p, [q1, q2, q3]),
-                                _ => [q1, q2, q3],
-                            });
+                        if let Some((q1, free1)) = azimuth(p, &g, tiny) {
+                            let q = [q1, q2, q3];
+                            // q2 and q3 went through X/a and Y/b: refined where a or b (the
+                            // shoulder's offset, the sine of its angle) is small.
+                            let q = match self.kind {
+                                ArmKind::OffsetShoulder => self.polished_arm(w, p, q),
+                                _ => q,
+                            };
+                            push(q, [free1, q2s.free, false]);
                         }
                     }
                 }
@@ -1130,13 +1334,16 @@ impl DecoupledIk {
                 let dir = other - lead * (other.z / lead.z);
                 let (a, b) = (base.xy(), dir.xy());
                 let bb = b.norm_squared();
-                let roots = real_polynomial_roots([
-                    a.norm_squared() - p.xy().norm_squared(),
-                    2.0 * a.dot(&b),
-                    bb,
-                    0.0,
-                    0.0,
-                ]);
+                let roots = real_polynomial_roots(
+                    [
+                        a.norm_squared() - p.xy().norm_squared(),
+                        2.0 * a.dot(&b),
+                        bb,
+                        0.0,
+                        0.0,
+                    ],
+                    area,
+                );
                 for &q_other in roots.as_slice() {
                     let q_lead = (p.z - f0.z - q_other * other.z) / lead.z;
                     let (q2, q3) = if lead_is_2 {
@@ -1145,8 +1352,8 @@ impl DecoupledIk {
                         (q_other, q_lead)
                     };
                     let f = f0 + u * q2 + v * q3;
-                    if let Some(q1) = azimuth(p, &f, tiny) {
-                        push([q1, q2, q3]);
+                    if let Some((q1, free1)) = azimuth(p, &f, tiny) {
+                        push([q1, q2, q3], [free1, false, false]);
                     }
                 }
             }
@@ -1155,19 +1362,19 @@ impl DecoupledIk {
     }
 
     /// The values of joint 3 where `f` (affine in its cosine and sine, or quadratic in its
-    /// displacement) vanishes.
-    fn joint3_roots(&self, f: &dyn Fn(f64) -> f64) -> Roots<4> {
+    /// displacement; of terms of magnitude `size`) vanishes.
+    fn joint3_roots(&self, f: &dyn Fn(f64) -> f64, size: f64) -> Roots<6> {
         let mut out = Roots::NONE;
         if self.prismatic[2] {
             // f is quadratic in the displacement: from three samples.
             let (f0, f1, fm) = (f(0.0), f(1.0), f(-1.0));
             let c2 = 0.5 * (f1 + fm) - f0;
             let c1 = 0.5 * (f1 - fm);
-            for x in real_polynomial_roots([f0, c1, c2, 0.0, 0.0]).as_slice() {
+            for x in real_polynomial_roots([f0, c1, c2, 0.0, 0.0], size).as_slice() {
                 out.push(*x);
             }
         } else {
-            for x in trig_roots(|c, s| f(s.atan2(c))).as_slice() {
+            for x in trig_roots(|c, s| f(s.atan2(c)), size).as_slice() {
                 out.push(*x);
             }
         }
@@ -1175,17 +1382,39 @@ impl DecoupledIk {
     }
 
     /// Appends the wrist solutions of one arm solution.
-    fn solve_wrist(&self, arm: &[f64; 3], target: &Rigid, out: &mut Solutions) {
-        let g = self.arm_frame(arm).compose(&self.chain[3]);
+    ///
+    /// A joint the position leaves free (q1 with the wrist centre on axis 1, q2 on axis 2) turns
+    /// the frame the wrist starts from: it takes the value nearest 0 at which the wrist can
+    /// point axis 6 as the pose asks (any value for a wrist whose axes are at right angles).
+    fn solve_wrist(&self, arm: &ArmSolution, target: &Rigid, out: &mut Solutions) {
         let (a4, a5, a6) = (self.chain[4].r, self.chain[5].r, self.chain[6].r);
-        // M = Rz(q4) A4 Rz(q5) A5 Rz(q6).
-        let m = g.r.transpose() * target.r * a6.transpose();
-        let b = m.column(2).into_owned();
         let a = a5.column(2).into_owned();
         let k4 = a4.transpose() * Vector3::z();
         let alpha = k4.x * a.x + k4.y * a.y;
         let beta = k4.y * a.x - k4.x * a.y;
-        for &q5 in solve_trig(alpha, beta, b.z - k4.z * a.z).as_slice() {
+        // M = Rz(q4) A4 Rz(q5) A5 Rz(q6), and the q5 equation's right-hand side.
+        let m_of = |q: &[f64; 3]| {
+            self.arm_frame(q).compose(&self.chain[3]).r.transpose() * target.r * a6.transpose()
+        };
+        let rhs = |m: &Matrix3<f64>| m[(2, 2)] - k4.z * a.z;
+        let mut q = arm.q;
+        for j in (0..2).filter(|&j| arm.free[j]) {
+            let rho = alpha.hypot(beta);
+            q[j] = nearest_within(
+                |c, s| {
+                    let mut at = q;
+                    at[j] = s.atan2(c);
+                    rhs(&m_of(&at))
+                },
+                -rho,
+                rho,
+                1.0,
+            );
+        }
+        let arm = q;
+        let m = m_of(&arm);
+        let b = m.column(2).into_owned();
+        for &q5 in solve_trig(alpha, beta, rhs(&m), 1.0).as_slice() {
             let v = a4 * rz(q5) * a;
             // Rz(q4) v = b; at the wrist singularity (axis 6 along axis 4) q4 = 0.
             let q4 = if b.xy().norm() < 1e-9 || v.xy().norm() < 1e-9 {
@@ -1214,6 +1443,7 @@ impl DecoupledIk {
         };
         let c = &self.chain;
         let tiny = 1e-12 * self.scale;
+        let area = self.scale * self.scale;
         let z = Vector3::z();
         let x_root = c[0].inverse().point(&target.point(&x_tool));
         // q1: (Rz(q1) n) · X = κ.
@@ -1221,16 +1451,24 @@ impl DecoupledIk {
         let beta = n.x * x_root.y - n.y * x_root.x;
         let axis6 = c[0].r.transpose() * target.r * c[6].r.transpose() * z;
         let (t1, t2, t3) = (c[1].p, c[2].p, c[3].p);
-        for &q1 in solve_trig(alpha, beta, kappa - n.z * x_root.z).as_slice() {
+        // q5: σ e_z · A4 Rz(q5) v6 = n · axis 6 (both in the frame after joint 1).
+        let v6 = c[5].r * z;
+        let k4 = c[4].r.transpose() * z;
+        let a5 = k4.x * v6.x + k4.y * v6.y;
+        let b5 = k4.y * v6.x - k4.x * v6.y;
+        let q5_rhs = |q1: f64| sigma * n.dot(&(rz(q1).transpose() * axis6)) - k4.z * v6.z;
+        let q1s = solve_trig(alpha, beta, kappa - n.z * x_root.z, self.scale);
+        for &q1 in q1s.as_slice() {
+            // X on axis 1 leaves q1 free: the value nearest 0 at which q5 can align axis 6.
+            let q1 = if q1s.free {
+                let rho = a5.hypot(b5);
+                nearest_within(|cc, ss| q5_rhs(ss.atan2(cc)), -rho, rho, 1.0)
+            } else {
+                q1
+            };
             let r0 = rz(q1);
             let x1 = r0.transpose() * x_root;
-            // q5: σ e_z · A4 Rz(q5) v6 = n · axis 6 (both in the frame after joint 1).
-            let d6 = r0.transpose() * axis6;
-            let v6 = c[5].r * z;
-            let k4 = c[4].r.transpose() * z;
-            let a5 = k4.x * v6.x + k4.y * v6.y;
-            let b5 = k4.y * v6.x - k4.x * v6.y;
-            for &q5 in solve_trig(a5, b5, sigma * n.dot(&d6) - k4.z * v6.z).as_slice() {
+            for &q5 in solve_trig(a5, b5, q5_rhs(q1), 1.0).as_slice() {
                 // R1ᵀ M = Rz(ψ) G Rz(q6) with G = K0 A4 Rz(q5) A5.
                 let m = c[1].r.transpose()
                     * r0.transpose()
@@ -1240,21 +1478,38 @@ impl DecoupledIk {
                 let g = k0 * c[4].r * rz(q5) * c[5].r;
                 let (g0, g1) = (g[(2, 0)], g[(2, 1)]);
                 let (m0, m1) = (m[(2, 0)], m[(2, 1)]);
-                let q6 = if g0.hypot(g1) < 1e-9 {
-                    0.0
-                } else {
-                    (g1 * m0 - g0 * m1).atan2(g0 * m0 + g1 * m1)
-                };
-                let psi = z_angle(&(m * rz(q6).transpose() * g.transpose()));
+                let psi_of = |q6: f64| z_angle(&(m * rz(q6).transpose() * g.transpose()));
                 // X's position fixes the origin of the frame after joint 4: V = Rz(q2) s(q3).
-                let b_r = c[1].r * rz(psi) * k0;
-                let v = c[1].r.transpose() * (x1 - b_r * x4 - t1);
+                let v_of = |q6: f64| c[1].r.transpose() * (x1 - t1) - rz(psi_of(q6)) * k0 * x4;
                 let s = |q3: f64| t2 + c[2].r * rz(q3) * t3;
-                let q3s = trig_roots(|cc, ss| {
-                    s(ss.atan2(cc)).xy().norm_squared() - v.xy().norm_squared()
-                });
+                let q3_roots = |v: &Vector3<f64>| {
+                    trig_roots(
+                        |cc, ss| s(ss.atan2(cc)).xy().norm_squared() - v.xy().norm_squared(),
+                        area,
+                    )
+                };
+                let q6 = if g0.hypot(g1) >= 1e-9 {
+                    (g1 * m0 - g0 * m1).atan2(g0 * m0 + g1 * m1)
+                } else {
+                    // Axis 6 along axes 2–4: only ψ + q6 is fixed, but X off axis 4 makes ψ
+                    // move the planar arm's target V: q6 is the value nearest 0 at which |V|
+                    // lies within the planar arm's reach |s(q3)|.
+                    let (a, b, c0) =
+                        trig_coefficients(|cc, ss| s(ss.atan2(cc)).xy().norm_squared());
+                    let rho = a.hypot(b);
+                    nearest_within(
+                        |cc, ss| v_of(ss.atan2(cc)).xy().norm_squared(),
+                        c0 - rho,
+                        c0 + rho,
+                        area,
+                    )
+                };
+                let psi = psi_of(q6);
+                let v = v_of(q6);
+                let q3s = q3_roots(&v);
                 for &q3 in q3s.as_slice() {
-                    let Some(q2) = azimuth(&v, &s(q3), tiny) else {
+                    // (A free q2 is any: q4 takes up ψ.)
+                    let Some((q2, _)) = azimuth(&v, &s(q3), tiny) else {
                         continue;
                     };
                     let q4 = sigma34 * (psi - q2 - sigma3 * q3);
@@ -1264,15 +1519,26 @@ impl DecoupledIk {
         }
     }
 
+    /// Appends the candidate `q` if it reproduces `target` to [`VERIFY_TOLERANCE`] and is not
+    /// already there; a candidate missing the pose by more than the arithmetic does
+    /// ([`POLISHED`]) is [`polished`](Self::polished) first.
     fn push_verified(&self, q: [f64; 6], target: &Rigid, out: &mut Solutions) {
-        let q = self.normalise(SVector::from(q));
-        if out
-            .iter()
-            .any(|s| (0..6).all(|j| self.joint_distance(j, s[j], q[j]) < 1e-10))
-        {
+        let known = |q: &SVector<f64, 6>| {
+            out.iter()
+                .any(|s| (0..6).all(|j| self.joint_distance(j, s[j], q[j]) < SAME_SOLUTION))
+        };
+        let mut q = self.normalise(SVector::from(q));
+        if known(&q) {
             return;
         }
-        let (dp, dr) = frame_error(&self.fk_frame(&q), target);
+        let (mut dp, mut dr) = frame_error(&self.fk_frame(&q), target);
+        if dp > POLISHED * self.scale || dr > POLISHED {
+            q = self.normalise(self.polished(q, target));
+            if known(&q) {
+                return;
+            }
+            (dp, dr) = frame_error(&self.fk_frame(&q), target);
+        }
         if dp <= VERIFY_TOLERANCE && dr <= VERIFY_TOLERANCE {
             out.push(q);
         }
@@ -1306,28 +1572,48 @@ impl DecoupledIk {
     }
 }
 
-/// Up to 4 solutions `(q1, q2, q3)` of the inverse position problem.
+/// Candidate solutions `(q1, q2, q3)` of the inverse position problem: at most 4, and more at
+/// a singular pose, where a near-double root is also tried as the double root
+/// ([`solve_trig`], [`real_roots_near`]): up to 6 values of q3 times 3 of q2.
 struct ArmSolutions {
-    q: [[f64; 3]; 4],
+    q: [ArmSolution; ArmSolutions::CAPACITY],
     len: usize,
 }
 
+/// `(q1, q2, q3)`, and which of them the wrist centre's position leaves free (on axis 1 or 2;
+/// set to 0 until the wrist chooses them).
+#[derive(Clone, Copy, Debug)]
+struct ArmSolution {
+    q: [f64; 3],
+    free: [bool; 3],
+}
+
 impl ArmSolutions {
-    fn push(&mut self, q: [f64; 3]) {
-        if self.len < 4 {
-            self.q[self.len] = q;
+    const CAPACITY: usize = 18;
+
+    const NONE: ArmSolutions = ArmSolutions {
+        q: [ArmSolution {
+            q: [0.0; 3],
+            free: [false; 3],
+        }; ArmSolutions::CAPACITY],
+        len: 0,
+    };
+
+    fn push(&mut self, q: [f64; 3], free: [bool; 3]) {
+        if self.len < Self::CAPACITY {
+            self.q[self.len] = ArmSolution { q, free };
             self.len += 1;
         }
     }
 
-    fn as_slice(&self) -> &[[f64; 3]] {
+    fn as_slice(&self) -> &[ArmSolution] {
         &self.q[..self.len]
     }
 }
 
 /// The real roots of `f`, a polynomial of degree at most 4 in a prismatic joint's
 /// displacement, from five samples.
-fn quartic_in_displacement(f: &dyn Fn(f64) -> f64) -> Roots<4> {
+fn quartic_in_displacement(f: &dyn Fn(f64) -> f64, size: f64) -> Roots<6> {
     // Newton's divided differences at −2..2, expanded to monomial coefficients.
     let xs = [-2.0, -1.0, 0.0, 1.0, 2.0];
     let mut dd: [f64; 5] = core::array::from_fn(|i| f(xs[i]));
@@ -1349,5 +1635,5 @@ fn quartic_in_displacement(f: &dyn Fn(f64) -> f64) -> Roots<4> {
         next[0] += dd[k];
         c = next;
     }
-    real_polynomial_roots(c)
+    real_polynomial_roots(c, size)
 }

@@ -458,3 +458,38 @@ fn the_solution_list_is_fixed_capacity() {
         .wrist_centre_in_tool()
         .expect("a spherical wrist");
 }
+
+/// Issue 62's reproducer: at q5 = 0 the q5 equation's right-hand side came out one rounding
+/// below its range's end, split the double root into ±1.49e-8, and both candidates missed the
+/// pose, losing the whole arm branch that made it, on every path alike.
+#[test]
+fn wrist_singular_pose_keeps_its_arm_branch() {
+    let q = SVector::<f64, 6>::from([
+        -1.9999943780643115,
+        1.1207482993556654,
+        0.23217305068068805,
+        1.2849776776310398,
+        0.0,
+        1.9293003123472254,
+    ]);
+    let pose = puma560::fk(&q);
+    let runtime = Robot::from_model(model("puma560"));
+    let solutions = puma560::ik(&pose);
+    assert_eq!(
+        solutions,
+        DecoupledIk::from_model(runtime.model())
+            .unwrap()
+            .solve(&pose)
+    );
+    let same_arm: Vec<_> = solutions
+        .iter()
+        .filter(|s| (0..3).all(|j| wrap_angle(s[j] - q[j]).abs() < 1e-7))
+        .collect();
+    assert_eq!(same_arm.len(), 1, "{:?}", solutions.as_slice());
+    // The singular family's representative: q4 = 0, q6 = q4 + q6.
+    let s = same_arm[0];
+    assert_eq!(s[3], 0.0);
+    assert!(s[4].abs() < 1e-12 && wrap_angle(s[5] - (q[3] + q[5])).abs() < 1e-12);
+    let (dp, dr) = pose_error(&puma560::fk(s), &pose);
+    assert!(dp < 1e-14 && dr < 1e-14, "{dp:e} {dr:e}");
+}

@@ -38,6 +38,7 @@ mod ik_closed_form;
 mod ik_numeric;
 mod ik_preference;
 mod ik_random;
+mod ik_singular;
 mod ik_task;
 mod non_finite;
 mod payload;
