@@ -11,6 +11,7 @@
 //! `cargo bench --bench parameters`.
 
 use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
+use dhgen::parameters::PhysicalConsistency;
 use dhgen::payload::{self, Payload};
 use dhgen::{ArmDynamics, Robot};
 use nalgebra::{DVector, SVector};

@@ -1,14 +1,16 @@
-//! Reads criterion's saved estimates of the `generated` bench and prints one Markdown table:
-//! robot × quantity → median ns of generated f64, generated f32 and runtime, the speed-up,
-//! and the operation count of the generated function.
-//!
-//! Then, when `cargo bench --bench batch` has run, two more tables: the time per configuration
+//! Writes docs/performance.md from criterion's saved estimates: the host and toolchain, then
+//! one Markdown table of the `generated` bench (robot × quantity → median ns of generated
+//! f64, generated f32 and runtime, the speed-up, and the operation count of the generated
+//! function) and, when `cargo bench --bench batch` has run, two of the time per configuration
 //! of the scalar functions, of the `batch` slice functions and of the generated functions on
 //! SIMD packs, in `f64` (`f64x4`) and in `f32` (`f32x8`).
 //!
-//! `cargo bench --bench generated && cargo run --release --example bench_report`
+//! `cargo bench --bench generated && cargo bench --bench batch &&
+//! cargo run --release --example bench_report -- docs/performance.md`
+//! (without a path it prints to standard output).
 
 use dhgen::RobotModel;
+use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
 const ROBOTS: [&str; 6] = [
@@ -54,10 +56,14 @@ fn main() {
         );
         std::process::exit(1);
     }
-    println!(
+    let mut out = String::new();
+    header(&mut out);
+    writeln!(
+        out,
         "| robot | quantity | generated f64 (ns) | generated f32 (ns) | runtime (ns) | runtime / generated f64 | ops (generated) |"
-    );
-    println!("|---|---|---:|---:|---:|---:|---:|");
+    )
+    .unwrap();
+    writeln!(out, "|---|---|---:|---:|---:|---:|---:|").unwrap();
     for robot in ROBOTS {
         let model = match RobotModel::from_toml_file(root.join(format!("robots/{robot}.toml"))) {
             Ok(m) => m,
@@ -100,23 +106,78 @@ fn main() {
                     .map(|((a, b), c)| a + b + c),
                 other => op(other),
             };
-            println!(
+            writeln!(
+                out,
                 "| {robot} | {q} | {} | {} | {} | {ratio} | {} |",
                 fmt(g64),
                 fmt(g32),
                 fmt(rt),
                 count.map_or_else(|| "–".into(), |c| c.to_string())
-            );
+            )
+            .unwrap();
         }
         if let Some(sep) = median_ns(&criterion.join(robot).join("all_terms/separate_f64")) {
-            println!("| {robot} | all_terms (separate calls) | {sep:.0} | | | | |");
+            writeln!(
+                out,
+                "| {robot} | all_terms (separate calls) | {sep:.0} | | | | |"
+            )
+            .unwrap();
         }
     }
-    batch_table(&criterion);
+    batch_table(&criterion, &mut out);
+    match std::env::args().nth(1) {
+        Some(path) => {
+            if let Err(e) = std::fs::write(&path, out) {
+                eprintln!("{path}: {e}");
+                std::process::exit(1);
+            }
+        }
+        None => print!("{out}"),
+    }
+}
+
+/// The page's title, how it is made, and the host and toolchain the figures are from.
+fn header(out: &mut String) {
+    let cpu = std::fs::read_to_string("/proc/cpuinfo")
+        .ok()
+        .and_then(|t| {
+            t.lines()
+                .find(|l| l.starts_with("model name"))
+                .and_then(|l| l.split(':').nth(1))
+                .map(|m| m.trim().to_string())
+        })
+        .unwrap_or_else(|| "unknown CPU".into());
+    let cores = std::thread::available_parallelism().map_or(0, |n| n.get());
+    let rustc = std::process::Command::new(std::env::var("RUSTC").unwrap_or("rustc".into()))
+        .arg("-V")
+        .output()
+        .ok()
+        .map(|o| String::from_utf8_lossy(&o.stdout).trim().to_string())
+        .unwrap_or_default();
+    writeln!(
+        out,
+        "# Performance\n\n\
+         Written by `examples/bench_report.rs` from the last benchmark run; do not edit by hand.\n\
+         Regenerate with\n\n\
+         ```sh\n\
+         cargo bench --bench generated && cargo bench --bench batch\n\
+         cargo run --release --example bench_report -- docs/performance.md\n\
+         ```\n\n\
+         Medians of criterion benchmarks (inputs and outputs through `std::hint::black_box`, 64\n\
+         random states cycled), on {cpu} ({cores} threads), {rustc}, the default target. Times\n\
+         move between hosts and sessions; the ratios measured side by side, and the instruction\n\
+         counts of `examples/instructions.rs` (callgrind), do not. \"ops\" counts the generated\n\
+         function's additions and multiplications after sharing (sines and cosines come on top,\n\
+         once per joint read). How each figure was reached, and the changes measured and not\n\
+         kept: [experiments.md](experiments.md). Comparisons with Pinocchio and CppADCodeGen:\n\
+         `scripts/pinocchio_bench.sh`, `scripts/cppadcg_counts.sh`.\n\n\
+         ## Generated code against the runtime path\n"
+    )
+    .unwrap();
 }
 
 /// The `batch` bench's figures, per configuration (each of its measurements covers 64).
-fn batch_table(criterion: &Path) {
+fn batch_table(criterion: &Path, out: &mut String) {
     const BATCH: [&str; 9] = [
         "fk",
         "fk_matrix",
@@ -136,11 +197,13 @@ fn batch_table(criterion: &Path) {
         ("scalar_f64", "batch_f64x4", "packs_f64x4"),
         ("scalar_f32", "batch_f32x8", "packs_f32x8"),
     ] {
-        println!();
-        println!(
+        writeln!(out, "\n## SIMD batches, {batch}\n").unwrap();
+        writeln!(
+            out,
             "| robot | quantity | {scalar} (ns/config) | {batch} (ns/config) | {packs} (ns/config) | scalar / batch | scalar / packs |"
-        );
-        println!("|---|---|---:|---:|---:|---:|---:|");
+        )
+        .unwrap();
+        writeln!(out, "|---|---|---:|---:|---:|---:|---:|").unwrap();
         for robot in ["puma560", "panda"] {
             for q in BATCH {
                 let dir = criterion.join(robot).join(q);
@@ -150,14 +213,16 @@ fn batch_table(criterion: &Path) {
                     (Some(s), Some(x)) => format!("{:.1}×", s / x),
                     _ => "–".into(),
                 };
-                println!(
+                writeln!(
+                    out,
                     "| {robot} | {q} | {} | {} | {} | {} | {} |",
                     fmt(s),
                     fmt(b),
                     fmt(p),
                     ratio(b),
                     ratio(p)
-                );
+                )
+                .unwrap();
             }
         }
     }

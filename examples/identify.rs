@@ -36,7 +36,7 @@
 
 use dhgen::identification::{LeastSquares, PeriodAverage};
 use dhgen::nalgebra::{DMatrix, DVector, SMatrix, SVector};
-use dhgen::parameters::Links;
+use dhgen::parameters::{Links, PhysicalConsistency};
 use dhgen::payload::Payload;
 use dhgen::trajectory::{FourierSeries, MultiProfile, Profile, Setpoint, Synchronized};
 use dhgen::{Robot, RobotModel};

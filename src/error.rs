@@ -8,5 +8,5 @@ pub enum Error {
     /// (or `<string>`), and for a validation error the link and the field at fault, e.g.
     /// `robots/arm.toml: link 2, field \`mass\`: mass -1 is negative`.
     #[error(transparent)]
-    Load(#[from] dhgen_model::LoadError),
+    Load(#[from] dhgen_description::LoadError),
 }

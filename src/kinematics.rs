@@ -2,7 +2,7 @@
 
 use crate::Joints;
 use crate::robot::{Rigid, Robot};
-use dhgen_model::JointKind;
+use dhgen_description::JointKind;
 use nalgebra::{Isometry3, Matrix6xX, Vector6};
 
 impl Robot {
@@ -31,15 +31,15 @@ impl Robot {
     /// value that happens to be a multiple of π/2 gains nothing from them, and the test costs
     /// a division and a rounding per joint and call.)
     #[inline]
-    pub(crate) fn joint_value(&self, i: usize, q: f64) -> dhgen_model::JointValue<f64> {
+    pub(crate) fn joint_value(&self, i: usize, q: f64) -> dhgen_description::JointValue<f64> {
         let body = &self.bodies[i];
         let v = q + body.offset;
         match body.joint {
             JointKind::Revolute => {
                 let (sin, cos) = v.sin_cos();
-                dhgen_model::JointValue::Revolute { cos, sin }
+                dhgen_description::JointValue::Revolute { cos, sin }
             }
-            JointKind::Prismatic => dhgen_model::JointValue::Prismatic(v),
+            JointKind::Prismatic => dhgen_description::JointValue::Prismatic(v),
         }
     }
 
@@ -95,7 +95,7 @@ impl Robot {
     pub fn body_jacobian(&self, q: &(impl Joints<f64> + ?Sized)) -> Matrix6xX<f64> {
         let q = self.check_len("body_jacobian", "q", q);
         let (j, last) = self.jacobian_and_last_frame(q);
-        crate::velocity::turn_jacobian(&self.tool_rotation_t(&last), j)
+        dhgen_kernel::jacobian::turn_jacobian(&self.tool_rotation_t(&last), j)
     }
 
     /// `J̇_b q̇` in the tool's own axes ([`crate::Arm::body_jdot_qdot`]), from one walk of the
@@ -111,8 +111,8 @@ impl Robot {
         let q = self.check_len("body_jdot_qdot", "q", q);
         let qd = nalgebra::DVector::from_column_slice(self.check_len("body_jdot_qdot", "qd", qd));
         let (j, last) = self.jacobian_and_last_frame(q);
-        let jdot_qdot = crate::velocity::jdot_qdot_from_jacobian(self, &j, &qd);
-        crate::velocity::turn_jdot_qdot(&self.tool_rotation_t(&last), &(j * qd), &jdot_qdot)
+        let jdot_qdot = dhgen_kernel::jacobian::jdot_qdot_from_jacobian(self, &j, &qd);
+        dhgen_kernel::jacobian::turn_jdot_qdot(&self.tool_rotation_t(&last), &(j * qd), &jdot_qdot)
     }
 
     /// `Rᵀ` for the tool's world rotation `R`, from the last joint frame's pose (the tool's

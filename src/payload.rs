@@ -30,8 +30,8 @@
 //! assert!((tau - tau0).norm() > 1.0); // holding 2 kg takes torque
 //! ```
 
-use crate::arm::{Arm, ArmAllocator, ArmDynamics};
-use crate::task_space::ToolTerms;
+use crate::{Arm, ArmAllocator, ArmDynamics};
+use dhgen_kernel::ToolTerms;
 use nalgebra::{
     DefaultAllocator, Isometry3, Matrix3, Matrix6, OMatrix, OVector, Point3, U3, Vector3, Vector6,
 };
@@ -54,15 +54,15 @@ impl Payload {
     /// A payload of `mass` kg with centre of mass `com` (m, tool frame) and inertia tensor
     /// `inertia` about the centre of mass (kg·m², tool-frame axes). Refused, with the reason,
     /// by the rules and ranges of the description format
-    /// ([`dhgen_model::validate`]): a negative or non-finite mass or one above
-    /// [`MASS`](dhgen_model::validate::MASS) (10⁶ kg), a centre of mass that is not finite or
-    /// has a coordinate beyond [`LENGTH`](dhgen_model::validate::LENGTH) (10³ m, as a link's
+    /// ([`dhgen_description::validate`]): a negative or non-finite mass or one above
+    /// [`MASS`](dhgen_description::validate::MASS) (10⁶ kg), a centre of mass that is not finite or
+    /// has a coordinate beyond [`LENGTH`](dhgen_description::validate::LENGTH) (10³ m, as a link's
     /// `com`), an inertia tensor that is not symmetric, not positive semi-definite, breaks the
-    /// triangle inequality or has an entry beyond [`INERTIA`](dhgen_model::validate::INERTIA).
+    /// triangle inequality or has an entry beyond [`INERTIA`](dhgen_description::validate::INERTIA).
     /// Within these ranges the ten [`parameters`](Payload::parameters) are finite (checked
     /// too), so the payload's terms are finite wherever the arm's are.
     pub fn new(mass: f64, com: [f64; 3], inertia: [[f64; 3]; 3]) -> Result<Payload, PayloadError> {
-        use dhgen_model::validate::{LENGTH, check_inertia_tensor, check_mass};
+        use dhgen_description::validate::{LENGTH, check_inertia_tensor, check_mass};
         check_mass(mass).map_err(PayloadError)?;
         if com.iter().any(|c| !c.is_finite()) {
             return Err(PayloadError(format!(
@@ -157,8 +157,8 @@ impl crate::Robot {
         let mut model = self.model().clone();
         let tool = model
             .tool
-            .map_or_else(dhgen_model::Frame::identity, |t| t.frame::<f64>());
-        let held = dhgen_model::Inertial {
+            .map_or_else(dhgen_description::Frame::identity, |t| t.frame::<f64>());
+        let held = dhgen_description::Inertial {
             mass: payload.mass,
             com: payload.com,
             inertia: payload.inertia,
@@ -460,8 +460,28 @@ where
     if w.mass > 0.0 {
         let offset = w.h / w.mass;
         for (k, mut column) in out.column_iter_mut().enumerate() {
-            column += crate::velocity::moved_column(&j, k, &offset) * w.mass;
+            column += dhgen_kernel::jacobian::moved_column(&j, k, &offset) * w.mass;
         }
     }
     if total > 0.0 { out / total } else { out }
+}
+
+#[cfg(feature = "motion")]
+/// [`tool`](crate::task_space::tool) for the arm holding `payload` in its tool frame: the task-space dynamics of arm
+/// and payload together, from [`payload`](crate::payload)'s mass matrix, bias and gravity
+/// torques (the Jacobian and `J̇ q̇` are the arm's: the payload rides on the tool frame), all
+/// from one [`payload::tool_terms`](crate::payload::tool_terms).
+pub fn tool_with_payload<A: ArmDynamics>(
+    arm: &A,
+    payload: &Payload,
+    q: &OVector<f64, A::Dof>,
+    qd: &OVector<f64, A::Dof>,
+) -> Result<
+    dhgen_motion::task_space::TaskDynamics<nalgebra::U6, A::Dof>,
+    dhgen_motion::task_space::TaskSpaceError,
+>
+where
+    DefaultAllocator: ArmAllocator<A::Dof>,
+{
+    dhgen_motion::task_space::tool_from_terms(tool_terms(arm, payload, q, qd))
 }

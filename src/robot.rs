@@ -3,15 +3,15 @@
 //! the per-call work, which lives in [`crate::kinematics`] and [`crate::dynamics`]).
 
 use crate::{Error, Joints};
-pub(crate) use dhgen_model::Rigid;
-use dhgen_model::{ChainRef, JointChain, JointKind, RobotModel};
+use dhgen_description::{ChainRef, JointChain, JointKind, RobotModel};
+pub(crate) use dhgen_kernel::Rigid;
 use nalgebra::Vector3;
 use std::path::Path;
 
 /// The constants of one joint and the link it moves, in the runtime's working form (taken
 /// from the model's [`JointChain`], computed once at construction).
 ///
-/// Each body carries its *joint frame* (see [`dhgen_model::chain`]), in which its joint is a
+/// Each body carries its *joint frame* (see [`dhgen_description::chain`]), in which its joint is a
 /// pure `Rz(q + offset)` or `Tz(q + offset)` about or along the frame's z axis.
 #[derive(Clone, Debug)]
 pub(crate) struct BodyConstants {
@@ -130,10 +130,10 @@ impl Robot {
         Ok(Robot::from_model(RobotModel::from_toml_file(path)?))
     }
 
-    /// Reads a URDF robot (see [`dhgen_model::urdf`]: the serial chain from the root link
+    /// Reads a URDF robot (see [`dhgen_description::urdf`]: the serial chain from the root link
     /// to the one end of the movable joints, fixed joints merged, quarter turns within 1e-9
     /// rad read as exact). For a named base or tip, or a wider snapping tolerance, read with
-    /// [`dhgen_model::urdf::read`] and build with [`Robot::from_model`].
+    /// [`dhgen_description::urdf::read`] and build with [`Robot::from_model`].
     ///
     /// ```
     /// let arm = dhgen::Robot::from_urdf_str(r#"
@@ -168,7 +168,7 @@ impl Robot {
     /// description format otherwise.
     pub fn from_file(path: impl AsRef<Path>) -> Result<Robot, Error> {
         let path = path.as_ref();
-        if dhgen_model::urdf::is_urdf_path(path) {
+        if dhgen_description::urdf::is_urdf_path(path) {
             Robot::from_urdf_file(path)
         } else {
             Robot::from_toml_file(path)

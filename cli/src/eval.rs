@@ -6,7 +6,7 @@
 use crate::table::{degrees, trimmed};
 use dhgen::Robot;
 use dhgen::nalgebra::{DMatrix, DVector, Matrix4};
-use dhgen_model::{Angle, JointKind, validate};
+use dhgen_description::{Angle, JointKind, validate};
 use serde_json::{Value, json};
 use std::fmt::Write as _;
 

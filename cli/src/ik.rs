@@ -10,7 +10,7 @@ use dhgen::nalgebra::{DVector, Isometry3, Translation3, Unit, UnitQuaternion, Ve
 use dhgen::rotation::Rpy;
 use dhgen::velocity::JacobianSvd;
 use dhgen::{Arm, Robot};
-use dhgen_model::Angle;
+use dhgen_description::Angle;
 use serde_json::{Value, json};
 use std::f64::consts::PI;
 use std::fmt::Write as _;

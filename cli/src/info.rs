@@ -3,7 +3,7 @@
 
 use crate::table::{Align, Table, degrees, trimmed};
 use dhgen::Robot;
-use dhgen_model::{Convention, JointKind, Link, Pose, RobotModel};
+use dhgen_description::{Convention, JointKind, Link, Pose, RobotModel};
 use std::fmt::Write as _;
 
 /// The report printed by `dhgen info`.
@@ -272,7 +272,7 @@ fn wrist_text(robot: &Robot) -> String {
 
 /// What reading a URDF file decided: the chain's ends, its joints by name, the joints held
 /// at zero, and every value read as an exact quarter turn or coordinate axis.
-pub fn urdf_report(u: &dhgen_model::urdf::UrdfRobot) -> String {
+pub fn urdf_report(u: &dhgen_description::urdf::UrdfRobot) -> String {
     let mut out = String::new();
     let field = |out: &mut String, name: &str, value: &str| {
         let _ = writeln!(out, "{:<16} {value}", format!("{name}:"));

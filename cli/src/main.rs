@@ -300,19 +300,19 @@ fn load(source: &Source) -> Result<Robot, String> {
 }
 
 /// Loads a description, with what the URDF reader found for a URDF file.
-fn read(source: &Source) -> Result<(Robot, Option<dhgen_model::urdf::UrdfRobot>), String> {
+fn read(source: &Source) -> Result<(Robot, Option<dhgen_description::urdf::UrdfRobot>), String> {
     let path: &Path = &source.robot;
-    if dhgen_model::urdf::is_urdf_path(path) {
-        let mut options = dhgen_model::urdf::UrdfOptions {
+    if dhgen_description::urdf::is_urdf_path(path) {
+        let mut options = dhgen_description::urdf::UrdfOptions {
             tip: source.tip.clone(),
             base: source.base.clone(),
             ..Default::default()
         };
         if let Some(snap) = source.snap {
-            options.snap = dhgen_model::urdf::UrdfOptions::check_snap(snap)
+            options.snap = dhgen_description::urdf::UrdfOptions::check_snap(snap)
                 .map_err(|why| format!("--snap {snap}: {why}"))?;
         }
-        let urdf = dhgen_model::urdf::read_file(path, &options).map_err(|e| e.to_string())?;
+        let urdf = dhgen_description::urdf::read_file(path, &options).map_err(|e| e.to_string())?;
         Ok((Robot::from_model(urdf.model.clone()), Some(urdf)))
     } else {
         if source.tip.is_some() || source.base.is_some() || source.snap.is_some() {
@@ -449,7 +449,7 @@ fn run(command: Command) -> Result<String, String> {
         )
         .map_err(|e| format!("{}: {e}", robot.display())),
         Command::Convert { robot, to, output } => {
-            use dhgen_model::convert::{ConvertError, to_dh, to_urdf};
+            use dhgen_description::convert::{ConvertError, to_dh, to_urdf};
             let r = load(&robot)?;
             let model = r.model();
             // The model read is valid, so a failure of the conversion is the converted
@@ -471,7 +471,7 @@ fn run(command: Command) -> Result<String, String> {
                                 hint = "; DH puts the common normal of nearly parallel axes \
                                         far away"
                                     .to_string();
-                                if dhgen_model::urdf::is_urdf_path(&robot.robot) {
+                                if dhgen_description::urdf::is_urdf_path(&robot.robot) {
                                     hint += " (if the file's angles are rounded quarter turns, \
                                              such as 1.5708, --snap 1e-4 reads them as exact)";
                                 }
@@ -531,7 +531,7 @@ fn run(command: Command) -> Result<String, String> {
             seed,
             output,
         } => {
-            use dhgen_model::random::{ArmStyle, random_arm};
+            use dhgen_description::random::{ArmStyle, random_arm};
             let style = match style {
                 RandomStyle::General => ArmStyle::General,
                 RandomStyle::Industrial => ArmStyle::Industrial,
@@ -619,7 +619,7 @@ fn params_report(r: &Robot, latex: bool) -> String {
 }
 
 /// `dhgen params --json`: π by name and the regrouping, exactly (shortest round-trip
-/// decimals), as `dhgen_model::parameters::BaseParameters` holds it.
+/// decimals), as `dhgen_description::parameters::BaseParameters` holds it.
 fn params_json(r: &Robot) -> serde_json::Value {
     let names = r.parameter_names();
     let pi = r.parameters();

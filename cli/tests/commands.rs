@@ -592,7 +592,7 @@ fn emit_writes_a_file_and_renames_the_module() {
     assert!(written.contains("\npub mod arm {\n"), "{written}");
     assert!(written.contains("pub const DOF: usize = 2"), "{written}");
     assert!(
-        written.contains("impl ::dhgen::ArmDynamics for Robot"),
+        written.contains("impl ::dhgen::__private::ArmDynamics for Robot"),
         "{written}"
     );
     let err = failure(&["emit", "robots/planar_elbow.toml", "--name", "type"]);
@@ -672,7 +672,7 @@ fn derivatives_are_generated_on_request() {
         assert!(with.contains(&row), "{with}");
     }
     let code = stdout(&["emit", "--derivatives", "robots/scara.toml"]);
-    assert!(code.contains("pub fn inverse_dynamics_derivatives<T: ::dhgen::Real>("));
+    assert!(code.contains("pub fn inverse_dynamics_derivatives<T: ::dhgen::__private::Real>("));
     syn::parse_file(&code).expect("the emitted module parses");
     // A kinematics-only robot has no dynamics to differentiate: nothing is added.
     let kinematic = stdout(&["ops", "--derivatives", "robots/cylindrical.toml"]);
@@ -705,9 +705,9 @@ fn regressor_is_generated_on_request() {
     }
     let code = stdout(&["emit", "--regressor", "robots/scara.toml"]);
     for item in [
-        "pub fn regressor<T: ::dhgen::Real>(",
-        "pub fn base_regressor<T: ::dhgen::Real>(",
-        "pub fn base_parameters<T: ::dhgen::Real>(",
+        "pub fn regressor<T: ::dhgen::__private::Real>(",
+        "pub fn base_regressor<T: ::dhgen::__private::Real>(",
+        "pub fn base_parameters<T: ::dhgen::__private::Real>(",
         "pub const PARAMETERS: usize = 51;",
         "pub const BASE_PARAMETERS: usize = 18;",
     ] {
@@ -925,7 +925,7 @@ fn emit_expands_twenty_joints_and_bounds_its_work() {
     );
 }
 
-/// Hostile files through the command line (`dhgen_model::hostile::mutate` of small catalogue
+/// Hostile files through the command line (`dhgen_description::hostile::mutate` of small catalogue
 /// robots, the 100,000-variant run of the loader is tests/integration/hostile_descriptions.rs):
 /// every command ends with status 0 or 1, never a panic or a signal, and a failure is one
 /// line naming the file with the line and column.

@@ -1,6 +1,6 @@
 //! The kinematic chain in joint frames, generic over the arithmetic.
 //!
-//! The structure comes from [`dhgen_model::ChainRef`]: `T(q) = P_0 Z_1 P_1 ⋯ Z_n P_n`. In
+//! The structure comes from [`dhgen_description::ChainRef`]: `T(q) = P_0 Z_1 P_1 ⋯ Z_n P_n`. In
 //! joint frame k every joint axis is the local z axis through the origin and every link's
 //! inertia is constant, and consecutive frames differ by `T_k = P_k · Z_k(q_k)`. The
 //! algorithms below (composite inertia, gravity, Newton-Euler, J̇q̇) are written once for any
@@ -8,8 +8,8 @@
 //! in the root frame that `P_0` places in the world, with gravity rotated into it; the
 //! spatial ones (C, ∂τ/∂q) in any frame's coordinates ([`Coordinates`]).
 
-use dhgen_model::parameters::INERTIA_ENTRIES;
-use dhgen_model::{ChainRef, Frame, Inertial, JointKind, JointValue, Ring};
+use dhgen_description::parameters::INERTIA_ENTRIES;
+use dhgen_description::{ChainRef, Frame, Inertial, JointKind, JointValue, Ring};
 
 /// A 3-vector over a ring.
 pub type V3<R> = [R; 3];
@@ -133,13 +133,13 @@ impl<R: Ring> MassMoments<R> {
         }
     }
 
-    /// The body whose parameters (in the order of `dhgen_model::parameters`) are all zero
+    /// The body whose parameters (in the order of `dhgen_description::parameters`) are all zero
     /// but parameter `p`, which is one.
     pub fn unit(p: usize) -> MassMoments<R> {
         MassMoments::of(|k| R::from_f64(if k == p { 1.0 } else { 0.0 }))
     }
 
-    /// The body whose parameter k (in the order of `dhgen_model::parameters`) is `value(k)`.
+    /// The body whose parameter k (in the order of `dhgen_description::parameters`) is `value(k)`.
     pub fn of(value: impl Fn(usize) -> R) -> MassMoments<R> {
         MassMoments {
             m: value(0),
@@ -1097,7 +1097,7 @@ impl<'c, R: Ring> RingChain<'c, R> {
     }
 
     /// The joint torque regressor's link columns, row by row: `out[i][10·k + p]` is the torque
-    /// of joint i per unit of parameter p of link k (`dhgen_model::parameters`: `m, m·c, I`
+    /// of joint i per unit of parameter p of link k (`dhgen_description::parameters`: `m, m·c, I`
     /// about link frame k's origin, in its axes), gravity included.
     ///
     /// Linear in each body's parameters: the outward pass once, then per link the ten unit
@@ -1107,7 +1107,7 @@ impl<'c, R: Ring> RingChain<'c, R> {
     /// to frame k as a motion vector (`ang·n + lin·f`): O(n²) 6-vectors, where transporting
     /// each of the 10·k wrenches back would cost ten times as much.
     pub fn regressor(&self, qd: &[R], qdd: &[R]) -> Vec<Vec<R>> {
-        const P: usize = dhgen_model::parameters::BODY_PARAMETERS;
+        const P: usize = dhgen_description::parameters::BODY_PARAMETERS;
         let n = self.dof();
         let z = || k::<R>(0.0);
         let motion = self.outward(qd, qdd, self.base_acceleration(true));

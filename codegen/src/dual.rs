@@ -8,7 +8,7 @@
 
 use crate::chain::JointSymbols;
 use crate::graph::{E, SharedGraph, Sym};
-use dhgen_model::Ring;
+use dhgen_description::Ring;
 use std::rc::Rc;
 
 /// A value with its gradient; an empty gradient means all zeros (a constant).

@@ -27,7 +27,7 @@ pub const MAX_STATEMENTS: usize = 900;
 /// on 2026-12-07 (Panda C 4,170 → 3,896 instructions, PUMA 560 ∂τ 3,785 → 3,609; nothing
 /// executes more). The bound also caps the `let`s of one function, which keeps debug builds
 /// from crashing (module documentation); with 2,000 the Panda's debug build keeps the margin it
-/// had with 1,300. Figures in docs/performance.md ("Derivatives of the dynamics against
+/// had with 1,300. Figures in docs/experiments.md ("Derivatives of the dynamics against
 /// Pinocchio", its last paragraphs).
 pub const WHOLE_STATEMENTS: usize = 2_000;
 
@@ -115,7 +115,7 @@ pub fn float(x: f64) -> TokenStream {
 /// A numeric constant converted to the scalar type `T`.
 pub fn constant(x: f64) -> TokenStream {
     let lit = float(x);
-    quote!(::dhgen::nalgebra::convert::<f64, T>(#lit))
+    quote!(::dhgen::__private::nalgebra::convert::<f64, T>(#lit))
 }
 
 /// Emits the outputs; constants that are outputs are stored directly.
@@ -417,7 +417,7 @@ pub fn emit_staged(
                 Node::Add(a, b) if fused[b as usize] || fused[a as usize] => {
                     let (m, c) = if fused[b as usize] { (b, a) } else { (a, b) };
                     let ((x, y), c) = (factors(m), name(c));
-                    quote!(::dhgen::Real::mul_add_fast(#x, #y, #c))
+                    quote!(::dhgen::__private::Real::mul_add_fast(#x, #y, #c))
                 }
                 Node::Add(a, b) => {
                     let (a, b) = (name(a), name(b));
@@ -426,11 +426,11 @@ pub fn emit_staged(
                 // a − x·y = (−x)·y + a, and x·y − b = x·y + (−b): negation is exact.
                 Node::Sub(a, b) if fused[b as usize] => {
                     let ((x, y), a) = (factors(b), name(a));
-                    quote!(::dhgen::Real::mul_add_fast(-#x, #y, #a))
+                    quote!(::dhgen::__private::Real::mul_add_fast(-#x, #y, #a))
                 }
                 Node::Sub(a, b) if fused[a as usize] => {
                     let ((x, y), b) = (factors(a), name(b));
-                    quote!(::dhgen::Real::mul_add_fast(#x, #y, -#b))
+                    quote!(::dhgen::__private::Real::mul_add_fast(#x, #y, -#b))
                 }
                 Node::Sub(a, b) => {
                     let (a, b) = (name(a), name(b));

@@ -9,7 +9,7 @@
 //! [`E`] wraps a node handle and implements [`Ring`], so the one DH formula of the model
 //! (`Link::dh_transform`) and generic algorithms such as Newton-Euler run on it unchanged.
 
-use dhgen_model::Ring;
+use dhgen_description::Ring;
 use std::cell::RefCell;
 use std::collections::HashMap;
 use std::rc::Rc;
@@ -21,7 +21,7 @@ pub type Id = u32;
 /// deterministic), for the engine's keys: nodes, node ids and monomials. std's default SipHash
 /// guards a map against keys chosen to collide, which these, built by the engine, are not; and
 /// the proc macro runs unoptimised, where SipHash took about a third of the generator's
-/// instructions (docs/performance.md, "Expansion time").
+/// instructions (docs/experiments.md, "Expansion time").
 pub(crate) type FastMap<K, V> = HashMap<K, V, foldhash::fast::FixedState>;
 
 /// An input of a generated function.

@@ -9,7 +9,7 @@
 
 use crate::derive::{Derivation, parallel_runs, vars};
 use crate::poly::{Basis, Mono, Poly, Var};
-use dhgen_model::RobotModel;
+use dhgen_description::RobotModel;
 use std::fmt::Write as _;
 
 /// How polynomials are written.

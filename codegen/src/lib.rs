@@ -23,7 +23,7 @@ pub mod limits;
 pub mod module;
 pub mod poly;
 
-pub use dhgen_model::RobotModel;
+pub use dhgen_description::RobotModel;
 pub use graph::OpCount;
 pub use limits::Unsupported;
 pub use module::{

@@ -4,11 +4,11 @@
 //! never a panic or an unbounded build.
 //!
 //! Validation already keeps every value of a description within physical ranges
-//! (`dhgen_model::validate::LENGTH` and the others), so the constants of a valid description
+//! (`dhgen_description::validate::LENGTH` and the others), so the constants of a valid description
 //! are finite; [`check`] verifies that again on the structure the generator reads, because a
 //! non-finite literal cannot be printed as Rust.
 
-use dhgen_model::{ChainRef, Frame};
+use dhgen_description::{ChainRef, Frame};
 use std::fmt;
 
 /// The most joints the generator takes for a robot with mass properties. The Christoffel

@@ -12,7 +12,7 @@
 //! relative test that never drops a physically meaningful term.
 
 use crate::graph::{E, SharedGraph, Sym};
-use dhgen_model::Ring;
+use dhgen_description::Ring;
 use std::cell::Cell;
 use std::rc::Rc;
 

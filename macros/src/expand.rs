@@ -2,7 +2,7 @@
 //! the description file.
 
 use crate::parse::{Body, RobotInput};
-use dhgen_model::{RobotModel, validate};
+use dhgen_description::{RobotModel, validate};
 use quote::{ToTokens, quote};
 use std::path::PathBuf;
 
@@ -35,8 +35,8 @@ pub fn expand(input: RobotInput) -> syn::Result<proc_macro2::TokenStream> {
                 )
             })?;
             // `file:line:column: link N, field F: ...`, at the path literal.
-            let model = if dhgen_model::urdf::is_urdf_path(&path) {
-                dhgen_model::urdf::read(&text, &shown, &urdf.0)
+            let model = if dhgen_description::urdf::is_urdf_path(&path) {
+                dhgen_description::urdf::read(&text, &shown, &urdf.0)
                     .map_err(|e| syn::Error::new(lit.span(), e))?
                     .model
             } else {

@@ -9,7 +9,7 @@
 //! Either form may end with option words: `vis mod name = "robot.toml", derivatives;`
 //! (`dhgen_codegen::Options`).
 
-use dhgen_model::raw::{Table, Value};
+use dhgen_description::raw::{Table, Value};
 use proc_macro2::{Delimiter, Punct, Spacing, Span, TokenStream, TokenTree};
 use quote::ToTokens;
 use syn::parse::{Parse, ParseStream};
@@ -24,7 +24,7 @@ pub struct RobotInput {
     pub options: dhgen_codegen::Options,
     /// How to read a URDF file (`, tip = "hand", base = "link0", snap = 1e-6`), with the
     /// span of the first such option, which a TOML description must not have.
-    pub urdf: (dhgen_model::urdf::UrdfOptions, Option<Span>),
+    pub urdf: (dhgen_description::urdf::UrdfOptions, Option<Span>),
 }
 
 /// Where the description is.
@@ -101,7 +101,7 @@ impl Parse for RobotInput {
         // `, derivatives`: option words, each naming what the module holds beyond the default;
         // `, tip = "..."`: how to read a URDF file.
         let mut options = dhgen_codegen::Options::default();
-        let mut urdf = (dhgen_model::urdf::UrdfOptions::default(), None);
+        let mut urdf = (dhgen_description::urdf::UrdfOptions::default(), None);
         while input.peek(Token![,]) {
             input.parse::<Token![,]>()?;
             if input.is_empty() || input.peek(Token![;]) {
@@ -118,7 +118,7 @@ impl Parse for RobotInput {
                         let lit: syn::LitFloat = input.parse()?;
                         let x: f64 = lit.base10_parse()?;
                         urdf.0.snap =
-                            dhgen_model::urdf::UrdfOptions::check_snap(x).map_err(|why| {
+                            dhgen_description::urdf::UrdfOptions::check_snap(x).map_err(|why| {
                                 syn::Error::new(lit.span(), format!("snap = {x}: {why}"))
                             })?;
                     }

@@ -1,5 +1,5 @@
 //! Base parameters: the minimal set of combinations of the inertial parameters that the
-//! dynamics determine, by the one rule of [`dhgen_model::parameters`] (Gautier's
+//! dynamics determine, by the one rule of [`dhgen_description::parameters`] (Gautier's
 //! rank-revealing QR of the regressor stacked over seeded random states) applied to the
 //! runtime regressor.
 //!
@@ -12,7 +12,7 @@
 //! 1,000 states by a singular value decomposition, an independent computation.
 
 use crate::robot::Robot;
-pub use dhgen_model::parameters::BaseParameters;
+pub use dhgen_description::parameters::BaseParameters;
 
 impl Robot {
     /// The robot's base parameters (see the [`dhgen::parameters`](crate::parameters)), from its
@@ -23,7 +23,7 @@ impl Robot {
     /// If the robot has no mass properties.
     pub fn base_parameters(&self) -> BaseParameters {
         self.check_dynamics("base_parameters");
-        dhgen_model::parameters::base_parameters(&self.model, |q, qd, qdd| {
+        dhgen_description::parameters::base_parameters(&self.model, |q, qd, qdd| {
             self.regressor(q, qd, qdd)
         })
     }

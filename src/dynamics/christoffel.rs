@@ -4,8 +4,8 @@ use super::accumulate_composites;
 use crate::Joints;
 use crate::recursive::christoffel_into;
 use crate::robot::Robot;
-use crate::spatial::{Force, Motion};
 use core::ops::Index;
+use dhgen_kernel::{Force, Motion};
 
 /// The Christoffel symbols of the first kind of `D(q)`, in the textbook's index order
 /// (Spong, eq. 7.52): `c[i][j][k] = c_ijk = ½ (∂d_kj/∂q_i + ∂d_ki/∂q_j − ∂d_ij/∂q_k)`,

@@ -11,7 +11,7 @@
 
 use crate::Joints;
 use crate::robot::Robot;
-use crate::spatial::{Force, Motion};
+use dhgen_kernel::{Force, Motion};
 use nalgebra::{DMatrix, DVector};
 
 impl Robot {

@@ -5,7 +5,7 @@ use super::joint_axis;
 use crate::ArmDynamics;
 use crate::Joints;
 use crate::robot::Robot;
-use crate::spatial::Motion;
+use dhgen_kernel::Motion;
 use nalgebra::{DVector, Matrix3xX, Point3, Vector3};
 
 impl Robot {

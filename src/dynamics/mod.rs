@@ -34,8 +34,8 @@ pub use christoffel::{Christoffel, ChristoffelPlane};
 use crate::recursive::body_states;
 pub(crate) use crate::recursive::{BodyState, accumulate_composites};
 use crate::robot::{Rigid, Robot};
-use crate::spatial::Motion;
-use dhgen_model::JointKind;
+use dhgen_description::JointKind;
+use dhgen_kernel::Motion;
 
 impl Robot {
     /// The world-frame joint axes and body inertias at `q` (length already checked), by the

@@ -1,14 +1,14 @@
 //! The inverse dynamics are linear in the inertial parameters: `τ = Y(q, q̇, q̈) π`, the joint
 //! torque regressor `Y`, and the robot's own parameters `π`, in the order and frames of
-//! [`dhgen_model::parameters`] (the generated regressor's too).
+//! [`dhgen_description::parameters`] (the generated regressor's too).
 
 use crate::Joints;
 use crate::robot::{Rigid, Robot};
-use crate::spatial::{Force, Inertia, Motion};
+use dhgen_kernel::{Force, Inertia, Motion};
 use nalgebra::{DMatrix, DVector, Matrix3, Vector3};
 
-use dhgen_model::parameters::BODY_PARAMETERS;
-use dhgen_model::parameters::{self as layout, Column};
+use dhgen_description::parameters::BODY_PARAMETERS;
+use dhgen_description::parameters::{self as layout, Column};
 
 /// The spatial inertia whose parameters are `p` (about the frame's origin).
 pub(crate) fn inertia_of(p: &[f64; BODY_PARAMETERS]) -> Inertia {

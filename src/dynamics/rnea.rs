@@ -4,7 +4,7 @@ use super::BodyState;
 use crate::Joints;
 use crate::recursive::{rnea_backward, rnea_forward};
 use crate::robot::Robot;
-use crate::spatial::{Force, Motion};
+use dhgen_kernel::{Force, Motion};
 use nalgebra::DVector;
 
 impl Robot {

@@ -1,5 +1,5 @@
 //! Hostile descriptions at scale: seeded variants of every catalogue robot and fixture
-//! (`dhgen_model::hostile::mutate`: byte flips, truncations, deleted, duplicated and swapped
+//! (`dhgen_description::hostile::mutate`: byte flips, truncations, deleted, duplicated and swapped
 //! lines, swapped types, NaN/inf/1e308/−0.0, integers beyond 64 bits, huge arrays, a hundred
 //! links more, deep nesting, invalid UTF-8) through the TOML reader and the runtime loader.
 //!

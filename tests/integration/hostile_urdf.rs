@@ -1,4 +1,4 @@
-//! Hostile URDF files: seeded variants (`dhgen_model::hostile::mutate`: byte flips,
+//! Hostile URDF files: seeded variants (`dhgen_description::hostile::mutate`: byte flips,
 //! truncations, deleted, duplicated and swapped lines, NaN/inf/1e308, invalid UTF-8, ...) of
 //! the URDF fixtures through the URDF reader and the runtime path.
 //!

@@ -8,7 +8,7 @@
 use super::catalogue::puma560_derivatives as puma;
 use dhgen::identification::{IdentificationError, LeastSquares, PeriodAverage};
 use dhgen::trajectory::{FourierSeries, Profile, Setpoint, Synchronized, TrajectoryError};
-use dhgen_model::random::Stream;
+use dhgen_description::random::Stream;
 use proptest::prelude::*;
 use std::f64::consts::TAU;
 

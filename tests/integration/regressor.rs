@@ -3,6 +3,7 @@
 //! computation, and the planar elbow's regrouping against the textbook's closed form.
 
 use dhgen::Robot;
+use dhgen::parameters::PhysicalConsistency;
 use nalgebra::{DMatrix, DVector};
 
 /// Every description of the repository with mass properties, and the URDF fixtures.

@@ -12,7 +12,7 @@
 
 use crate::chain::{V3, described};
 use crate::graph::{E, SharedGraph, joint_tangent};
-use dhgen_model::{ChainRef, JointKind};
+use dhgen_description::{ChainRef, JointKind};
 
 /// `1 / M` for the links' total mass `M`, or 1 where they have none (every first moment is
 /// then zero, and so are `c` and `J_c`, as on the runtime path).

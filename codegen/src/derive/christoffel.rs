@@ -4,7 +4,7 @@
 use super::Derivation;
 use crate::graph::{E, SharedGraph};
 use crate::poly::Poly;
-use dhgen_model::ChainRef;
+use dhgen_description::ChainRef;
 
 /// `c[i][j][k]` in the normal form (motor inertia is constant and drops out).
 pub fn christoffel_polys(chain: ChainRef<'_>, d: &[Vec<Poly>]) -> Vec<Vec<Vec<Poly>>> {

@@ -20,7 +20,7 @@ use super::Derivation;
 use crate::chain::{Coordinates, RingChain};
 use crate::dual::{Dual, DualSymbols, RateSymbols};
 use crate::graph::{E, SharedGraph, Sym};
-use dhgen_model::ChainRef;
+use dhgen_description::ChainRef;
 use std::rc::Rc;
 
 /// Entry `(k, m)` of the viscous friction's ∂τ/∂q̇: its coefficient on the diagonal.

@@ -5,7 +5,7 @@
 use super::Derivation;
 use crate::chain::RingChain;
 use crate::graph::{E, SharedGraph, Sym};
-use dhgen_model::JointKind;
+use dhgen_description::JointKind;
 
 /// `[T]`, in a new graph.
 pub fn kinetic_energy(dv: &Derivation<'_>) -> (SharedGraph, Vec<E>) {
@@ -57,7 +57,7 @@ pub fn kinetic_energy_along(rc: &RingChain<'_, E>, graph: &SharedGraph) -> E {
 
 /// `[P]`, the potential energy `−Σ m_k gravity · c_k` (world frame), in a new graph: the
 /// recursion over the chain or its normal form, whichever is cheaper. Of the joints the
-/// dynamics ignore ([`ChainRef::dynamics_ignore`](dhgen_model::ChainRef::dynamics_ignore)),
+/// dynamics ignore ([`ChainRef::dynamics_ignore`](dhgen_description::ChainRef::dynamics_ignore)),
 /// only the revolute ones leave `P` unchanged (a first prismatic joint along gravity lifts
 /// the whole arm: `g(q)` does not depend on it, `P` does), so only those are dropped.
 pub fn potential_energy(dv: &Derivation<'_>) -> (SharedGraph, Vec<E>) {

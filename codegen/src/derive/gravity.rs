@@ -3,7 +3,7 @@
 use super::Derivation;
 use crate::graph::{E, SharedGraph};
 use crate::poly::{Budget, Poly};
-use dhgen_model::ChainRef;
+use dhgen_description::ChainRef;
 use std::rc::Rc;
 
 /// g(q) in the normal form.

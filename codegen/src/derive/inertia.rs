@@ -6,7 +6,7 @@ use super::Derivation;
 use crate::chain::{Coordinates, RingChain};
 use crate::graph::{E, SharedGraph};
 use crate::poly::{Budget, Poly};
-use dhgen_model::ChainRef;
+use dhgen_description::ChainRef;
 use std::rc::Rc;
 
 /// D(q) in the normal form, motor inertia included (row-major).

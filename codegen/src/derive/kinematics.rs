@@ -8,7 +8,7 @@
 
 use crate::chain::{V3, cross};
 use crate::graph::{E, SharedGraph, cost};
-use dhgen_model::{ChainRef, Frame, JointKind};
+use dhgen_description::{ChainRef, Frame, JointKind};
 
 /// The joint frames in the world frame, `P_0` multiplied in first or last.
 pub(super) fn joint_frames(

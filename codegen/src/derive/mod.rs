@@ -19,7 +19,7 @@ pub mod singularity;
 use crate::chain::{Coordinates, JointSymbols, RingChain};
 use crate::graph::{E, SharedGraph, Sym, cost};
 use crate::poly::{Basis, Budget, P, Poly, Var};
-use dhgen_model::{ChainRef, JointKind};
+use dhgen_description::{ChainRef, JointKind};
 use std::cell::OnceCell;
 use std::rc::Rc;
 

@@ -7,7 +7,7 @@
 use super::Derivation;
 use crate::chain::RingChain;
 use crate::graph::{E, SharedGraph, Sym};
-use dhgen_model::ChainRef;
+use dhgen_description::ChainRef;
 
 /// The armature and viscous friction torques of joint i (friction's Coulomb part is emitted
 /// separately, since `sign` is not arithmetic).

@@ -10,7 +10,7 @@
 use crate::chain::{MassMoments, RingChain};
 use crate::dual::Dual;
 use crate::graph::{E, SharedGraph, Sym};
-use dhgen_model::{ChainRef, Ring};
+use dhgen_description::{ChainRef, Ring};
 
 /// Adds the payload's mass moments (its parameters the inputs, each made a value of the
 /// chain's arithmetic by `lift`), carried into the last joint frame by the tool placement, to

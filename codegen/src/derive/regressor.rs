@@ -1,18 +1,18 @@
 //! The joint torque regressor `Y(q, q̇, q̈)` (`τ = Y π`) and the base parameters, in the
-//! order and frames of [`dhgen_model::parameters`].
+//! order and frames of [`dhgen_description::parameters`].
 //!
 //! `Y` is the chain's regressor recursion ([`RingChain::regressor`]: the outward pass once,
 //! then each link's unit wrenches against the joint axes carried out to it) plus the
 //! joint-side columns. The base parameters are found by the one rule of
-//! `dhgen_model::parameters` (Gautier's pivoted QR over seeded states) applied to this same
+//! `dhgen_description::parameters` (Gautier's pivoted QR over seeded states) applied to this same
 //! recursion evaluated in `f64` when the module is generated; the base regressor is then the
 //! independent columns, whose derivation is a subset of `Y`'s graph (nothing else is emitted).
 
 use crate::chain::{Numbers, RingChain};
 use crate::graph::{E, SharedGraph, Sym};
-use dhgen_model::nalgebra::DMatrix;
-use dhgen_model::parameters::{BODY_PARAMETERS, BaseParameters, Column};
-use dhgen_model::{ChainRef, Ring, RobotModel};
+use dhgen_description::nalgebra::DMatrix;
+use dhgen_description::parameters::{BODY_PARAMETERS, BaseParameters, Column};
+use dhgen_description::{ChainRef, Ring, RobotModel};
 
 /// `Y` row by row from the link columns `links` of [`RingChain::regressor`]: the joint-side
 /// columns `q̈_i` (armature), `q̇_i` (viscous) and `coulomb(i)` (Coulomb) in their rows.
@@ -54,13 +54,13 @@ pub fn regressor(chain: ChainRef<'_>, columns: &[Column], graph: &SharedGraph) -
         .collect()
 }
 
-/// The robot's base parameters, by `dhgen_model::parameters::base_parameters` on this
+/// The robot's base parameters, by `dhgen_description::parameters::base_parameters` on this
 /// module's regressor evaluated in `f64` (`sign(0) = 0` in the Coulomb columns).
 pub fn base_parameters(model: &RobotModel) -> BaseParameters {
     let structure = model.chain();
     let chain = structure.view();
-    let columns = dhgen_model::parameters::columns(model);
-    dhgen_model::parameters::base_parameters(model, |q, qd, qdd| {
+    let columns = dhgen_description::parameters::columns(model);
+    dhgen_description::parameters::base_parameters(model, |q, qd, qdd| {
         let links = RingChain::new(chain, &Numbers(chain, q)).regressor(qd, qdd);
         let sign = |i: usize| {
             if qd[i] > 0.0 {

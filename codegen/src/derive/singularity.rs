@@ -9,7 +9,7 @@
 
 use crate::chain::{V3, cross};
 use crate::poly::{P, Poly};
-use dhgen_model::{ChainRef, JointKind, Ring};
+use dhgen_description::{ChainRef, JointKind, Ring};
 
 /// `(det J11, det J22)` in the normal form, for six-joint arms with a spherical wrist
 /// ([`ChainRef::spherical_wrist`]).
@@ -25,7 +25,7 @@ pub fn decoupled_determinants(chain: ChainRef<'_>) -> Option<(Poly, Poly)> {
 
 fn determinants(
     chain: ChainRef<'_>,
-    wrist: &dhgen_model::SphericalWrist,
+    wrist: &dhgen_kernel::SphericalWrist,
     budget: &std::rc::Rc<crate::poly::Budget>,
 ) -> Option<(Poly, Poly)> {
     let frames = super::poly_chain(chain, budget).joint_frames();

@@ -41,7 +41,7 @@ fn factor_looped() -> TokenStream {
         for j in 1..DOF {
             largest = na::SimdPartialOrd::simd_max(largest, dm[(j, j)]);
         }
-        let floor: T = ::dhgen::cholesky_pivot_floor(DOF, largest);
+        let floor: T = ::dhgen::__private::cholesky_pivot_floor(DOF, largest);
         let mut l: [[T; DOF]; DOF] = [[T::zero(); DOF]; DOF];
         let mut u: [[T; DOF]; DOF] = [[T::zero(); DOF]; DOF];
         let mut inv: [T; DOF] = [T::zero(); DOF];
@@ -99,7 +99,7 @@ fn factor(n: usize) -> Vec<TokenStream> {
         largest = quote!(na::SimdPartialOrd::simd_max(#largest, dm[(#j, #j)]));
     }
     s.push(quote! {
-        let floor: T = ::dhgen::cholesky_pivot_floor(DOF, #largest);
+        let floor: T = ::dhgen::__private::cholesky_pivot_floor(DOF, #largest);
     });
     for j in 0..n {
         let mut pivot = quote!(dm[(#j, #j)]);
@@ -162,7 +162,7 @@ pub fn solve(n: usize) -> (TokenStream, OpCount) {
                 x[i] = e;
             }
             for xi in x {
-                ok = ok & ::dhgen::Real::is_finite_lanes(xi);
+                ok = ok & ::dhgen::__private::Real::is_finite_lanes(xi);
             }
             (na::SVector::<T, DOF>::from(x), ok)
         };
@@ -195,7 +195,7 @@ pub fn solve(n: usize) -> (TokenStream, OpCount) {
     // runtime path).
     let solve = quote! {
         #(#s)*
-        let ok = ok #(& ::dhgen::Real::is_finite_lanes(#xs))*;
+        let ok = ok #(& ::dhgen::__private::Real::is_finite_lanes(#xs))*;
         (na::SVector::<T, DOF>::from([#(#xs),*]), ok)
     };
     (solve, ops)
@@ -227,7 +227,7 @@ pub fn inverse(n: usize, finite: bool) -> (TokenStream, OpCount) {
     if n > LOOPED_ABOVE {
         let factor = factor_looped();
         let check = if finite {
-            quote!(ok = ok & ::dhgen::Real::is_finite_lanes(e);)
+            quote!(ok = ok & ::dhgen::__private::Real::is_finite_lanes(e);)
         } else {
             quote!()
         };
@@ -308,7 +308,7 @@ pub fn inverse(n: usize, finite: bool) -> (TokenStream, OpCount) {
     let zeros = Shape::Square.init();
     let inverse = quote! {
         #(#s)*
-        let ok = ok #(& ::dhgen::Real::is_finite_lanes(#names))*;
+        let ok = ok #(& ::dhgen::__private::Real::is_finite_lanes(#names))*;
         let mut out: na::SMatrix<T, DOF, DOF> = #zeros;
         #(#stores)*
         (out, ok)

@@ -19,8 +19,8 @@ use crate::derive::{Derivation, christoffel, derivatives, inertia, newton_euler,
 use crate::emit::{self, Output};
 use crate::graph::{E, OpCount, SharedGraph, Sym};
 use crate::limits::Unsupported;
-use dhgen_model::parameters::{BaseParameters, Column};
-use dhgen_model::{ChainRef, JointKind, RobotModel};
+use dhgen_description::parameters::{BaseParameters, Column};
+use dhgen_description::{ChainRef, JointKind, RobotModel};
 use proc_macro2::{Ident, Span, TokenStream};
 use quantities::{ArmMethod, Availability, Input, Made, QUANTITIES, Quantity};
 use quote::{format_ident, quote};
@@ -139,7 +139,7 @@ pub struct Context<'c> {
     pub model: &'c RobotModel,
     /// The robot's structure.
     pub chain: ChainRef<'c>,
-    /// The inertial parameters' columns (`dhgen_model::parameters`).
+    /// The inertial parameters' columns (`dhgen_description::parameters`).
     pub columns: Vec<Column>,
     /// What the module holds beyond the default.
     pub options: Options,
@@ -161,7 +161,7 @@ impl<'c> Context<'c> {
         Context {
             model,
             chain,
-            columns: dhgen_model::parameters::columns(model),
+            columns: dhgen_description::parameters::columns(model),
             options,
             derivation: Derivation::new(chain),
             christoffel: OnceCell::new(),
@@ -481,7 +481,7 @@ impl Items {
             .iter()
             .map(|i| {
                 if i.is_joint_vector() {
-                    quote!(&impl ::dhgen::JointArray<T, DOF>)
+                    quote!(&impl ::dhgen::__private::JointArray<T, DOF>)
                 } else {
                     array_ty(i.name())
                 }
@@ -507,7 +507,7 @@ impl Items {
         let fill = state::fill(cx, Some(&self.joints[q.name]));
         self.preparers.push(quote! {
             #[inline]
-            fn #preparer(q: &impl ::dhgen::JointArray<T, DOF>) -> Self {
+            fn #preparer(q: &impl ::dhgen::__private::JointArray<T, DOF>) -> Self {
                 #fill
             }
         });
@@ -515,7 +515,7 @@ impl Items {
             #[doc = #doc]
             #aliases
             #[must_use]
-            pub fn #name<T: ::dhgen::Real>(q: &impl ::dhgen::JointArray<T, DOF>, #params) -> #ty {
+            pub fn #name<T: ::dhgen::__private::Real>(q: &impl ::dhgen::__private::JointArray<T, DOF>, #params) -> #ty {
                 State::#preparer(q).#name(#(#inputs),*)
             }
         });
@@ -535,7 +535,7 @@ impl Items {
         }
     }
 
-    /// The `batch` function of a public quantity whose value [`::dhgen::batch::Unpack`] reads
+    /// The `batch` function of a public quantity whose value [`::dhgen::__private::batch::Unpack`] reads
     /// lane by lane (an `Option` from the lane-wise form: `forward_dynamics` is
     /// `forward_dynamics_lanes`, masked, and so are `mass_matrix_inverse` and
     /// `forward_dynamics_derivatives`). Joint vectors come one per configuration; a payload is
@@ -589,7 +589,7 @@ impl Items {
         let value = if wrap {
             quote!({
                 let (value, ok) = #value;
-                ::dhgen::batch::Masked(value, ok)
+                ::dhgen::__private::batch::Masked(value, ok)
             })
         } else {
             value
@@ -612,14 +612,14 @@ impl Items {
             ///
             /// # Errors
             /// `LengthMismatch` (nothing written) unless every slice has `out.len()` entries.
-            pub fn #name<T: ::dhgen::batch::Lanes>(
+            pub fn #name<T: ::dhgen::__private::batch::Lanes>(
                 q: &[[T; DOF]],
                 #(#joint: &[[T; DOF]],)*
                 #(#shared: #shared_tys,)*
                 out: &mut [#ty],
-            ) -> Result<(), ::dhgen::batch::LengthMismatch> {
-                #(let #shared = &::dhgen::batch::splat(#shared);)*
-                ::dhgen::batch::run([q, #(#joint),*], out, |[q, #(#joint),*]| #value)
+            ) -> Result<(), ::dhgen::__private::batch::LengthMismatch> {
+                #(let #shared = &::dhgen::__private::batch::splat(#shared);)*
+                ::dhgen::__private::batch::run([q, #(#joint),*], out, |[q, #(#joint),*]| #value)
             }
         });
     }
@@ -851,18 +851,18 @@ pub fn generate_with(
     let chain_const = structure::chain_literal(chain);
     let state = state::definition(&cx);
     // Closed-form inverse kinematics where the structure decouples, solved at compile time.
-    let ik = dhgen_model::closed_form::DecoupledIk::from_chain(chain)
+    let ik = dhgen_kernel::closed_form::DecoupledIk::from_chain(chain)
         .ok()
         .map(|solver| {
             let solver = structure::ik_literal(&solver);
             quote! {
                 /// The closed-form inverse kinematics solver of this arm (kinematic decoupling,
                 /// section 4.3), precomputed from its structure when the module was generated.
-                pub const IK: ::dhgen::ik::DecoupledIk = #solver;
+                pub const IK: ::dhgen::__private::closed_form::DecoupledIk = #solver;
                 /// All closed-form inverse kinematics solutions of `pose` (up to 8), each
                 /// verified by forward kinematics; empty when the pose is unreachable.
                 #[must_use]
-                pub fn ik(pose: &na::Isometry3<f64>) -> ::dhgen::ik::Solutions {
+                pub fn ik(pose: &na::Isometry3<f64>) -> ::dhgen::__private::closed_form::Solutions {
                     IK.solve(pose)
                 }
             }
@@ -885,7 +885,7 @@ pub fn generate_with(
     });
     let arm_dynamics = has_dynamics.then(|| {
         quote! {
-            impl ::dhgen::ArmDynamics for Robot {
+            impl ::dhgen::__private::ArmDynamics for Robot {
                 #(#dynamics)*
             }
         }
@@ -897,7 +897,7 @@ pub fn generate_with(
         #[doc = #doc]
         #[allow(clippy::all, clippy::pedantic, clippy::nursery)]
         #vis mod #name {
-            use ::dhgen::nalgebra as na;
+            use ::dhgen::__private::nalgebra as na;
 
             /// Number of joints.
             pub const DOF: usize = #n;
@@ -912,12 +912,12 @@ pub fn generate_with(
             /// The robot's kinematic structure: fixed transforms, joints (kinds, offsets,
             /// limits, armature, friction), link frames, mass properties and collision
             /// capsules. The numbers this module was generated from, for algorithms built on
-            /// the structure (inverse kinematics, planning); see [`::dhgen::ChainRef`].
-            pub const CHAIN: ::dhgen::ChainRef<'static> = #chain_const;
+            /// the structure (inverse kinematics, planning); see [`::dhgen::__private::ChainRef`].
+            pub const CHAIN: ::dhgen::__private::ChainRef<'static> = #chain_const;
 
             #state
 
-            impl<T: ::dhgen::Real> State<T> {
+            impl<T: ::dhgen::__private::Real> State<T> {
                 #(#methods)*
                 #(#private)*
                 #(#preparers)*
@@ -938,15 +938,15 @@ pub fn generate_with(
             #terms
             #ik
 
-            /// The robot as a value implementing [`::dhgen::Arm`] (and
-            /// [`::dhgen::ArmDynamics`] with mass properties), for `f64`: for algorithms
+            /// The robot as a value implementing [`::dhgen::__private::Arm`] (and
+            /// [`::dhgen::__private::ArmDynamics`] with mass properties), for `f64`: for algorithms
             /// written once for every robot (inverse kinematics, planners, controllers).
             #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
             pub struct Robot;
 
-            impl ::dhgen::Arm for Robot {
+            impl ::dhgen::__private::Arm for Robot {
                 type Dof = na::Const<DOF>;
-                fn chain(&self) -> ::dhgen::ChainRef<'_> {
+                fn chain(&self) -> ::dhgen::__private::ChainRef<'_> {
                     CHAIN
                 }
                 fn dof(&self) -> usize {
@@ -959,7 +959,7 @@ pub fn generate_with(
             }
             #arm_dynamics
 
-            fn isometry<T: ::dhgen::Real>(m: &na::Matrix4<T>) -> na::Isometry3<T> {
+            fn isometry<T: ::dhgen::__private::Real>(m: &na::Matrix4<T>) -> na::Isometry3<T> {
                 let r = na::Rotation3::from_matrix_unchecked(m.fixed_view::<3, 3>(0, 0).into_owned());
                 na::Isometry3::from_parts(
                     na::Translation3::new(m[(0, 3)], m[(1, 3)], m[(2, 3)]),
@@ -980,8 +980,8 @@ pub fn generate_with(
 fn parameters(cx: &Context<'_>) -> TokenStream {
     use crate::emit::{constant, float};
     let p = cx.columns.len();
-    let names = dhgen_model::parameters::names(cx.model);
-    let values = dhgen_model::parameters::values(cx.model)
+    let names = dhgen_description::parameters::names(cx.model);
+    let values = dhgen_description::parameters::values(cx.model)
         .expect("a model with dynamics has every link's mass properties")
         .into_iter()
         .map(float);
@@ -1027,7 +1027,7 @@ fn parameters(cx: &Context<'_>) -> TokenStream {
         /// `PARAMETER_NAMES`): `base_regressor(..) · base_parameters(π)` is
         /// `regressor(..) · π`.
         #[must_use]
-        pub fn base_parameters<T: ::dhgen::Real>(pi: &[T; PARAMETERS]) -> [T; BASE_PARAMETERS] {
+        pub fn base_parameters<T: ::dhgen::__private::Real>(pi: &[T; PARAMETERS]) -> [T; BASE_PARAMETERS] {
             [#(#sums),*]
         }
     }

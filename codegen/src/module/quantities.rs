@@ -14,7 +14,7 @@ use crate::derive::{
 };
 use crate::graph::{E, SharedGraph};
 use crate::poly::Poly;
-use dhgen_model::parameters::Column;
+use dhgen_description::parameters::Column;
 use proc_macro2::TokenStream;
 use quote::quote;
 
@@ -177,7 +177,9 @@ fn with_coulomb_columns(
         .into_iter()
         .enumerate()
         .filter_map(|(k, c)| match cx.columns[c] {
-            Column::Coulomb(i) => Some(quote!(y[(#i, #k)] = ::dhgen::Real::sign(qd[#i]);)),
+            Column::Coulomb(i) => {
+                Some(quote!(y[(#i, #k)] = ::dhgen::__private::Real::sign(qd[#i]);))
+            }
             _ => None,
         });
     then(quote!(y), call, quote!(#(#signs)*), reads)
@@ -202,7 +204,7 @@ fn forward_dynamics_derivatives(cx: &Context<'_>, lanes: bool, payload: bool) ->
     // Friction, if any, is added to the bias in place.
     let mutable = (!viscous.is_empty() || !coulomb.is_empty()).then(|| quote!(mut));
     let acceleration = quote! {
-        let half = ::dhgen::nalgebra::convert::<f64, T>(0.5);
+        let half = ::dhgen::__private::nalgebra::convert::<f64, T>(0.5);
         let #mutable tau: [T; DOF] = ::core::array::from_fn(|k| {
             let s = dqd
                 .row(k)
@@ -240,7 +242,7 @@ fn forward_dynamics_derivatives(cx: &Context<'_>, lanes: bool, payload: bool) ->
                 let mut p = [T::zero(); DOF];
                 for (column, &xk) in columns.iter().zip(&*x) {
                     for (o, &a) in p.iter_mut().zip(column) {
-                        *o = ::dhgen::Real::mul_add_fast(-a, xk, *o);
+                        *o = ::dhgen::__private::Real::mul_add_fast(-a, xk, *o);
                     }
                 }
                 *x = p;
@@ -249,7 +251,7 @@ fn forward_dynamics_derivatives(cx: &Context<'_>, lanes: bool, payload: bool) ->
         minus_inverse_times(dq, [#(#used_q),*]);
         minus_inverse_times(dqd, [#(#used_qd),*]);
     };
-    let finite = quote!(let ok = ok #(& ::dhgen::Real::is_finite_lanes(qdd[#joints]))*;);
+    let finite = quote!(let ok = ok #(& ::dhgen::__private::Real::is_finite_lanes(qdd[#joints]))*;);
     // ∂τ/∂q, ∂τ/∂q̇ (and D, factorised between the stages, where it is cheaper beside
     // them) with q̈ computed between the stages.
     let (body, reads): (_, &'static [&'static str]) =
@@ -264,7 +266,7 @@ fn forward_dynamics_derivatives(cx: &Context<'_>, lanes: bool, payload: bool) ->
             (
                 quote! {
                     // No lane is an answer until D is factored.
-                    let mut factored = !::dhgen::Real::is_finite_lanes(T::zero());
+                    let mut factored = !::dhgen::__private::Real::is_finite_lanes(T::zero());
                     let mut terms = (zero(), zero(), zero());
                     let qdd = self.forward_dynamics_terms_then(qd, |(_, dqd, dm)| {
                         let (inverse, ok) = { #inverse };
@@ -385,7 +387,7 @@ fn solved(
     }
 }
 
-fn frame_entries(f: &dhgen_model::Frame<E>) -> Vec<E> {
+fn frame_entries(f: &dhgen_description::Frame<E>) -> Vec<E> {
     (0..3)
         .flat_map(|r| {
             let mut row: Vec<E> = f.r[r].to_vec();
@@ -574,7 +576,7 @@ pub const QUANTITIES: &[Quantity] = &[
         public: true,
         make: |cx| match cx.mass_matrix() {
             Some((graph, d)) => derived(graph.clone(), d.clone()),
-            None => Made::Looped(quote!(::dhgen::recursive::mass_matrix(
+            None => Made::Looped(quote!(::dhgen::__private::recursive::mass_matrix(
                 CHAIN, &self.c, &self.s, &self.d
             ))),
         },
@@ -595,7 +597,7 @@ pub const QUANTITIES: &[Quantity] = &[
             // arm: 40 µs against the runtime's 29); below, where the straight-line code costs
             // more than the loop (`LOOP_CHRISTOFFEL_ABOVE_PER_CUBE`).
             let looped = || {
-                Made::Looped(quote!(::dhgen::recursive::christoffel(
+                Made::Looped(quote!(::dhgen::__private::recursive::christoffel(
                     CHAIN, &self.c, &self.s, &self.d
                 )))
             };
@@ -636,7 +638,7 @@ pub const QUANTITIES: &[Quantity] = &[
             // Above `LOOPED_ABOVE` joints, or where the cheapest costs more than
             // `LOOP_C_ABOVE_PER_JOINT` operations per joint, the runtime's loop.
             let looped_coriolis = || {
-                Made::Looped(quote!(::dhgen::recursive::coriolis(
+                Made::Looped(quote!(::dhgen::__private::recursive::coriolis(
                     CHAIN, &self.c, &self.s, &self.d, qd
                 )))
             };
@@ -836,9 +838,11 @@ pub const QUANTITIES: &[Quantity] = &[
             // Where C calls the runtime's loop, so does C with the payload, and where its own
             // straight-line code costs more than `LOOP_C_WITH_PAYLOAD_ABOVE_PER_JOINT`.
             let looped = || {
-                Made::Looped(quote!(::dhgen::recursive::coriolis_with_payload(
-                    CHAIN, &self.c, &self.s, &self.d, qd, payload
-                )))
+                Made::Looped(quote!(
+                    ::dhgen::__private::recursive::coriolis_with_payload(
+                        CHAIN, &self.c, &self.s, &self.d, qd, payload
+                    )
+                ))
             };
             if cx.coriolis_choice().is_none() {
                 return looped();
@@ -971,7 +975,7 @@ pub const QUANTITIES: &[Quantity] = &[
                 return solved(
                     cx,
                     quote! {
-                        let (dm, h) = ::dhgen::recursive::mass_matrix_and_bias(
+                        let (dm, h) = ::dhgen::__private::recursive::mass_matrix_and_bias(
                             CHAIN, &self.c, &self.s, &self.d, qd,
                         );
                     },
@@ -1388,7 +1392,7 @@ pub const QUANTITIES: &[Quantity] = &[
         make: |_| {
             composed(
                 quote! {
-                    ::dhgen::task_space::ToolTerms {
+                    ::dhgen::__private::ToolTerms {
                         mass_matrix: self.mass_matrix(),
                         jacobian: self.jacobian(),
                         jdot_qdot: self.jdot_qdot(qd),

@@ -102,7 +102,7 @@ impl Shape {
             )),
             Shape::Cube => quote!([[[#t; DOF]; DOF]; DOF]),
             Shape::Terms => quote!(Terms<#t>),
-            Shape::ToolTerms => quote!(::dhgen::task_space::ToolTerms<#t, na::Const<DOF>>),
+            Shape::ToolTerms => quote!(::dhgen::__private::ToolTerms<#t, na::Const<DOF>>),
             Shape::Regressor => quote!(na::SMatrix<#t, DOF, PARAMETERS>),
             Shape::BaseRegressor => quote!(na::SMatrix<#t, DOF, BASE_PARAMETERS>),
         }

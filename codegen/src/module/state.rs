@@ -3,7 +3,7 @@
 
 use super::Context;
 use crate::emit::constant;
-use dhgen_model::{Angle, JointKind};
+use dhgen_description::{Angle, JointKind};
 use proc_macro2::TokenStream;
 use quote::quote;
 
@@ -64,7 +64,7 @@ pub fn fill(cx: &Context<'_>, joints: Option<&[usize]>) -> TokenStream {
                 quote!(s[#j] = #sj; c[#j] = #cj;)
             });
         quote! {
-            let (sa, ca) = ::dhgen::Real::sincos_array([#(#values),*]);
+            let (sa, ca) = ::dhgen::__private::Real::sincos_array([#(#values),*]);
             #(#stores)*
         }
     };
@@ -112,10 +112,10 @@ pub fn definition(cx: &Context<'_>) -> TokenStream {
             pub d: [T; DOF],
         }
 
-        impl<T: ::dhgen::Real> State<T> {
+        impl<T: ::dhgen::__private::Real> State<T> {
             /// Prepares configuration `q` (an array or an `SVector`).
             #[must_use]
-            pub fn new(q: &impl ::dhgen::JointArray<T, DOF>) -> Self {
+            pub fn new(q: &impl ::dhgen::__private::JointArray<T, DOF>) -> Self {
                 #fill
             }
         }
@@ -127,7 +127,7 @@ pub fn coulomb(cx: &Context<'_>) -> TokenStream {
     friction_terms(
         cx,
         |f| f.coulomb,
-        |k, j| quote!(#k * ::dhgen::Real::sign(qd[#j])),
+        |k, j| quote!(#k * ::dhgen::__private::Real::sign(qd[#j])),
     )
 }
 
@@ -135,7 +135,7 @@ pub fn coulomb(cx: &Context<'_>) -> TokenStream {
 /// zero (`k_j` as a constant of type `T`).
 pub fn friction_terms(
     cx: &Context<'_>,
-    coefficient: impl Fn(&dhgen_model::Friction) -> f64,
+    coefficient: impl Fn(&dhgen_description::Friction) -> f64,
     term: impl Fn(TokenStream, usize) -> TokenStream,
 ) -> TokenStream {
     let lines = cx

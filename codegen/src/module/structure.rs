@@ -1,29 +1,29 @@
 //! The robot's structure as a `const` of the generated module (`CHAIN`): the numbers it was
 //! generated from, for algorithms that run on the structure (inverse kinematics, planning).
 
-use dhgen_model::closed_form::{ArmKind, DecoupledIk, Method, Shoulder};
-use dhgen_model::{ChainRef, JointKind, Rigid};
+use dhgen_kernel::closed_form::{ArmKind, DecoupledIk, Method, Shoulder};
+use dhgen_kernel::{ChainRef, JointKind, Rigid};
 use proc_macro2::TokenStream;
 use quote::quote;
 
 use crate::emit::float as lit;
 
-fn frame_literal(f: &dhgen_model::Frame<f64>) -> TokenStream {
+fn frame_literal(f: &dhgen_description::Frame<f64>) -> TokenStream {
     let rows = f.r.iter().map(|row| {
         let row = row.iter().map(|x| lit(*x));
         quote!([#(#row),*])
     });
     let p = f.p.iter().map(|x| lit(*x));
-    quote!(::dhgen::model::Frame { r: [#(#rows),*], p: [#(#p),*] })
+    quote!(::dhgen::__private::Frame { r: [#(#rows),*], p: [#(#p),*] })
 }
 
-/// The structure as a `const` expression of `::dhgen::ChainRef<'static>`.
+/// The structure as a `const` expression of `::dhgen::__private::ChainRef<'static>`.
 pub fn chain_literal(chain: ChainRef<'_>) -> TokenStream {
     let placements = chain.placements.iter().map(frame_literal);
     let bodies = chain.bodies.iter().map(|b| {
         let joint = match b.joint {
-            JointKind::Revolute => quote!(::dhgen::JointKind::Revolute),
-            JointKind::Prismatic => quote!(::dhgen::JointKind::Prismatic),
+            JointKind::Revolute => quote!(::dhgen::__private::JointKind::Revolute),
+            JointKind::Prismatic => quote!(::dhgen::__private::JointKind::Prismatic),
         };
         let offset = lit(b.offset);
         let limits = match b.limits {
@@ -44,7 +44,7 @@ pub fn chain_literal(chain: ChainRef<'_>) -> TokenStream {
                     let row = row.iter().map(|x| lit(*x));
                     quote!([#(#row),*])
                 });
-                quote!(Some(::dhgen::model::Inertial { mass: #mass, com: [#(#com),*], inertia: [#(#rows),*] }))
+                quote!(Some(::dhgen::__private::Inertial { mass: #mass, com: [#(#com),*], inertia: [#(#rows),*] }))
             }
             None => quote!(None),
         };
@@ -56,12 +56,12 @@ pub fn chain_literal(chain: ChainRef<'_>) -> TokenStream {
             None => quote!(None),
         };
         quote! {
-            ::dhgen::model::Body {
+            ::dhgen::__private::Body {
                 joint: #joint,
                 offset: #offset,
                 limits: #limits,
                 armature: #armature,
-                friction: ::dhgen::model::Friction { viscous: #viscous, coulomb: #coulomb },
+                friction: ::dhgen::__private::Friction { viscous: #viscous, coulomb: #coulomb },
                 link: #link,
                 inertial: #inertial,
                 capsule: #capsule,
@@ -71,7 +71,7 @@ pub fn chain_literal(chain: ChainRef<'_>) -> TokenStream {
     let gravity = chain.gravity.iter().map(|x| lit(*x));
     let base = frame_literal(&chain.base);
     quote! {
-        ::dhgen::ChainRef {
+        ::dhgen::__private::ChainRef {
             base: #base,
             placements: &[#(#placements),*],
             bodies: &[#(#bodies),*],
@@ -82,27 +82,27 @@ pub fn chain_literal(chain: ChainRef<'_>) -> TokenStream {
 
 fn vector3(v: &nalgebra_types::Vector3) -> TokenStream {
     let [x, y, z] = [v.x, v.y, v.z].map(lit);
-    quote!(::dhgen::nalgebra::Vector3::new(#x, #y, #z))
+    quote!(::dhgen::__private::nalgebra::Vector3::new(#x, #y, #z))
 }
 
 fn matrix3(m: &nalgebra_types::Matrix3) -> TokenStream {
     let entries = (0..3).flat_map(|r| (0..3).map(move |c| lit(m[(r, c)])));
-    quote!(::dhgen::nalgebra::Matrix3::new(#(#entries),*))
+    quote!(::dhgen::__private::nalgebra::Matrix3::new(#(#entries),*))
 }
 
 fn rigid(f: &Rigid) -> TokenStream {
     let (r, p) = (matrix3(&f.r), vector3(&f.p));
-    quote!(::dhgen::model::Rigid { r: #r, p: #p })
+    quote!(::dhgen::__private::Rigid { r: #r, p: #p })
 }
 
-/// The nalgebra types the solver's constants use (dhgen-model's own re-export).
+/// The nalgebra types the solver's constants use (dhgen-description's own re-export).
 mod nalgebra_types {
-    pub type Vector3 = dhgen_model::nalgebra::Vector3<f64>;
-    pub type Matrix3 = dhgen_model::nalgebra::Matrix3<f64>;
+    pub type Vector3 = dhgen_description::nalgebra::Vector3<f64>;
+    pub type Matrix3 = dhgen_description::nalgebra::Matrix3<f64>;
 }
 
 /// The closed-form inverse kinematics solver, precomputed, as a `const` expression of
-/// `::dhgen::ik::DecoupledIk`.
+/// `::dhgen::__private::closed_form::DecoupledIk`.
 pub fn ik_literal(ik: &DecoupledIk) -> TokenStream {
     let chain = ik.chain.iter().map(rigid);
     let prismatic = ik.prismatic;
@@ -132,7 +132,7 @@ pub fn ik_literal(ik: &DecoupledIk) -> TokenStream {
                 Shoulder::Revolute { shift, t1, u, n } => {
                     let shift = lit(*shift);
                     let (t1, u, n) = (vector3(t1), vector3(u), vector3(n));
-                    quote!(::dhgen::model::closed_form::Shoulder::Revolute {
+                    quote!(::dhgen::__private::closed_form::Shoulder::Revolute {
                         shift: #shift, t1: #t1, u: #u, n: #n
                     })
                 }
@@ -143,12 +143,12 @@ pub fn ik_literal(ik: &DecoupledIk) -> TokenStream {
                     lead_is_2,
                 } => {
                     let (f0, u, v) = (vector3(f0), vector3(u), vector3(v));
-                    quote!(::dhgen::model::closed_form::Shoulder::Cylindrical {
+                    quote!(::dhgen::__private::closed_form::Shoulder::Cylindrical {
                         f0: #f0, u: #u, v: #v, lead_is_2: #lead_is_2
                     })
                 }
             };
-            quote!(::dhgen::model::closed_form::Method::Spherical {
+            quote!(::dhgen::__private::closed_form::Method::Spherical {
                 centre_tool: #centre_tool, w: #w, shoulder: #shoulder
             })
         }
@@ -165,19 +165,19 @@ pub fn ik_literal(ik: &DecoupledIk) -> TokenStream {
             let (n, x_tool, x4, k0) = (vector3(n), vector3(x_tool), vector3(x4), matrix3(k0));
             let (kappa, sigma, sigma3, sigma34) =
                 (lit(*kappa), lit(*sigma), lit(*sigma3), lit(*sigma34));
-            quote!(::dhgen::model::closed_form::Method::ThreeParallel {
+            quote!(::dhgen::__private::closed_form::Method::ThreeParallel {
                 n: #n, x_tool: #x_tool, x4: #x4, kappa: #kappa, sigma: #sigma,
                 sigma3: #sigma3, sigma34: #sigma34, k0: #k0
             })
         }
     };
     quote! {
-        ::dhgen::ik::DecoupledIk {
+        ::dhgen::__private::closed_form::DecoupledIk {
             chain: [#(#chain),*],
             prismatic: [#(#prismatic),*],
             limits: [#(#limits),*],
             scale: #scale,
-            kind: ::dhgen::ik::ArmKind::#kind,
+            kind: ::dhgen::__private::closed_form::ArmKind::#kind,
             method: #method,
         }
     }
