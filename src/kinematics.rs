@@ -48,6 +48,8 @@ impl Robot {
     ///
     /// # Panics
     /// If `q.len() != self.dof()`.
+    #[doc(alias = "fkine")]
+    #[doc(alias = "forwardKinematics")]
     pub fn fk(&self, q: &(impl Joints<f64> + ?Sized)) -> Isometry3<f64> {
         let q = self.check_len("fk", "q", q);
         self.walk_joint_frames(q, |_, _| {})
@@ -60,6 +62,7 @@ impl Robot {
     ///
     /// # Panics
     /// If `q.len() != self.dof()`.
+    #[doc(alias = "updateFramePlacements")]
     pub fn frames(&self, q: &(impl Joints<f64> + ?Sized)) -> Vec<Isometry3<f64>> {
         let q = self.check_len("frames", "q", q);
         let mut frames = Vec::with_capacity(self.dof());
@@ -81,6 +84,9 @@ impl Robot {
     ///
     /// # Panics
     /// If `q.len() != self.dof()`.
+    #[doc(alias = "jacob0")]
+    #[doc(alias = "computeJointJacobians")]
+    #[doc(alias = "getFrameJacobian")]
     pub fn jacobian(&self, q: &(impl Joints<f64> + ?Sized)) -> Matrix6xX<f64> {
         let q = self.check_len("jacobian", "q", q);
         self.jacobian_and_last_frame(q).0
@@ -92,6 +98,7 @@ impl Robot {
     ///
     /// # Panics
     /// If `q.len() != self.dof()`.
+    #[doc(alias = "jacobe")]
     pub fn body_jacobian(&self, q: &(impl Joints<f64> + ?Sized)) -> Matrix6xX<f64> {
         let q = self.check_len("body_jacobian", "q", q);
         let (j, last) = self.jacobian_and_last_frame(q);
@@ -103,6 +110,7 @@ impl Robot {
     ///
     /// # Panics
     /// If `q.len()` or `qd.len()` is not `self.dof()`.
+    #[doc(alias = "getFrameJacobianTimeVariation")]
     pub fn body_jdot_qdot(
         &self,
         q: &(impl Joints<f64> + ?Sized),

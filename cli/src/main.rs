@@ -28,7 +28,7 @@ use clap::error::ErrorKind;
 use clap::{Parser, Subcommand};
 use dhgen::Robot;
 use dhgen::ik::Task;
-use dhgen_codegen::latex::{Style, dynamics_equations};
+use dhgen_codegen::{Style, dynamics_equations};
 use std::io::Write as _;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;

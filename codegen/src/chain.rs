@@ -709,10 +709,10 @@ impl<'c, R: Ring> RingChain<'c, R> {
         ]
     }
 
-    /// Recursive Newton-Euler: `τ = D q̈ + C q̇ + g` (gravity included when `with_gravity`).
-    pub fn rnea(&self, qd: &[R], qdd: &[R], with_gravity: bool) -> Vec<R> {
+    /// Recursive Newton-Euler: `τ = D q̈ + C q̇ + g`.
+    pub fn rnea(&self, qd: &[R], qdd: &[R]) -> Vec<R> {
         let forces = self
-            .outward(qd, qdd, self.base_acceleration(with_gravity))
+            .outward(qd, qdd, self.base_acceleration())
             .iter()
             .zip(&self.bodies)
             .map(|(motion, b)| b.wrench(motion))
@@ -1088,12 +1088,8 @@ impl<'c, R: Ring> RingChain<'c, R> {
 
     /// The acceleration the outward pass starts from: the base accelerates upwards instead of
     /// gravity pulling down.
-    fn base_acceleration(&self, with_gravity: bool) -> V3<R> {
-        if with_gravity {
-            self.gravity.clone().map(|x| -x)
-        } else {
-            [k(0.0), k(0.0), k(0.0)]
-        }
+    fn base_acceleration(&self) -> V3<R> {
+        self.gravity.clone().map(|x| -x)
     }
 
     /// The joint torque regressor's link columns, row by row: `out[i][10·k + p]` is the torque
@@ -1110,7 +1106,7 @@ impl<'c, R: Ring> RingChain<'c, R> {
         const P: usize = dhgen_description::parameters::BODY_PARAMETERS;
         let n = self.dof();
         let z = || k::<R>(0.0);
-        let motion = self.outward(qd, qdd, self.base_acceleration(true));
+        let motion = self.outward(qd, qdd, self.base_acceleration());
         // Per link, the wrench (f, n) of each link-frame parameter, in the joint frame.
         let wrenches: Vec<Vec<(V3<R>, V3<R>)>> = (0..n)
             .map(|j| {

@@ -18,17 +18,10 @@ pub const MAX_STATEMENTS: usize = 900;
 /// The most statements (operations, stores and loads, each counted once) of a function
 /// emitted whole, in one part. Above, it is cut into parts of [`MAX_STATEMENTS`]: each value
 /// crossing a cut is stored and loaded again, which costs more than the register pressure of
-/// one longer function up to this size, and less beyond (instructions per call, callgrind, one
-/// part up to 1,300 statements against parts of ~300 operations: a general 12-joint arm's fk
-/// 2,437 → 2,120 and J 2,925 → 2,387 on the default x86-64 target, 1,314 → 1,068 and 1,561 →
-/// 1,179 on x86-64-v3; Panda D 1,598 → 1,512 and q̈ 2,145 → 2,024 (x86-64-v3); Panda τ
-/// 2,042 → 2,104 on the default target, 1,213 → 1,123 on x86-64-v3; with parts of up to
-/// 1,500 statements for every function, Panda ∂τ took 8 % more). Raised from 1,300 to 2,000
-/// on 2026-12-07 (Panda C 4,170 → 3,896 instructions, PUMA 560 ∂τ 3,785 → 3,609; nothing
-/// executes more). The bound also caps the `let`s of one function, which keeps debug builds
-/// from crashing (module documentation); with 2,000 the Panda's debug build keeps the margin it
-/// had with 1,300. Figures in docs/experiments.md ("Derivatives of the dynamics against
-/// Pinocchio", its last paragraphs).
+/// one longer function up to this size, and less beyond (raising the bound from 1,300 took
+/// the Panda's C from 4,170 to 3,896 instructions per call). The bound also caps the `let`s of
+/// one function, which keeps debug builds from crashing (module documentation). The
+/// measurements: docs/experiments.md, "Derivatives of the dynamics against Pinocchio".
 pub const WHOLE_STATEMENTS: usize = 2_000;
 
 /// One output: where to store it (an lvalue) and its expression.
@@ -78,7 +71,6 @@ fn sym_load(s: Sym) -> (Ident, TokenStream) {
         Sym::Len(j) => (format!("d{}", j + 1), quote!(self.d[#j])),
         Sym::Qd(j) => (format!("qd{}", j + 1), quote!(qd[#j])),
         Sym::Qdd(j) => (format!("qdd{}", j + 1), quote!(qdd[#j])),
-        Sym::Tau(j) => (format!("tau{}", j + 1), quote!(tau[#j])),
         Sym::Payload(k) => (format!("pl{k}"), quote!(payload[#k])),
     };
     (ident(&name), load)
@@ -90,7 +82,6 @@ pub fn input_array(s: Sym) -> Option<&'static str> {
     match s {
         Sym::Qd(_) => Some("qd"),
         Sym::Qdd(_) => Some("qdd"),
-        Sym::Tau(_) => Some("tau"),
         Sym::Payload(_) => Some("payload"),
         Sym::Cos(_) | Sym::Sin(_) | Sym::Len(_) => None,
     }

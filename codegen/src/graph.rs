@@ -37,8 +37,6 @@ pub enum Sym {
     Qd(usize),
     /// Joint acceleration j.
     Qdd(usize),
-    /// Joint torque j.
-    Tau(usize),
     /// Parameter k of a payload held by the tool (`m, m·c, I about the tool origin`, the
     /// order of `dhgen::parameters::BODY_PARAMETER_NAMES`).
     Payload(usize),

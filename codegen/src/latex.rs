@@ -131,6 +131,7 @@ fn terms(p: &Poly, sym: &Symbols<'_>, style: &Style) -> Vec<(bool, String)> {
 
 /// `p` as a LaTeX expression on one line, e.g. `0.35 + 2.3\,c_2 s_3 - 0.1\,c_3^2`; `0` for
 /// the zero polynomial.
+#[cfg(test)]
 pub fn poly(p: &Poly, sym: &Symbols<'_>, style: &Style) -> String {
     join(&terms(p, sym, style), usize::MAX)
 }

@@ -264,6 +264,7 @@ impl Poly {
     }
 
     /// Evaluates at numeric variable values (`values[v]`).
+    #[cfg(test)]
     pub fn eval(&self, values: &[f64]) -> f64 {
         self.terms
             .iter()
@@ -368,15 +369,6 @@ impl P {
             poly,
             vars: vars.clone(),
             budget: Some(budget.clone()),
-        }
-    }
-
-    /// `∂/∂q_j`
-    pub fn derivative(&self, j: usize) -> P {
-        P {
-            poly: self.poly.derivative(j, &self.vars),
-            vars: self.vars.clone(),
-            budget: self.budget.clone(),
         }
     }
 

@@ -91,6 +91,7 @@ where
 
     /// Pose of the tool frame in the world frame: base · A1 ⋯ An · tool.
     #[doc(alias = "fkine")]
+    #[doc(alias = "forwardKinematics")]
     fn fk(&self, q: &OVector<f64, Self::Dof>) -> Isometry3<f64>;
 
     /// Writes the link frames (world frame, tool not applied) into `out`, as many as fit.
@@ -98,13 +99,16 @@ where
 
     /// Geometric Jacobian of the tool frame origin, world axes, rows `[v; ω]`.
     #[doc(alias = "jacob0")]
+    #[doc(alias = "computeJointJacobians")]
+    #[doc(alias = "getFrameJacobian")]
     fn jacobian(&self, q: &OVector<f64, Self::Dof>) -> OMatrix<f64, U6, Self::Dof>;
 
     /// `J̇(q, q̇) q̇` of the tool frame origin, world axes, rows `[v; ω]`: the tool's
     /// acceleration at `q̈ = 0`. By default from the Jacobian
     /// (`dhgen::velocity::jdot_qdot_from_jacobian`); generated
     /// modules override it with their straight-line code.
-    #[doc(alias = "jacob_dot")]
+    #[doc(alias = "jacob0_dot")]
+    #[doc(alias = "getFrameClassicalAcceleration")]
     fn jdot_qdot(&self, q: &OVector<f64, Self::Dof>, qd: &OVector<f64, Self::Dof>) -> Vector6<f64> {
         crate::jacobian::jdot_qdot_from_jacobian(self, &self.jacobian(q), qd)
     }
@@ -133,7 +137,6 @@ where
     /// assert!((jb.column(5) - Vector6::new(0.0, 0.0, 0.0, 0.0, 0.0, 1.0)).norm() < 1e-12);
     /// ```
     #[doc(alias = "jacobe")]
-    #[doc(alias = "LOCAL")]
     fn body_jacobian(&self, q: &OVector<f64, Self::Dof>) -> OMatrix<f64, U6, Self::Dof> {
         crate::jacobian::body_jacobian_from_jacobian(&self.fk(q), self.jacobian(q))
     }
@@ -211,6 +214,7 @@ where
     }
 
     /// Coriolis matrix C(q, q̇), `C_kj = Σ_i c_ijk q̇_i`.
+    #[doc(alias = "computeCoriolisMatrix")]
     fn coriolis(
         &self,
         q: &OVector<f64, Self::Dof>,
@@ -219,6 +223,7 @@ where
 
     /// Gravity torques g(q).
     #[doc(alias = "gravload")]
+    #[doc(alias = "computeGeneralizedGravity")]
     fn gravity(&self, q: &OVector<f64, Self::Dof>) -> OVector<f64, Self::Dof>;
 
     /// The torques at zero acceleration, `C(q, q̇) q̇ + g(q)` plus friction. By default the
@@ -335,6 +340,7 @@ where
     /// (see [`cholesky_pivot_floor`](crate::cholesky_pivot_floor)) or q̈ is not finite.
     #[doc(alias = "aba")]
     #[doc(alias = "accel")]
+    #[doc(alias = "fdyn")]
     fn forward_dynamics(
         &self,
         q: &OVector<f64, Self::Dof>,

@@ -17,29 +17,17 @@
 //! module's test. Packs of `f64` use it, and so do scalar `f64` generated functions where the
 //! target has AVX ([`PACKED`]): their `State` takes all its joints' sines and cosines as packs
 //! of four ([`Real::sincos_array`](crate::Real::sincos_array)). One value at a time, `f64`
-//! keeps `libm::sincos`, which is faster so (over angles in [−π, π],
-//! `cargo bench --bench batch`, 2026-12-01: `libm` 5.3 ns per call, this code 12.1 alone and
-//! 5.4 per angle in a pack of four on the default x86-64 target; 4.7, 7.8 and 2.2 with AVX2 and
-//! FMA, fused):
-//! it has no branch to mispredict but a longer dependency chain, which only a pack amortises.
-//! A scalar-only variant (the quadrant from the integer bits, no pack selects) was tried: 116
-//! instructions per call against `libm`'s 99 for angles in [−π, π], and twice its time. A
-//! leaner one (2026-12-07: fdlibm's one-step reduction by 33 + 53 bits of π/2 with a branch to
-//! this four-piece one where it cancels, the kernels by Horner's rule, the quadrant by a table
-//! of the sine and cosine of n·π/2 and two multiply-adds) took 95 instructions inlined against
-//! `libm`'s 105 called (angles in [−2, 2], callgrind), but 817 ns per 64 angles against 686:
-//! the kernels with their tails are 50-odd instructions of SSE2 on their own, so the issue's
-//! 50 per joint needs fused multiply-adds or a shorter polynomial than one ulp allows.
+//! keeps `libm::sincos`, which is faster so (5.3 ns a call against 12.1 for this code alone
+//! and 5.4 per angle in a pack of four, default x86-64 target): it has no branch to
+//! mispredict but a longer dependency chain, which only a pack amortises. The variants
+//! measured and not kept: docs/experiments.md, "Sine and cosine".
 //!
 //! `f32` arguments get fdlibm's `f32` reduction and kernels evaluated in `f64` lanes
 //! ([`sincosf_lanes`]: what `libm`'s `sincosf` computes, less its branches) where the target
 //! has AVX, for packs of eight `f32` and for scalar `f32` generated code's joints four at a
 //! time: 0.501 ulp at worst over 10⁷ arguments (this module's second test). With AVX2, 64
-//! angles in packs of eight take 91 ns against 161 for `libm::sincosf` one by one
-//! (`cargo bench --bench batch`, 2026-12-02); without AVX `f32` keeps `libm::sincosf`, which
-//! is then as fast. (An earlier attempt took `f32` angles through the `f64` polynomials
-//! above, whose double-double reduction and longer kernels made scalar `f32` fk and J 1.4–1.8×
-//! slower with AVX2; fdlibm's `f32` reduction and kernels need about half their operations.)
+//! angles in packs of eight take 91 ns against 161 for `libm::sincosf` one by one; without
+//! AVX `f32` keeps `libm::sincosf`, which is then as fast.
 
 use nalgebra::{SimdBool, SimdComplexField, SimdPartialOrd, SimdRealField, SimdValue};
 use simba::simd::{WideF32x8, WideF64x4};

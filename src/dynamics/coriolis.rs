@@ -20,6 +20,7 @@ impl Robot {
     /// # Panics
     /// If `q` or `qd` does not have `self.dof()` entries, or if the robot has no mass
     /// properties.
+    #[doc(alias = "computeCoriolisMatrix")]
     pub fn coriolis(
         &self,
         q: &(impl Joints<f64> + ?Sized),

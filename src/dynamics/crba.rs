@@ -12,6 +12,8 @@ impl Robot {
     ///
     /// # Panics
     /// If `q.len() != self.dof()`, or if the robot has no mass properties.
+    #[doc(alias = "crba")]
+    #[doc(alias = "inertia")]
     pub fn mass_matrix(&self, q: &(impl Joints<f64> + ?Sized)) -> DMatrix<f64> {
         let q = self.check_len("mass_matrix", "q", q);
         self.check_dynamics("mass_matrix");

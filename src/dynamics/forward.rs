@@ -22,6 +22,9 @@ impl Robot {
     /// # Panics
     /// If `q`, `qd` or `tau` does not have `self.dof()` entries, or if the robot has no mass
     /// properties.
+    #[doc(alias = "aba")]
+    #[doc(alias = "accel")]
+    #[doc(alias = "fdyn")]
     pub fn forward_dynamics(
         &self,
         q: &(impl Joints<f64> + ?Sized),

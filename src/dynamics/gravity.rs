@@ -15,6 +15,8 @@ impl Robot {
     ///
     /// # Panics
     /// If `q.len() != self.dof()`, or if the robot has no mass properties.
+    #[doc(alias = "gravload")]
+    #[doc(alias = "computeGeneralizedGravity")]
     pub fn gravity(&self, q: &(impl Joints<f64> + ?Sized)) -> DVector<f64> {
         let q = self.check_len("gravity", "q", q);
         self.check_dynamics("gravity");

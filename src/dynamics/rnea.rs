@@ -16,6 +16,8 @@ impl Robot {
     /// # Panics
     /// If `q`, `qd` or `qdd` does not have `self.dof()` entries, or if the robot has no mass
     /// properties.
+    #[doc(alias = "rnea")]
+    #[doc(alias = "rne")]
     pub fn inverse_dynamics(
         &self,
         q: &(impl Joints<f64> + ?Sized),

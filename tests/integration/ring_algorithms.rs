@@ -8,7 +8,7 @@
 
 use dhgen::Robot;
 use dhgen::model::random::{ArmStyle, random_arm};
-use dhgen_codegen::chain::{Coordinates, Numbers, RingChain};
+use dhgen_codegen::{Coordinates, Numbers, RingChain};
 
 /// A named arm and a state `(q, q̇, q̈)`.
 type Case = (String, Robot, Vec<f64>, Vec<f64>, Vec<f64>);

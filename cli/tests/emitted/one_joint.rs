@@ -194,7 +194,6 @@ pub mod one_joint {
         }
         ///The tool frame's geometric Jacobian in the tool's own axes (the body Jacobian), rows [v; ω]: it does not depend on the base.
         #[doc(alias = "jacobe")]
-        #[doc(alias = "LOCAL")]
         #[must_use]
         pub fn body_jacobian(&self) -> na::SMatrix<T, 6, DOF> {
             let mut out: na::SMatrix<T, 6, DOF> = na::Matrix::from_data(
@@ -209,7 +208,7 @@ pub mod one_joint {
             out
         }
         ///J̇(q, q̇) q̇ of the tool frame origin in world axes, rows [v; ω]: the tool's acceleration at q̈ = 0.
-        #[doc(alias = "jacob_dot")]
+        #[doc(alias = "jacob0_dot")]
         #[doc(alias = "getFrameClassicalAcceleration")]
         #[must_use]
         pub fn jdot_qdot(
@@ -267,7 +266,6 @@ pub mod one_joint {
             out
         }
         ///Christoffel symbols: `[i][j][k]` = c_ijk = ½(∂d_kj/∂q_i + ∂d_ki/∂q_j − ∂d_ij/∂q_k), k the equation index.
-        #[doc(alias = "christoffel_symbols")]
         #[must_use]
         pub fn christoffel(&self) -> [[[T; DOF]; DOF]; DOF] {
             let mut out: [[[T; DOF]; DOF]; DOF] = [[[T::zero(); DOF]; DOF]; DOF];
@@ -275,7 +273,6 @@ pub mod one_joint {
             out
         }
         ///Coriolis and centrifugal matrix C(q, q̇), C_kj = Σ_i c_ijk q̇_i (so Ḋ − 2C is skew-symmetric).
-        #[doc(alias = "coriolis_matrix")]
         #[doc(alias = "computeCoriolisMatrix")]
         #[must_use]
         pub fn coriolis(
@@ -585,7 +582,6 @@ pub mod one_joint {
         }
         ///The derivatives of inverse dynamics, `(∂τ/∂q, ∂τ/∂q̇)` at (q, q̇, q̈), entry `(k, m)` = ∂τ_k/∂x_m (∂τ/∂q̈ is D(q)); what MPC and trajectory optimisation linearise. Coulomb friction, constant away from q̇ = 0, contributes 0 (its subgradient at 0 too).
         #[doc(alias = "computeRNEADerivatives")]
-        #[doc(alias = "rnea_derivatives")]
         #[must_use]
         pub fn inverse_dynamics_derivatives(
             &self,
@@ -624,8 +620,6 @@ pub mod one_joint {
             out
         }
         ///The time derivative of the inertia matrix, Ḋ(q, q̇) = Σ_i ∂D/∂q_i q̇_i (= C + Cᵀ): with [`coriolis_transpose_qd`](Self::coriolis_transpose_qd), what a generalized-momentum collision observer needs every cycle.
-        #[doc(alias = "dD")]
-        #[doc(alias = "computeMassMatrixTimeVariation")]
         #[must_use]
         pub fn mass_matrix_rate(
             &self,
@@ -639,7 +633,6 @@ pub mod one_joint {
             out
         }
         ///Cᵀ(q, q̇) q̇, the term of a generalized-momentum observer's model (ṗ = τ + Cᵀq̇ − g for p = D q̇; De Luca's residual).
-        #[doc(alias = "momentum_observer")]
         #[must_use]
         pub fn coriolis_transpose_qd(
             &self,
@@ -672,7 +665,6 @@ pub mod one_joint {
         }
         ///D(q)⁻¹ by Cholesky factorisation; `None` where D(q) is singular to working precision (the pivot rule of `forward_dynamics`); for a SIMD pack, `None` unless every lane has an answer (`mass_matrix_inverse_lanes` gives them lane by lane).
         #[doc(alias = "computeMinverse")]
-        #[doc(alias = "inertia_inverse")]
         #[must_use]
         pub fn mass_matrix_inverse(&self) -> Option<na::SMatrix<T, DOF, DOF>> {
             let (value, ok) = self.mass_matrix_inverse_lanes();
@@ -744,7 +736,6 @@ pub mod one_joint {
         }
         ///The derivatives of forward dynamics, `(∂q̈/∂q, ∂q̈/∂q̇, ∂q̈/∂τ = D⁻¹)` at (q, q̇, τ), from ∂q̈/∂x = −D⁻¹ ∂τ/∂x at q̈ = D⁻¹(τ − C q̇ − g − friction); `None` where D(q) is singular to working precision or q̈ is not finite, as for `forward_dynamics` (for a SIMD pack, unless every lane has an answer: `forward_dynamics_derivatives_lanes` gives them lane by lane).
         #[doc(alias = "computeABADerivatives")]
-        #[doc(alias = "aba_derivatives")]
         #[must_use]
         pub fn forward_dynamics_derivatives(
             &self,
@@ -1591,7 +1582,6 @@ pub mod one_joint {
     }
     ///The tool frame's geometric Jacobian in the tool's own axes (the body Jacobian), rows [v; ω]: it does not depend on the base.
     #[doc(alias = "jacobe")]
-    #[doc(alias = "LOCAL")]
     #[must_use]
     pub fn body_jacobian<T: ::dhgen::__private::Real>(
         q: &impl ::dhgen::__private::JointArray<T, DOF>,
@@ -1599,7 +1589,7 @@ pub mod one_joint {
         State::for_body_jacobian(q).body_jacobian()
     }
     ///J̇(q, q̇) q̇ of the tool frame origin in world axes, rows [v; ω]: the tool's acceleration at q̈ = 0.
-    #[doc(alias = "jacob_dot")]
+    #[doc(alias = "jacob0_dot")]
     #[doc(alias = "getFrameClassicalAcceleration")]
     #[must_use]
     pub fn jdot_qdot<T: ::dhgen::__private::Real>(
@@ -1627,7 +1617,6 @@ pub mod one_joint {
         State::for_mass_matrix(q).mass_matrix()
     }
     ///Christoffel symbols: `[i][j][k]` = c_ijk = ½(∂d_kj/∂q_i + ∂d_ki/∂q_j − ∂d_ij/∂q_k), k the equation index.
-    #[doc(alias = "christoffel_symbols")]
     #[must_use]
     pub fn christoffel<T: ::dhgen::__private::Real>(
         q: &impl ::dhgen::__private::JointArray<T, DOF>,
@@ -1635,7 +1624,6 @@ pub mod one_joint {
         State::for_christoffel(q).christoffel()
     }
     ///Coriolis and centrifugal matrix C(q, q̇), C_kj = Σ_i c_ijk q̇_i (so Ḋ − 2C is skew-symmetric).
-    #[doc(alias = "coriolis_matrix")]
     #[doc(alias = "computeCoriolisMatrix")]
     #[must_use]
     pub fn coriolis<T: ::dhgen::__private::Real>(
@@ -1834,7 +1822,6 @@ pub mod one_joint {
     }
     ///The derivatives of inverse dynamics, `(∂τ/∂q, ∂τ/∂q̇)` at (q, q̇, q̈), entry `(k, m)` = ∂τ_k/∂x_m (∂τ/∂q̈ is D(q)); what MPC and trajectory optimisation linearise. Coulomb friction, constant away from q̇ = 0, contributes 0 (its subgradient at 0 too).
     #[doc(alias = "computeRNEADerivatives")]
-    #[doc(alias = "rnea_derivatives")]
     #[must_use]
     pub fn inverse_dynamics_derivatives<T: ::dhgen::__private::Real>(
         q: &impl ::dhgen::__private::JointArray<T, DOF>,
@@ -1855,8 +1842,6 @@ pub mod one_joint {
             .inverse_dynamics_derivatives_with_payload(qd, qdd, payload)
     }
     ///The time derivative of the inertia matrix, Ḋ(q, q̇) = Σ_i ∂D/∂q_i q̇_i (= C + Cᵀ): with [`coriolis_transpose_qd`](Self::coriolis_transpose_qd), what a generalized-momentum collision observer needs every cycle.
-    #[doc(alias = "dD")]
-    #[doc(alias = "computeMassMatrixTimeVariation")]
     #[must_use]
     pub fn mass_matrix_rate<T: ::dhgen::__private::Real>(
         q: &impl ::dhgen::__private::JointArray<T, DOF>,
@@ -1865,7 +1850,6 @@ pub mod one_joint {
         State::for_mass_matrix_rate(q).mass_matrix_rate(qd)
     }
     ///Cᵀ(q, q̇) q̇, the term of a generalized-momentum observer's model (ṗ = τ + Cᵀq̇ − g for p = D q̇; De Luca's residual).
-    #[doc(alias = "momentum_observer")]
     #[must_use]
     pub fn coriolis_transpose_qd<T: ::dhgen::__private::Real>(
         q: &impl ::dhgen::__private::JointArray<T, DOF>,
@@ -1882,7 +1866,6 @@ pub mod one_joint {
     }
     ///D(q)⁻¹ by Cholesky factorisation; `None` where D(q) is singular to working precision (the pivot rule of `forward_dynamics`); for a SIMD pack, `None` unless every lane has an answer (`mass_matrix_inverse_lanes` gives them lane by lane).
     #[doc(alias = "computeMinverse")]
-    #[doc(alias = "inertia_inverse")]
     #[must_use]
     pub fn mass_matrix_inverse<T: ::dhgen::__private::Real>(
         q: &impl ::dhgen::__private::JointArray<T, DOF>,
@@ -1904,7 +1887,6 @@ pub mod one_joint {
     }
     ///The derivatives of forward dynamics, `(∂q̈/∂q, ∂q̈/∂q̇, ∂q̈/∂τ = D⁻¹)` at (q, q̇, τ), from ∂q̈/∂x = −D⁻¹ ∂τ/∂x at q̈ = D⁻¹(τ − C q̇ − g − friction); `None` where D(q) is singular to working precision or q̈ is not finite, as for `forward_dynamics` (for a SIMD pack, unless every lane has an answer: `forward_dynamics_derivatives_lanes` gives them lane by lane).
     #[doc(alias = "computeABADerivatives")]
-    #[doc(alias = "aba_derivatives")]
     #[must_use]
     pub fn forward_dynamics_derivatives<T: ::dhgen::__private::Real>(
         q: &impl ::dhgen::__private::JointArray<T, DOF>,

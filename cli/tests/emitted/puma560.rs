@@ -709,7 +709,6 @@ pub mod puma560 {
         }
         ///The tool frame's geometric Jacobian in the tool's own axes (the body Jacobian), rows [v; ω]: it does not depend on the base.
         #[doc(alias = "jacobe")]
-        #[doc(alias = "LOCAL")]
         #[must_use]
         pub fn body_jacobian(&self) -> na::SMatrix<T, 6, DOF> {
             let mut out: na::SMatrix<T, 6, DOF> = na::Matrix::from_data(
@@ -838,7 +837,7 @@ pub mod puma560 {
             out
         }
         ///J̇(q, q̇) q̇ of the tool frame origin in world axes, rows [v; ω]: the tool's acceleration at q̈ = 0.
-        #[doc(alias = "jacob_dot")]
+        #[doc(alias = "jacob0_dot")]
         #[doc(alias = "getFrameClassicalAcceleration")]
         #[must_use]
         pub fn jdot_qdot(
@@ -1565,7 +1564,6 @@ pub mod puma560 {
             out
         }
         ///Christoffel symbols: `[i][j][k]` = c_ijk = ½(∂d_kj/∂q_i + ∂d_ki/∂q_j − ∂d_ij/∂q_k), k the equation index.
-        #[doc(alias = "christoffel_symbols")]
         #[must_use]
         pub fn christoffel(&self) -> [[[T; DOF]; DOF]; DOF] {
             let mut out: [[[T; DOF]; DOF]; DOF] = [[[T::zero(); DOF]; DOF]; DOF];
@@ -2220,7 +2218,6 @@ pub mod puma560 {
             out
         }
         ///Coriolis and centrifugal matrix C(q, q̇), C_kj = Σ_i c_ijk q̇_i (so Ḋ − 2C is skew-symmetric).
-        #[doc(alias = "coriolis_matrix")]
         #[doc(alias = "computeCoriolisMatrix")]
         #[must_use]
         pub fn coriolis(
@@ -8058,7 +8055,6 @@ pub mod puma560 {
     }
     ///The tool frame's geometric Jacobian in the tool's own axes (the body Jacobian), rows [v; ω]: it does not depend on the base.
     #[doc(alias = "jacobe")]
-    #[doc(alias = "LOCAL")]
     #[must_use]
     pub fn body_jacobian<T: ::dhgen::__private::Real>(
         q: &impl ::dhgen::__private::JointArray<T, DOF>,
@@ -8066,7 +8062,7 @@ pub mod puma560 {
         State::for_body_jacobian(q).body_jacobian()
     }
     ///J̇(q, q̇) q̇ of the tool frame origin in world axes, rows [v; ω]: the tool's acceleration at q̈ = 0.
-    #[doc(alias = "jacob_dot")]
+    #[doc(alias = "jacob0_dot")]
     #[doc(alias = "getFrameClassicalAcceleration")]
     #[must_use]
     pub fn jdot_qdot<T: ::dhgen::__private::Real>(
@@ -8108,7 +8104,6 @@ pub mod puma560 {
         State::for_mass_matrix(q).mass_matrix()
     }
     ///Christoffel symbols: `[i][j][k]` = c_ijk = ½(∂d_kj/∂q_i + ∂d_ki/∂q_j − ∂d_ij/∂q_k), k the equation index.
-    #[doc(alias = "christoffel_symbols")]
     #[must_use]
     pub fn christoffel<T: ::dhgen::__private::Real>(
         q: &impl ::dhgen::__private::JointArray<T, DOF>,
@@ -8116,7 +8111,6 @@ pub mod puma560 {
         State::for_christoffel(q).christoffel()
     }
     ///Coriolis and centrifugal matrix C(q, q̇), C_kj = Σ_i c_ijk q̇_i (so Ḋ − 2C is skew-symmetric).
-    #[doc(alias = "coriolis_matrix")]
     #[doc(alias = "computeCoriolisMatrix")]
     #[must_use]
     pub fn coriolis<T: ::dhgen::__private::Real>(

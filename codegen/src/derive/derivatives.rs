@@ -68,7 +68,7 @@ pub(super) fn dual_rnea_with<'c>(
         .collect();
     let mut rc = RingChain::new(chain, &symbols);
     modify(&mut rc, graph);
-    rc.rnea(&qd, &qdd, true)
+    rc.rnea(&qd, &qdd)
 }
 
 /// `[∂τ/∂q row-major, ∂τ/∂q̇ row-major]`: `2n²` scalars, entry `(k, m)` = ∂τ_k/∂x_m; the

@@ -16,15 +16,19 @@ fn joint_terms(chain: ChainRef<'_>, i: usize, qd: &E, qdd: &E) -> E {
     E::K(b.armature) * qdd.clone() + E::K(b.friction.viscous) * qd.clone()
 }
 
-/// The bias torques without gravity or with it, and with q̈ as given: the Newton-Euler
-/// recursion, plus motor inertia and viscous friction.
-pub fn rnea_exprs(
-    chain: ChainRef<'_>,
-    graph: &SharedGraph,
-    qdd_zero: bool,
-    with_gravity: bool,
-) -> Vec<E> {
-    rnea_with(chain, graph, qdd_zero, with_gravity, super::graph_chain)
+/// The joint accelerations a Newton–Euler derivation runs at.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Acceleration {
+    /// q̈ = 0: the bias torques.
+    Zero,
+    /// The symbols `qdd`: the torques τ.
+    Symbolic,
+}
+
+/// The torques at joint accelerations `qdd`: the Newton-Euler recursion (gravity included),
+/// plus motor inertia and viscous friction.
+pub fn rnea_exprs(chain: ChainRef<'_>, graph: &SharedGraph, qdd: Acceleration) -> Vec<E> {
+    rnea_with(chain, graph, qdd, super::graph_chain)
 }
 
 /// [`rnea_exprs`] on the chain `build` makes in graph arithmetic (the payload's derivations add
@@ -33,23 +37,19 @@ pub fn rnea_exprs(
 pub(crate) fn rnea_with<'c>(
     chain: ChainRef<'c>,
     graph: &SharedGraph,
-    qdd_zero: bool,
-    with_gravity: bool,
+    acceleration: Acceleration,
     build: impl FnOnce(ChainRef<'c>, &SharedGraph) -> RingChain<'c, E>,
 ) -> Vec<E> {
     let n = chain.dof();
     let qd: Vec<E> = (0..n).map(|i| E::sym(graph, Sym::Qd(i))).collect();
     let qdd: Vec<E> = (0..n)
-        .map(|i| {
-            if qdd_zero {
-                E::K(0.0)
-            } else {
-                E::sym(graph, Sym::Qdd(i))
-            }
+        .map(|i| match acceleration {
+            Acceleration::Zero => E::K(0.0),
+            Acceleration::Symbolic => E::sym(graph, Sym::Qdd(i)),
         })
         .collect();
     build(chain, graph)
-        .rnea(&qd, &qdd, with_gravity)
+        .rnea(&qd, &qdd)
         .into_iter()
         .enumerate()
         .map(|(i, t)| t + joint_terms(chain, i, &qd[i], &qdd[i]))
@@ -64,7 +64,7 @@ pub fn inverse_dynamics(
 ) -> (SharedGraph, Vec<E>) {
     let recursive = {
         let graph = SharedGraph::default();
-        let e = rnea_exprs(chain, &graph, false, true);
+        let e = rnea_exprs(chain, &graph, Acceleration::Symbolic);
         (graph, e)
     };
     super::cheapest_dynamics(

@@ -98,8 +98,12 @@ pub fn inverse_dynamics_derivatives(chain: ChainRef<'_>) -> (SharedGraph, Vec<E>
 }
 
 /// τ with the payload, without Coulomb friction; `qdd_zero`: the bias `C q̇ + g`.
-pub fn rnea(chain: ChainRef<'_>, graph: &SharedGraph, qdd_zero: bool) -> Vec<E> {
-    super::newton_euler::rnea_with(chain, graph, qdd_zero, true, chain_with_payload)
+pub fn rnea(
+    chain: ChainRef<'_>,
+    graph: &SharedGraph,
+    qdd: super::newton_euler::Acceleration,
+) -> Vec<E> {
+    super::newton_euler::rnea_with(chain, graph, qdd, chain_with_payload)
 }
 
 /// D(q) with the payload (row-major), armature included: the cheapest of the plain D's

@@ -201,12 +201,23 @@ pub fn solve(n: usize) -> (TokenStream, OpCount) {
     (solve, ops)
 }
 
+/// What the inverse's `ok` flag checks.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Check {
+    /// Every pivot above the floor.
+    Pivots,
+    /// Every pivot above the floor and every entry finite.
+    PivotsAndFinite,
+}
+
 /// `D⁻¹` (`dm` in scope) as `(inverse, ok)`, with its operation count: `M = L⁻¹` (unit
 /// lower triangular), `W = Δ⁻¹ M` below the diagonal, then `D⁻¹ = Mᵀ Δ⁻¹ M = Mᵀ W` on and
-/// above the diagonal, mirrored below. `ok`: every pivot above the floor and, if `finite`,
-/// every entry finite (a caller that multiplies D⁻¹ by a finite vector and checks the
-/// product learns the same: a non-finite entry makes its row's product non-finite).
-pub fn inverse(n: usize, finite: bool) -> (TokenStream, OpCount) {
+/// above the diagonal, mirrored below. `ok`: every pivot above the floor and, with
+/// [`Check::PivotsAndFinite`], every entry finite (a caller that multiplies D⁻¹ by a finite
+/// vector and checks the product learns the same: a non-finite entry makes its row's product
+/// non-finite).
+pub fn inverse(n: usize, check: Check) -> (TokenStream, OpCount) {
+    let finite = check == Check::PivotsAndFinite;
     let mut ops = factor_ops(n);
     let m = |i: usize, j: usize| format_ident!("m{}_{}", i, j);
     let w = |i: usize, j: usize| format_ident!("w{}_{}", i, j);

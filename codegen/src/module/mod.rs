@@ -22,7 +22,7 @@ use crate::limits::Unsupported;
 use dhgen_description::parameters::{BaseParameters, Column};
 use dhgen_description::{ChainRef, JointKind, RobotModel};
 use proc_macro2::{Ident, Span, TokenStream};
-use quantities::{ArmMethod, Availability, Input, Made, QUANTITIES, Quantity};
+use quantities::{ArmMethod, Availability, BUILD_ORDER, Input, Key, Made, Quantity, Trait};
 use quote::{format_ident, quote};
 use shape::Shape;
 use std::cell::OnceCell;
@@ -40,57 +40,60 @@ pub struct Generated {
     pub looped: Vec<String>,
 }
 
+/// A derivation of C(q, q̇) the module may emit ([`Context::coriolis_choice`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum CoriolisCandidate {
+    /// C contracted symbolically from the normal forms of the Christoffel symbols.
+    FromSymbols,
+    /// The O(n²) Coriolis recursion on dual numbers.
+    DualRecursion,
+    /// Echeandia and Wensing's O(n²) algorithm.
+    Spatial,
+    /// The Christoffel symbols emitted, and contracted with q̇ at run time (2n³ operations
+    /// beyond the symbols).
+    SymbolsAtRunTime,
+}
+
+impl CoriolisCandidate {
+    /// The candidates in order of preference: of equal cost, the first wins.
+    pub const BY_PREFERENCE: [CoriolisCandidate; 4] = [
+        CoriolisCandidate::FromSymbols,
+        CoriolisCandidate::DualRecursion,
+        CoriolisCandidate::Spatial,
+        CoriolisCandidate::SymbolsAtRunTime,
+    ];
+}
+
 /// The most joints for which D(q), C(q, q̇), c_ijk and the Cholesky factorisation may be
 /// emitted as straight-line code. Above, forward dynamics' factorisation is emitted as loops
-/// ([`cholesky`]), D, C (with a payload too) and c_ijk call the runtime path's loops
+/// (`cholesky`), D, C (with a payload too) and c_ijk call the runtime path's loops
 /// (`dhgen::recursive`), and Ḋ = C + Cᵀ and Cᵀq̇ are taken from that C: a general arm's
-/// straight-line code for them outgrows the instruction cache there (at 16 joints generated
-/// D took 0.78× the runtime's time, at 30 joints D 0.63× and C 0.72×, with thousands of
-/// instruction-cache misses per call against fewer than one; c_ijk at 20 joints 0.72×, Ḋ and
-/// Cᵀq̇ at 30 joints 0.84× and 0.91×, C with a payload 0.81×), and the loops make the module
-/// as fast as the runtime path by construction.
+/// straight-line code for them outgrows the instruction cache there (at 16 joints generated D
+/// took 0.78× the runtime's time), and the loops make the module as fast as the runtime path
+/// by construction. The measurements: docs/experiments.md, "Thresholds of the loops".
 pub const LOOPED_ABOVE: usize = 12;
 
 /// Up to [`LOOPED_ABOVE`] joints, D(q) calls the loops when its cheapest derivation costs
-/// more than this many operations per joint, and C(q, q̇) when its costs more than
-/// [`LOOP_C_ABOVE_PER_JOINT`]: where the loops take less time than the straight-line code.
-/// Measured (2026-11-30, default x86-64 target) on the catalogue and the seeded random arms
-/// of 6–12 joints: straight-line D and C take 0.23–0.33 ns per operation, the loops
-/// (including the sines and cosines) about as long as 240 (D) and 400 (C) operations per
-/// joint; so of those arms only general 12 (D: 3,066 operations, 836 ns straight against
-/// 809 in loops; C: 6,107, 1,965 ns against 1,558) and general 10 (C: 4,208, 1,374 against
-/// 1,216) call the loops, and industrial 12 (C: 4,456, 1,444 against 1,896) does not. (Since
-/// the grouping of inertial parameters, general 12's D costs 2,762 operations and general 10's
-/// C 3,772, just under the thresholds, and straight-line they are faster than the loops,
-/// timed side by side on 2026-12-01: D 629 ns against 711, C 1,003 against 1,028; Panda D 106
-/// against 382, C 403 against 651.) C's threshold was then lowered from 400 to 375 per joint,
-/// which sends general 10's C (3,772, 377 per joint) to the loop: its straight-line code
-/// took 773 and 1,109 ns in two builds of the same session (the runtime's 897 and 916), so
-/// close to the instruction cache's size that code placement decides, where the loop is steady.
-/// (Since 2026-12-07 general 10's C costs 3,592 operations and is straight-line again: 10,747
-/// instructions and 738 level-1 instruction-cache misses per call against the loop's 15,924
-/// and none, yet 1.2–2.4 µs against 2.4–3.9 timed alternately in one program on a noisy host.)
+/// more than this many operations per joint: the loops, sines and cosines included, take
+/// about as long as 240 operations of straight-line D per joint (0.23–0.33 ns an operation on
+/// the default x86-64 target). docs/experiments.md, "Thresholds of the loops".
 pub const LOOP_D_ABOVE_PER_JOINT: usize = 240;
 
-/// See [`LOOP_D_ABOVE_PER_JOINT`].
+/// Up to [`LOOPED_ABOVE`] joints, C(q, q̇) calls the loops when its cheapest derivation costs
+/// more than this many operations per joint (the loops take about as long as 375 operations
+/// of straight-line C per joint, where the code's size makes placement decide).
 pub const LOOP_C_ABOVE_PER_JOINT: usize = 375;
 
 /// Up to [`LOOPED_ABOVE`] joints, C(q, q̇) with a payload calls the loop (as C does, with the
 /// payload's inertia added to the last body) where C does, and where its own straight-line
-/// code costs more than this many operations per joint. Its straight-line code runs slower
-/// per operation than C's: measured side by side (2026-12-01, `scripts/scale_speed.sh
-/// --more`), general 8 (2,566 operations, 321 per joint) 502 ns against the runtime C's 695,
-/// general 10 (3,902, 390 per joint) 1,162 ns against 919, when C itself (3,772) took 773.
+/// code costs more than this many operations per joint: it runs slower per operation than C's
+/// (general 10: 1,162 ns against the runtime C's 919).
 pub const LOOP_C_WITH_PAYLOAD_ABOVE_PER_JOINT: usize = 350;
 
 /// Up to [`LOOPED_ABOVE`] joints, the Christoffel symbols call the runtime's loop
 /// (`dhgen::recursive::christoffel`) where their straight-line code costs more than this many
-/// operations per n³ (n the joints). Measured side by side (2026-12-01, `scripts/scale_speed.sh
-/// --more`): the straight-line symbols take 0.18–0.20 ns per operation (general 8, 10 and 12
-/// joints: 5,055 operations, 9.9 per n³, in 898 ns; 9,098, 9.1 per n³, in 1,858; 19,209, 11.1
-/// per n³, in 3,797, slower than the runtime's 3,558), the loop 2.4, 2.0 and 1.8 ns per n³
-/// (1,210, 2,035 and 3,090 ns), 1.6 at 30 joints: so general 12's symbols call the loop, general
-/// 8's and 10's and the Panda's (1,732 operations, 5 per n³) stay straight-line.
+/// operations per n³ (n the joints): straight-line symbols take 0.18–0.20 ns an operation,
+/// the loop about 2 ns per n³.
 pub const LOOP_CHRISTOFFEL_ABOVE_PER_CUBE: usize = 10;
 
 /// What a module holds beyond the default set of functions, chosen where it is generated
@@ -148,7 +151,7 @@ pub struct Context<'c> {
     christoffel: OnceCell<(SharedGraph, Vec<E>)>,
     mass_matrix: OnceCell<Option<(SharedGraph, Vec<E>)>>,
     coriolis: OnceCell<Vec<(SharedGraph, Vec<E>)>>,
-    coriolis_choice: OnceCell<Option<usize>>,
+    coriolis_choice: OnceCell<Option<CoriolisCandidate>>,
     assembled: OnceCell<Option<(SharedGraph, Vec<E>)>>,
     tau_derivatives: OnceCell<(SharedGraph, Vec<E>)>,
     with_mass_matrix: OnceCell<Option<(SharedGraph, Vec<E>)>>,
@@ -199,9 +202,11 @@ impl<'c> Context<'c> {
     }
 
     /// The derivations of C(q, q̇) (row-major), each built once and shared by the quantities
-    /// that start from C: `[0]` the O(n²) recursion on dual numbers, `[1]` C from the
-    /// Christoffel symbols, in their shared graph, `[2]` Echeandia and Wensing's O(n²)
-    /// algorithm (the cheapest of its forms: in joint frames or in one frame's coordinates).
+    /// that start from C (which take the cheapest, the first of equal cost): the O(n²)
+    /// recursion on dual numbers, C from the Christoffel symbols in their shared graph, and
+    /// Echeandia and Wensing's O(n²) algorithm (the cheapest of its forms: in joint frames or
+    /// in one frame's coordinates). [`coriolis_derivation`](Self::coriolis_derivation) names
+    /// them.
     pub fn coriolis_derivations(&self) -> &[(SharedGraph, Vec<E>)] {
         self.coriolis.get_or_init(|| {
             let (graph, c) = self.christoffel();
@@ -265,35 +270,43 @@ impl<'c> Context<'c> {
         self.chain.dof() > LOOPED_ABOVE
     }
 
-    /// The derivation `coriolis` emits: the index of the cheapest of C from the symbols
-    /// (`0`), the recursion on dual numbers (`1`), Echeandia and Wensing's algorithm (`2`)
-    /// and the symbols contracted at run time (`3`); `None` where it calls the runtime's loop
-    /// instead (above [`LOOPED_ABOVE`] joints, or where the cheapest costs more than the
-    /// loop, [`LOOP_C_ABOVE_PER_JOINT`] per joint). C with a payload follows it. Decided
-    /// once.
-    pub fn coriolis_choice(&self) -> Option<usize> {
+    /// The derivation of C(q, q̇) that is `candidate`, where it is a derivation (the symbols
+    /// contracted at run time are the symbols' own).
+    pub fn coriolis_derivation(
+        &self,
+        candidate: CoriolisCandidate,
+    ) -> Option<&(SharedGraph, Vec<E>)> {
+        let all = self.coriolis_derivations();
+        match candidate {
+            CoriolisCandidate::DualRecursion => Some(&all[0]),
+            CoriolisCandidate::FromSymbols => Some(&all[1]),
+            CoriolisCandidate::Spatial => Some(&all[2]),
+            CoriolisCandidate::SymbolsAtRunTime => None,
+        }
+    }
+
+    /// The derivation `coriolis` emits: the cheapest candidate, the first of equal cost in
+    /// [`CoriolisCandidate::BY_PREFERENCE`]; `None` where it calls the runtime's loop instead
+    /// (above [`LOOPED_ABOVE`] joints, or where the cheapest costs more than the loop,
+    /// [`LOOP_C_ABOVE_PER_JOINT`] per joint). C with a payload follows it. Decided once.
+    pub fn coriolis_choice(&self) -> Option<CoriolisCandidate> {
         *self.coriolis_choice.get_or_init(|| {
             if self.looped() {
                 return None;
             }
             let n = self.chain.dof();
-            let (graph, c) = self.christoffel();
-            let [
-                (recursive_graph, recursive),
-                (_, direct),
-                (spatial_graph, spatial),
-            ] = self.coriolis_derivations()
-            else {
-                unreachable!("three derivations of C")
+            let cost = |candidate| match self.coriolis_derivation(candidate) {
+                Some((graph, c)) => crate::graph::cost(graph, c),
+                None => {
+                    let (graph, c) = self.christoffel();
+                    crate::graph::cost(graph, c) + 2 * n * n * n
+                }
             };
-            let costs = [
-                crate::graph::cost(graph, direct),
-                crate::graph::cost(recursive_graph, recursive),
-                crate::graph::cost(spatial_graph, spatial),
-                crate::graph::cost(graph, c) + 2 * n * n * n,
-            ];
-            let best = (0..4).min_by_key(|&i| costs[i]).unwrap_or(0);
-            (costs[best] <= LOOP_C_ABOVE_PER_JOINT * n).then_some(best)
+            let best = CoriolisCandidate::BY_PREFERENCE
+                .into_iter()
+                .map(|candidate| (cost(candidate), candidate))
+                .min_by_key(|&(cost, _)| cost)?;
+            (best.0 <= LOOP_C_ABOVE_PER_JOINT * n).then_some(best.1)
         })
     }
 
@@ -380,8 +393,8 @@ struct Items {
     dynamics: Vec<TokenStream>,
     ops: Vec<(String, OpCount)>,
     looped: Vec<String>,
-    /// The joints each quantity reads.
-    joints: HashMap<&'static str, Vec<usize>>,
+    /// The joints each quantity made so far reads.
+    joints: HashMap<Key, Vec<usize>>,
 }
 
 /// Whether `body` names `input` anywhere (in any group): an input a function does not read
@@ -431,27 +444,38 @@ impl Items {
                 body
             }
             Made::Looped(body) => {
-                self.joints.insert(q.name, (0..cx.chain.dof()).collect());
+                self.joints.insert(q.key, (0..cx.chain.dof()).collect());
                 self.looped.push(q.name.to_string());
                 body
             }
             Made::Composed { body, reads, ops } => {
+                debug_assert!(
+                    reads.iter().all(|r| q.reads.contains(r)),
+                    "{} reads {reads:?}",
+                    q.name
+                );
+                // Made before it by BUILD_ORDER; a read unavailable for this robot is a fault
+                // of the table that the catalogue's expansion in the tests finds.
                 let mut joints: Vec<usize> = reads
                     .iter()
                     .flat_map(|r| {
                         self.joints
                             .get(r)
-                            .unwrap_or_else(|| panic!("{} reads {r}, not made before it", q.name))
+                            .unwrap_or_else(|| panic!("{} reads {}, not made", q.name, r.name()))
                             .iter()
                             .copied()
                     })
                     .collect();
                 joints.sort_unstable();
                 joints.dedup();
-                self.joints.insert(q.name, joints);
+                self.joints.insert(q.key, joints);
                 if let Some((what, count)) = ops {
                     self.ops.push((what.to_string(), count));
-                } else if q.public && reads.iter().all(|r| self.looped.iter().any(|l| l == r)) {
+                } else if q.public
+                    && reads
+                        .iter()
+                        .all(|r| self.looped.iter().any(|l| l == r.name()))
+                {
                     // Arithmetic of its own aside, the loops it calls (Ḋ = C + Cᵀ).
                     self.looped.push(q.name.to_string());
                 }
@@ -504,7 +528,7 @@ impl Items {
             }
         });
         let preparer = format_ident!("for_{}", q.name);
-        let fill = state::fill(cx, Some(&self.joints[q.name]));
+        let fill = state::fill(cx, Some(&self.joints[&q.key]));
         self.preparers.push(quote! {
             #[inline]
             fn #preparer(q: &impl ::dhgen::__private::JointArray<T, DOF>) -> Self {
@@ -530,8 +554,8 @@ impl Items {
             None => {}
             Some(ArmMethod::Arm) => self.arm.push(same),
             Some(ArmMethod::Dynamics) => self.dynamics.push(same),
-            Some(ArmMethod::Custom(false, tokens)) => self.arm.push(tokens()),
-            Some(ArmMethod::Custom(true, tokens)) => self.dynamics.push(tokens()),
+            Some(ArmMethod::Custom(Trait::Arm, tokens)) => self.arm.push(tokens()),
+            Some(ArmMethod::Custom(Trait::ArmDynamics, tokens)) => self.dynamics.push(tokens()),
         }
     }
 
@@ -676,7 +700,7 @@ impl Items {
             .filter(|&&j| cx.chain.bodies[j].joint == JointKind::Revolute)
             .count();
         self.ops.push((q.name.to_string(), ops));
-        self.joints.insert(q.name, emitted.joints.clone());
+        self.joints.insert(q.key, emitted.joints.clone());
         let names: Vec<&str> = q.inputs.iter().map(|i| i.name()).collect();
         // Between the stages, the late input from the closure of the same name.
         let hook = late.map(|i| {
@@ -828,7 +852,11 @@ pub fn generate_with(
     let chain = cx.chain;
     let n = chain.dof();
     let mut items = Items::default();
-    for q in QUANTITIES.iter().filter(|q| cx.available(q.available)) {
+    for q in BUILD_ORDER
+        .iter()
+        .map(|k| k.quantity())
+        .filter(|q| cx.available(q.available))
+    {
         items.add(&cx, q);
     }
     let Items {

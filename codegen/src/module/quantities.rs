@@ -9,6 +9,7 @@
 
 use super::shape::Shape;
 use super::{Context, cholesky};
+use crate::derive::newton_euler::Acceleration;
 use crate::derive::{
     center_of_mass, derivatives, energy, gravity, kinematics, newton_euler, payload, singularity,
 };
@@ -66,6 +67,178 @@ pub enum Availability {
     Regressor,
 }
 
+/// The key of each generated quantity, in the table's order ([`QUANTITIES`]`[key as usize]`
+/// is its entry).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Key {
+    /// `fk_matrix`.
+    FkMatrix,
+    /// `fk`.
+    Fk,
+    /// `frames_matrix`.
+    FramesMatrix,
+    /// `frames`.
+    Frames,
+    /// `jacobian`.
+    Jacobian,
+    /// `body_jacobian`.
+    BodyJacobian,
+    /// `jdot_qdot`.
+    JdotQdot,
+    /// `body_jdot_qdot`.
+    BodyJdotQdot,
+    /// `det_j11`.
+    DetJ11,
+    /// `det_j22`.
+    DetJ22,
+    /// `mass_matrix`.
+    MassMatrix,
+    /// `christoffel`.
+    Christoffel,
+    /// `coriolis`.
+    Coriolis,
+    /// `gravity`.
+    Gravity,
+    /// `inverse_dynamics_smooth`.
+    InverseDynamicsSmooth,
+    /// `inverse_dynamics`.
+    InverseDynamics,
+    /// `inverse_dynamics_with_payload_smooth`.
+    InverseDynamicsWithPayloadSmooth,
+    /// `inverse_dynamics_with_payload`.
+    InverseDynamicsWithPayload,
+    /// `bias_with_payload_smooth`.
+    BiasWithPayloadSmooth,
+    /// `bias_with_payload`.
+    BiasWithPayload,
+    /// `mass_matrix_with_payload`.
+    MassMatrixWithPayload,
+    /// `gravity_with_payload`.
+    GravityWithPayload,
+    /// `coriolis_with_payload`.
+    CoriolisWithPayload,
+    /// `regressor_smooth`.
+    RegressorSmooth,
+    /// `regressor`.
+    Regressor,
+    /// `base_regressor_smooth`.
+    BaseRegressorSmooth,
+    /// `base_regressor`.
+    BaseRegressor,
+    /// `bias_smooth`.
+    BiasSmooth,
+    /// `bias`.
+    Bias,
+    /// `forward_dynamics_lanes`.
+    ForwardDynamicsLanes,
+    /// `forward_dynamics`.
+    ForwardDynamics,
+    /// `forward_dynamics_with_payload_lanes`.
+    ForwardDynamicsWithPayloadLanes,
+    /// `forward_dynamics_with_payload`.
+    ForwardDynamicsWithPayload,
+    /// `kinetic_energy`.
+    KineticEnergy,
+    /// `potential_energy`.
+    PotentialEnergy,
+    /// `center_of_mass`.
+    CenterOfMass,
+    /// `center_of_mass_jacobian`.
+    CenterOfMassJacobian,
+    /// `kinetic_energy_with_payload`.
+    KineticEnergyWithPayload,
+    /// `potential_energy_with_payload`.
+    PotentialEnergyWithPayload,
+    /// `inverse_dynamics_derivatives`.
+    InverseDynamicsDerivatives,
+    /// `inverse_dynamics_derivatives_with_payload`.
+    InverseDynamicsDerivativesWithPayload,
+    /// `mass_matrix_rate`.
+    MassMatrixRate,
+    /// `coriolis_transpose_qd`.
+    CoriolisTransposeQd,
+    /// `mass_matrix_inverse_lanes`.
+    MassMatrixInverseLanes,
+    /// `mass_matrix_inverse`.
+    MassMatrixInverse,
+    /// `forward_dynamics_terms`.
+    ForwardDynamicsTerms,
+    /// `forward_dynamics_derivatives_lanes`.
+    ForwardDynamicsDerivativesLanes,
+    /// `forward_dynamics_derivatives`.
+    ForwardDynamicsDerivatives,
+    /// `forward_dynamics_derivatives_with_payload_lanes`.
+    ForwardDynamicsDerivativesWithPayloadLanes,
+    /// `forward_dynamics_derivatives_with_payload`.
+    ForwardDynamicsDerivativesWithPayload,
+    /// `terms`.
+    Terms,
+    /// `tool_terms`.
+    ToolTerms,
+}
+
+impl Key {
+    /// The number of quantities.
+    pub const COUNT: usize = Key::ToolTerms as usize + 1;
+
+    /// The table entry of this quantity.
+    pub const fn quantity(self) -> &'static Quantity {
+        &QUANTITIES[self as usize]
+    }
+
+    /// The generated function's name.
+    pub const fn name(self) -> &'static str {
+        self.quantity().name
+    }
+}
+
+/// The order the module builds its quantities in: each after every entry it may read
+/// ([`Quantity::reads`]), ties broken by the table's order (so a table written in build order,
+/// as this one is, builds in its own order). Computed when the generator is compiled: a
+/// cycle among the reads fails that compilation (`const` evaluation), as does a table whose
+/// entries are not at their keys' places.
+pub const BUILD_ORDER: [Key; Key::COUNT] = {
+    let mut i = 0;
+    while i < Key::COUNT {
+        assert!(
+            QUANTITIES[i].key as usize == i,
+            "the table's entries must be in the order of their keys"
+        );
+        i += 1;
+    }
+    let mut placed = [false; Key::COUNT];
+    let mut order = [Key::FkMatrix; Key::COUNT];
+    let mut n = 0;
+    while n < Key::COUNT {
+        let mut next = None;
+        let mut k = 0;
+        while k < Key::COUNT && next.is_none() {
+            if !placed[k] {
+                let reads = QUANTITIES[k].reads;
+                let mut ready = true;
+                let mut r = 0;
+                while r < reads.len() {
+                    if !placed[reads[r] as usize] {
+                        ready = false;
+                    }
+                    r += 1;
+                }
+                if ready {
+                    next = Some(k);
+                }
+            }
+            k += 1;
+        }
+        let Some(k) = next else {
+            panic!("the quantity table's reads have a cycle");
+        };
+        placed[k] = true;
+        order[n] = QUANTITIES[k].key;
+        n += 1;
+    }
+    order
+};
+
 /// How a quantity is made.
 pub enum Made {
     /// Straight-line code: the derivation's scalars, in the order of the quantity's shape.
@@ -74,8 +247,8 @@ pub enum Made {
     Composed {
         /// The body of the `State` method.
         body: TokenStream,
-        /// The entries it calls.
-        reads: &'static [&'static str],
+        /// The entries it calls (among its entry's [`Quantity::reads`]).
+        reads: &'static [Key],
         /// Arithmetic of its own, reported under a name (the Cholesky solve).
         ops: Option<(&'static str, crate::OpCount)>,
     },
@@ -90,6 +263,15 @@ pub enum Made {
     Staged(SharedGraph, Vec<E>, Input),
 }
 
+/// One of the two traits a generated `Robot` implements.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Trait {
+    /// `dhgen::Arm`.
+    Arm,
+    /// `dhgen::ArmDynamics`.
+    ArmDynamics,
+}
+
 /// The trait method a quantity implements, for `f64` and nalgebra joint vectors.
 #[derive(Clone, Copy)]
 pub enum ArmMethod {
@@ -97,17 +279,20 @@ pub enum ArmMethod {
     Arm,
     /// `dhgen::ArmDynamics::<name>` with the quantity's own signature.
     Dynamics,
-    /// A method of another form (writing into a buffer): `(is ArmDynamics, its tokens)`.
-    Custom(bool, fn() -> TokenStream),
+    /// A method of another form (writing into a buffer), of the trait given: its tokens.
+    Custom(Trait, fn() -> TokenStream),
 }
 
 /// One generated quantity.
 pub struct Quantity {
+    /// Its key: its place in [`QUANTITIES`].
+    pub key: Key,
     /// The `State` method, the free function and the trait method.
     pub name: &'static str,
     /// What it is: the doc text of the method and the free function.
     pub doc: &'static str,
-    /// The names users of Pinocchio and Robotics Toolbox search for (`#[doc(alias)]`).
+    /// Its names in Pinocchio and the Robotics Toolbox (`#[doc(alias)]` on the generated
+    /// function, the trait method and the runtime method alike; docs/names.md lists them).
     pub aliases: &'static [&'static str],
     /// Arguments after `q`.
     pub inputs: &'static [Input],
@@ -118,6 +303,9 @@ pub struct Quantity {
     /// Part of the module's interface (a `State` method and a free function), or a private
     /// helper of other entries.
     pub public: bool,
+    /// Every entry it may read, for any robot (a composition reads those among them it calls):
+    /// what [`BUILD_ORDER`] is computed from.
+    pub reads: &'static [Key],
     /// How it is made.
     pub make: fn(&Context<'_>) -> Made,
     /// The trait method it implements.
@@ -128,7 +316,7 @@ fn derived(graph: SharedGraph, exprs: Vec<E>) -> Made {
     Made::Derived(graph, exprs)
 }
 
-fn composed(body: TokenStream, reads: &'static [&'static str]) -> Made {
+fn composed(body: TokenStream, reads: &'static [Key]) -> Made {
     Made::Composed {
         body,
         reads,
@@ -139,12 +327,7 @@ fn composed(body: TokenStream, reads: &'static [&'static str]) -> Made {
 /// The straight-line part `call` (reading `reads`) bound to `var`, then `after`: what Coulomb
 /// friction adds, which is not arithmetic (`sign`) and so comes after; `mut` only when there is
 /// something to add.
-fn then(
-    var: TokenStream,
-    call: TokenStream,
-    after: TokenStream,
-    reads: &'static [&'static str],
-) -> Made {
+fn then(var: TokenStream, call: TokenStream, after: TokenStream, reads: &'static [Key]) -> Made {
     let binding = if after.is_empty() {
         quote!(let #var)
     } else {
@@ -161,7 +344,7 @@ fn then(
 }
 
 /// A smooth torque (`call`, reading `reads`) plus the joints' Coulomb friction.
-fn with_coulomb(cx: &Context<'_>, call: TokenStream, reads: &'static [&'static str]) -> Made {
+fn with_coulomb(cx: &Context<'_>, call: TokenStream, reads: &'static [Key]) -> Made {
     then(quote!(tau), call, cx.coulomb(), reads)
 }
 
@@ -171,7 +354,7 @@ fn with_coulomb_columns(
     cx: &Context<'_>,
     kept: impl IntoIterator<Item = usize>,
     call: TokenStream,
-    reads: &'static [&'static str],
+    reads: &'static [Key],
 ) -> Made {
     let signs = kept
         .into_iter()
@@ -192,7 +375,38 @@ fn with_coulomb_columns(
 /// instructions per call, PUMA 560: 2.7 %); both call the same staged terms. With `payload`,
 /// those with a payload held by the tool (`*_with_payload`): D, g and the staged ∂τ with the
 /// payload's parameters as inputs.
-fn forward_dynamics_derivatives(cx: &Context<'_>, lanes: bool, payload: bool) -> Made {
+/// The form of a quantity that may fail lane by lane.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Answer {
+    /// `(value, mask)`: the mask of the lanes where the value is an answer (the `_lanes`
+    /// helpers, for SIMD packs).
+    Lanes,
+    /// `Option<value>`: `Some` when every lane is an answer.
+    Option,
+}
+
+/// What the tool holds in a derivation.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Held {
+    /// Nothing: the arm's own dynamics.
+    Nothing,
+    /// A payload, whose ten parameters are an input (`*_with_payload`).
+    Payload,
+}
+
+/// Whether a Cholesky solve reports its operations (once per module: every solve is the
+/// same).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum SolveOps {
+    /// Reported under `cholesky_solve`.
+    Report,
+    /// Already reported by another quantity.
+    Reported,
+}
+
+fn forward_dynamics_derivatives(cx: &Context<'_>, answer: Answer, held: Held) -> Made {
+    let lanes = answer == Answer::Lanes;
+    let payload = held == Held::Payload;
     let n = cx.chain.dof();
     let joints = 0..n;
     // ½ viscous_j q̇_j where the joint has viscous friction.
@@ -254,10 +468,10 @@ fn forward_dynamics_derivatives(cx: &Context<'_>, lanes: bool, payload: bool) ->
     let finite = quote!(let ok = ok #(& ::dhgen::__private::Real::is_finite_lanes(qdd[#joints]))*;);
     // ∂τ/∂q, ∂τ/∂q̇ (and D, factorised between the stages, where it is cheaper beside
     // them) with q̈ computed between the stages.
-    let (body, reads): (_, &'static [&'static str]) =
+    let (body, reads): (_, &'static [Key]) =
         if !payload && cx.derivatives_with_mass_matrix().is_some() {
             // Its entries need no check of their own: q̈ = D⁻¹(τ − h) is checked.
-            let (inverse, _) = cholesky::inverse(n, false);
+            let (inverse, _) = cholesky::inverse(n, cholesky::Check::Pivots);
             let finish = if lanes {
                 quote!((terms, ok))
             } else {
@@ -284,13 +498,13 @@ fn forward_dynamics_derivatives(cx: &Context<'_>, lanes: bool, payload: bool) ->
                     #products
                     #finish
                 },
-                &["forward_dynamics_terms", "gravity"],
+                &[Key::ForwardDynamicsTerms, Key::Gravity],
             )
         } else {
             // D⁻¹ on its own, then ∂τ staged at q̈: of the arm, or with the payload's parameters
             // as inputs.
-            let (inverse, staged, inputs, reads): (_, _, _, &'static [&'static str]) = if payload {
-                let (inverse, _) = cholesky::inverse(n, true);
+            let (inverse, staged, inputs, reads): (_, _, _, &'static [Key]) = if payload {
+                let (inverse, _) = cholesky::inverse(n, cholesky::Check::PivotsAndFinite);
                 (
                     quote!({
                         let dm = self.mass_matrix_with_payload(payload);
@@ -299,9 +513,9 @@ fn forward_dynamics_derivatives(cx: &Context<'_>, lanes: bool, payload: bool) ->
                     quote!(inverse_dynamics_derivatives_with_payload_then),
                     quote!(qd, payload),
                     &[
-                        "mass_matrix_with_payload",
-                        "gravity_with_payload",
-                        "inverse_dynamics_derivatives_with_payload",
+                        Key::MassMatrixWithPayload,
+                        Key::GravityWithPayload,
+                        Key::InverseDynamicsDerivativesWithPayload,
                     ],
                 )
             } else {
@@ -310,9 +524,9 @@ fn forward_dynamics_derivatives(cx: &Context<'_>, lanes: bool, payload: bool) ->
                     quote!(inverse_dynamics_derivatives_then),
                     quote!(qd),
                     &[
-                        "mass_matrix_inverse_lanes",
-                        "gravity",
-                        "inverse_dynamics_derivatives",
+                        Key::MassMatrixInverseLanes,
+                        Key::Gravity,
+                        Key::InverseDynamicsDerivatives,
                     ],
                 )
             };
@@ -355,7 +569,7 @@ fn forward_dynamics_derivatives(cx: &Context<'_>, lanes: bool, payload: bool) ->
 
 /// A lane-wise value and mask (`call`, reading `reads`) as an `Option`: `Some` when every
 /// lane holds an answer (for a scalar, when it does).
-fn all_lanes(call: TokenStream, reads: &'static [&'static str]) -> Made {
+fn all_lanes(call: TokenStream, reads: &'static [Key]) -> Made {
     composed(
         quote! {
             let (value, ok) = #call;
@@ -367,13 +581,12 @@ fn all_lanes(call: TokenStream, reads: &'static [&'static str]) -> Made {
 
 /// Forward dynamics `q̈ = D⁻¹(τ − h)` by the Cholesky solve, `operands` binding D and h
 /// (`dm`, `h`: the values of `mass_matrix` and `bias`, reading `reads`); the solve's own
-/// operations reported under `cholesky_solve` when `report` (once per module: every solve is
-/// the same).
+/// operations reported under `cholesky_solve` when `report` asks.
 fn solved(
     cx: &Context<'_>,
     operands: TokenStream,
-    reads: &'static [&'static str],
-    report: bool,
+    reads: &'static [Key],
+    report: SolveOps,
 ) -> Made {
     let (solve, ops) = cholesky::solve(cx.chain.dof());
     Made::Composed {
@@ -383,7 +596,7 @@ fn solved(
             #solve
         },
         reads,
-        ops: report.then_some(("cholesky_solve", ops)),
+        ops: (report == SolveOps::Report).then_some(("cholesky_solve", ops)),
     }
 }
 
@@ -406,8 +619,9 @@ fn wrist_determinant(cx: &Context<'_>, pick: fn(&(Poly, Poly)) -> &Poly) -> Made
 }
 
 /// The generated quantities, each after those it reads.
-pub const QUANTITIES: &[Quantity] = &[
+pub const QUANTITIES: [Quantity; Key::COUNT] = [
     Quantity {
+        key: Key::FkMatrix,
         name: "fk_matrix",
         doc: "Pose of the tool frame in the world frame as a homogeneous matrix, \
               base · A1 ⋯ An · tool: the fast path (no conversion to a quaternion).",
@@ -416,6 +630,7 @@ pub const QUANTITIES: &[Quantity] = &[
         shape: Shape::Homogeneous,
         available: Availability::Always,
         public: true,
+        reads: &[],
         make: |cx| {
             let (graph, f) = kinematics::fk(cx.chain);
             derived(graph, frame_entries(&f))
@@ -423,6 +638,7 @@ pub const QUANTITIES: &[Quantity] = &[
         arm: None,
     },
     Quantity {
+        key: Key::Fk,
         name: "fk",
         doc: "Pose of the tool frame in the world frame, base · A1 ⋯ An · tool, as a \
               translation and a unit quaternion (from `fk_matrix`).",
@@ -431,10 +647,12 @@ pub const QUANTITIES: &[Quantity] = &[
         shape: Shape::Pose,
         available: Availability::Always,
         public: true,
-        make: |_| composed(quote!(isometry(&self.fk_matrix())), &["fk_matrix"]),
+        reads: &[Key::FkMatrix],
+        make: |_| composed(quote!(isometry(&self.fk_matrix())), &[Key::FkMatrix]),
         arm: Some(ArmMethod::Arm),
     },
     Quantity {
+        key: Key::FramesMatrix,
         name: "frames_matrix",
         doc: "The link frames in the world frame (base applied, tool not) as homogeneous \
               matrices.",
@@ -443,6 +661,7 @@ pub const QUANTITIES: &[Quantity] = &[
         shape: Shape::HomogeneousPerJoint,
         available: Availability::Always,
         public: true,
+        reads: &[],
         make: |cx| {
             let (graph, frames) = kinematics::frames(cx.chain);
             derived(graph, frames.iter().flat_map(frame_entries).collect())
@@ -450,6 +669,7 @@ pub const QUANTITIES: &[Quantity] = &[
         arm: None,
     },
     Quantity {
+        key: Key::Frames,
         name: "frames",
         doc: "The link frames in the world frame (base applied, tool not).",
         aliases: &["updateFramePlacements"],
@@ -457,6 +677,7 @@ pub const QUANTITIES: &[Quantity] = &[
         shape: Shape::PosePerJoint,
         available: Availability::Always,
         public: true,
+        reads: &[Key::FramesMatrix],
         make: |_| {
             composed(
                 quote! {
@@ -469,10 +690,10 @@ pub const QUANTITIES: &[Quantity] = &[
                     }
                     out
                 },
-                &["frames_matrix"],
+                &[Key::FramesMatrix],
             )
         },
-        arm: Some(ArmMethod::Custom(false, || {
+        arm: Some(ArmMethod::Custom(Trait::Arm, || {
             quote! {
                 fn frames_into(&self, q: &na::SVector<f64, DOF>, out: &mut [na::Isometry3<f64>]) {
                     for (o, f) in out.iter_mut().zip(State::for_frames(q).frames()) {
@@ -483,6 +704,7 @@ pub const QUANTITIES: &[Quantity] = &[
         })),
     },
     Quantity {
+        key: Key::Jacobian,
         name: "jacobian",
         doc: "Geometric Jacobian of the tool frame origin in world axes, rows [v; ω].",
         aliases: &["jacob0", "computeJointJacobians", "getFrameJacobian"],
@@ -490,6 +712,7 @@ pub const QUANTITIES: &[Quantity] = &[
         shape: Shape::Jacobian,
         available: Availability::Always,
         public: true,
+        reads: &[],
         make: |cx| {
             let (graph, columns) = kinematics::jacobian(cx.chain);
             derived(graph, columns.into_iter().flatten().collect())
@@ -497,14 +720,16 @@ pub const QUANTITIES: &[Quantity] = &[
         arm: Some(ArmMethod::Arm),
     },
     Quantity {
+        key: Key::BodyJacobian,
         name: "body_jacobian",
         doc: "The tool frame's geometric Jacobian in the tool's own axes (the body Jacobian), \
               rows [v; ω]: it does not depend on the base.",
-        aliases: &["jacobe", "LOCAL"],
+        aliases: &["jacobe"],
         inputs: &[],
         shape: Shape::Jacobian,
         available: Availability::Always,
         public: true,
+        reads: &[],
         make: |cx| {
             let (graph, columns) = kinematics::body_jacobian(cx.chain);
             derived(graph, columns.into_iter().flatten().collect())
@@ -512,14 +737,16 @@ pub const QUANTITIES: &[Quantity] = &[
         arm: Some(ArmMethod::Arm),
     },
     Quantity {
+        key: Key::JdotQdot,
         name: "jdot_qdot",
         doc: "J̇(q, q̇) q̇ of the tool frame origin in world axes, rows [v; ω]: the tool's \
               acceleration at q̈ = 0.",
-        aliases: &["jacob_dot", "getFrameClassicalAcceleration"],
+        aliases: &["jacob0_dot", "getFrameClassicalAcceleration"],
         inputs: &[Input::Qd],
         shape: Shape::Vector6,
         available: Availability::Always,
         public: true,
+        reads: &[],
         make: |cx| {
             let graph = SharedGraph::default();
             let acc = kinematics::jdot_qdot(cx.chain, &graph);
@@ -528,6 +755,7 @@ pub const QUANTITIES: &[Quantity] = &[
         arm: Some(ArmMethod::Arm),
     },
     Quantity {
+        key: Key::BodyJdotQdot,
         name: "body_jdot_qdot",
         doc: "J̇_b(q, q̇) q̇ in the tool's own axes, rows [v; ω]: the rate of the tool's body \
               velocity (`body_jacobian` times q̇) at q̈ = 0, from the outward pass in joint frames.",
@@ -536,6 +764,7 @@ pub const QUANTITIES: &[Quantity] = &[
         shape: Shape::Vector6,
         available: Availability::Always,
         public: true,
+        reads: &[],
         make: |cx| {
             let graph = SharedGraph::default();
             let acc = kinematics::body_jdot_qdot(cx.chain, &graph);
@@ -544,6 +773,7 @@ pub const QUANTITIES: &[Quantity] = &[
         arm: Some(ArmMethod::Arm),
     },
     Quantity {
+        key: Key::DetJ11,
         name: "det_j11",
         doc: "det J11 (the Jacobian about the wrist centre): zero at arm singularities \
               (section 5.6.1).",
@@ -552,10 +782,12 @@ pub const QUANTITIES: &[Quantity] = &[
         shape: Shape::Scalar,
         available: Availability::DecoupledWrist,
         public: true,
+        reads: &[],
         make: |cx| wrist_determinant(cx, |d| &d.0),
         arm: None,
     },
     Quantity {
+        key: Key::DetJ22,
         name: "det_j22",
         doc: "det J22 = z3 · (z4 × z5): zero at wrist singularities (section 5.6.1).",
         aliases: &[],
@@ -563,10 +795,12 @@ pub const QUANTITIES: &[Quantity] = &[
         shape: Shape::Scalar,
         available: Availability::DecoupledWrist,
         public: true,
+        reads: &[],
         make: |cx| wrist_determinant(cx, |d| &d.1),
         arm: None,
     },
     Quantity {
+        key: Key::MassMatrix,
         name: "mass_matrix",
         doc: "Joint-space inertia matrix D(q), armature (reflected motor inertia) included.",
         aliases: &["crba", "inertia"],
@@ -574,6 +808,7 @@ pub const QUANTITIES: &[Quantity] = &[
         shape: Shape::Square,
         available: Availability::Dynamics,
         public: true,
+        reads: &[],
         make: |cx| match cx.mass_matrix() {
             Some((graph, d)) => derived(graph.clone(), d.clone()),
             None => Made::Looped(quote!(::dhgen::__private::recursive::mass_matrix(
@@ -583,14 +818,16 @@ pub const QUANTITIES: &[Quantity] = &[
         arm: Some(ArmMethod::Dynamics),
     },
     Quantity {
+        key: Key::Christoffel,
         name: "christoffel",
         doc: "Christoffel symbols: `[i][j][k]` = c_ijk = ½(∂d_kj/∂q_i + ∂d_ki/∂q_j − \
               ∂d_ij/∂q_k), k the equation index.",
-        aliases: &["christoffel_symbols"],
+        aliases: &[],
         inputs: &[],
         shape: Shape::Cube,
         available: Availability::Dynamics,
         public: true,
+        reads: &[],
         make: |cx| {
             // Above `LOOPED_ABOVE` joints, the runtime's loops, as for D and C: the n³
             // symbols' straight-line code outgrows the instruction cache (general 20-joint
@@ -611,7 +848,7 @@ pub const QUANTITIES: &[Quantity] = &[
             }
             derived(graph.clone(), c.clone())
         },
-        arm: Some(ArmMethod::Custom(true, || {
+        arm: Some(ArmMethod::Custom(Trait::ArmDynamics, || {
             quote! {
                 fn christoffel_into(&self, q: &na::SVector<f64, DOF>, out: &mut [f64]) {
                     let c = State::for_christoffel(q).christoffel();
@@ -623,14 +860,16 @@ pub const QUANTITIES: &[Quantity] = &[
         })),
     },
     Quantity {
+        key: Key::Coriolis,
         name: "coriolis",
         doc: "Coriolis and centrifugal matrix C(q, q̇), C_kj = Σ_i c_ijk q̇_i (so Ḋ − 2C is \
               skew-symmetric).",
-        aliases: &["coriolis_matrix", "computeCoriolisMatrix"],
+        aliases: &["computeCoriolisMatrix"],
         inputs: &[Input::Qd],
         shape: Shape::Square,
         available: Availability::Dynamics,
         public: true,
+        reads: &[Key::Christoffel],
         make: |cx| {
             // Four candidates: C straight from the symbols (zero symbols fold away), the O(n²)
             // recursion on dual numbers, Echeandia and Wensing's O(n²) algorithm (the runtime
@@ -645,17 +884,9 @@ pub const QUANTITIES: &[Quantity] = &[
             let Some(best) = cx.coriolis_choice() else {
                 return looped_coriolis();
             };
-            // The derivations in `coriolis_choice`'s numbering (`coriolis_derivations` has the
-            // recursion first, then C from the symbols).
-            let pick = |i: usize| {
-                let (graph, c) = &cx.coriolis_derivations()[i];
-                derived(graph.clone(), c.clone())
-            };
-            match best {
-                0 => pick(1),
-                1 => pick(0),
-                2 => pick(2),
-                _ => composed(
+            match cx.coriolis_derivation(best) {
+                Some((graph, c)) => derived(graph.clone(), c.clone()),
+                None => composed(
                     {
                         let zeros = Shape::Square.init();
                         quote! {
@@ -673,13 +904,14 @@ pub const QUANTITIES: &[Quantity] = &[
                             out
                         }
                     },
-                    &["christoffel"],
+                    &[Key::Christoffel],
                 ),
             }
         },
         arm: Some(ArmMethod::Dynamics),
     },
     Quantity {
+        key: Key::Gravity,
         name: "gravity",
         doc: "Gravity torques g(q): the torques that hold the arm still.",
         aliases: &["gravload", "computeGeneralizedGravity"],
@@ -687,6 +919,7 @@ pub const QUANTITIES: &[Quantity] = &[
         shape: Shape::Vector,
         available: Availability::Dynamics,
         public: true,
+        reads: &[],
         make: |cx| {
             let (graph, g) = gravity::gravity(&cx.derivation);
             derived(graph, g)
@@ -694,6 +927,7 @@ pub const QUANTITIES: &[Quantity] = &[
         arm: Some(ArmMethod::Dynamics),
     },
     Quantity {
+        key: Key::InverseDynamicsSmooth,
         name: "inverse_dynamics_smooth",
         doc: "",
         aliases: &[],
@@ -701,6 +935,7 @@ pub const QUANTITIES: &[Quantity] = &[
         shape: Shape::Vector,
         available: Availability::Dynamics,
         public: false,
+        reads: &[],
         make: |cx| {
             let (graph, tau) =
                 newton_euler::inverse_dynamics(cx.chain, cx.assembled_inverse_dynamics());
@@ -709,6 +944,7 @@ pub const QUANTITIES: &[Quantity] = &[
         arm: None,
     },
     Quantity {
+        key: Key::InverseDynamics,
         name: "inverse_dynamics",
         doc: "Inverse dynamics τ = D(q) q̈ + C(q, q̇) q̇ + g(q), plus armature and friction.",
         aliases: &["rnea", "rne"],
@@ -716,16 +952,18 @@ pub const QUANTITIES: &[Quantity] = &[
         shape: Shape::Vector,
         available: Availability::Dynamics,
         public: true,
+        reads: &[Key::InverseDynamicsSmooth],
         make: |cx| {
             with_coulomb(
                 cx,
                 quote!(self.inverse_dynamics_smooth(qd, qdd)),
-                &["inverse_dynamics_smooth"],
+                &[Key::InverseDynamicsSmooth],
             )
         },
         arm: Some(ArmMethod::Dynamics),
     },
     Quantity {
+        key: Key::InverseDynamicsWithPayloadSmooth,
         name: "inverse_dynamics_with_payload_smooth",
         doc: "",
         aliases: &[],
@@ -733,14 +971,16 @@ pub const QUANTITIES: &[Quantity] = &[
         shape: Shape::Vector,
         available: Availability::Dynamics,
         public: false,
+        reads: &[],
         make: |cx| {
             let graph = SharedGraph::default();
-            let tau = payload::rnea(cx.chain, &graph, false);
+            let tau = payload::rnea(cx.chain, &graph, Acceleration::Symbolic);
             derived(graph, tau)
         },
         arm: None,
     },
     Quantity {
+        key: Key::InverseDynamicsWithPayload,
         name: "inverse_dynamics_with_payload",
         doc: "Inverse dynamics with a payload held by the tool: `payload` is its ten inertial \
               parameters about the tool frame's origin, in the tool frame (`m, m·cx, m·cy, m·cz, \
@@ -752,16 +992,18 @@ pub const QUANTITIES: &[Quantity] = &[
         shape: Shape::Vector,
         available: Availability::Dynamics,
         public: true,
+        reads: &[Key::InverseDynamicsWithPayloadSmooth],
         make: |cx| {
             with_coulomb(
                 cx,
                 quote!(self.inverse_dynamics_with_payload_smooth(qd, qdd, payload)),
-                &["inverse_dynamics_with_payload_smooth"],
+                &[Key::InverseDynamicsWithPayloadSmooth],
             )
         },
         arm: None,
     },
     Quantity {
+        key: Key::BiasWithPayloadSmooth,
         name: "bias_with_payload_smooth",
         doc: "",
         aliases: &[],
@@ -769,14 +1011,16 @@ pub const QUANTITIES: &[Quantity] = &[
         shape: Shape::Vector,
         available: Availability::Dynamics,
         public: false,
+        reads: &[],
         make: |cx| {
             let graph = SharedGraph::default();
-            let bias = payload::rnea(cx.chain, &graph, true);
+            let bias = payload::rnea(cx.chain, &graph, Acceleration::Zero);
             derived(graph, bias)
         },
         arm: None,
     },
     Quantity {
+        key: Key::BiasWithPayload,
         name: "bias_with_payload",
         doc: "The torques at zero acceleration with a payload held by the tool (`payload`: its \
               ten parameters, as for `inverse_dynamics_with_payload`).",
@@ -785,16 +1029,18 @@ pub const QUANTITIES: &[Quantity] = &[
         shape: Shape::Vector,
         available: Availability::Dynamics,
         public: true,
+        reads: &[Key::BiasWithPayloadSmooth],
         make: |cx| {
             with_coulomb(
                 cx,
                 quote!(self.bias_with_payload_smooth(qd, payload)),
-                &["bias_with_payload_smooth"],
+                &[Key::BiasWithPayloadSmooth],
             )
         },
         arm: None,
     },
     Quantity {
+        key: Key::MassMatrixWithPayload,
         name: "mass_matrix_with_payload",
         doc: "D(q) with a payload held by the tool (`payload`: its ten parameters, as for \
               `inverse_dynamics_with_payload`).",
@@ -803,6 +1049,7 @@ pub const QUANTITIES: &[Quantity] = &[
         shape: Shape::Square,
         available: Availability::Dynamics,
         public: true,
+        reads: &[],
         make: |cx| {
             let (graph, d) = payload::mass_matrix(cx.chain);
             derived(graph, d)
@@ -810,6 +1057,7 @@ pub const QUANTITIES: &[Quantity] = &[
         arm: None,
     },
     Quantity {
+        key: Key::GravityWithPayload,
         name: "gravity_with_payload",
         doc: "g(q) with a payload held by the tool (`payload`: its ten parameters, as for \
               `inverse_dynamics_with_payload`).",
@@ -818,6 +1066,7 @@ pub const QUANTITIES: &[Quantity] = &[
         shape: Shape::Vector,
         available: Availability::Dynamics,
         public: true,
+        reads: &[],
         make: |cx| {
             let graph = SharedGraph::default();
             let g = payload::gravity(cx.chain, &graph);
@@ -826,6 +1075,7 @@ pub const QUANTITIES: &[Quantity] = &[
         arm: None,
     },
     Quantity {
+        key: Key::CoriolisWithPayload,
         name: "coriolis_with_payload",
         doc: "C(q, q̇) with a payload held by the tool (`payload`: its ten parameters, as for \
               `inverse_dynamics_with_payload`).",
@@ -834,6 +1084,7 @@ pub const QUANTITIES: &[Quantity] = &[
         shape: Shape::Square,
         available: Availability::Dynamics,
         public: true,
+        reads: &[],
         make: |cx| {
             // Where C calls the runtime's loop, so does C with the payload, and where its own
             // straight-line code costs more than `LOOP_C_WITH_PAYLOAD_ABOVE_PER_JOINT`.
@@ -857,6 +1108,7 @@ pub const QUANTITIES: &[Quantity] = &[
         arm: None,
     },
     Quantity {
+        key: Key::RegressorSmooth,
         name: "regressor_smooth",
         doc: "",
         aliases: &[],
@@ -864,6 +1116,7 @@ pub const QUANTITIES: &[Quantity] = &[
         shape: Shape::Regressor,
         available: Availability::Regressor,
         public: false,
+        reads: &[],
         make: |cx| {
             let (graph, y) = cx.regressor();
             derived(graph.clone(), y.clone())
@@ -871,6 +1124,7 @@ pub const QUANTITIES: &[Quantity] = &[
         arm: None,
     },
     Quantity {
+        key: Key::Regressor,
         name: "regressor",
         doc: "The joint torque regressor Y(q, q̇, q̈), `DOF × PARAMETERS`, with τ = Y π for \
               every parameter vector π (`PARAMETER_VALUES` is the robot's own; order and frames \
@@ -880,17 +1134,19 @@ pub const QUANTITIES: &[Quantity] = &[
         shape: Shape::Regressor,
         available: Availability::Regressor,
         public: true,
+        reads: &[Key::RegressorSmooth],
         make: |cx| {
             with_coulomb_columns(
                 cx,
                 0..cx.columns.len(),
                 quote!(self.regressor_smooth(qd, qdd)),
-                &["regressor_smooth"],
+                &[Key::RegressorSmooth],
             )
         },
         arm: None,
     },
     Quantity {
+        key: Key::BaseRegressorSmooth,
         name: "base_regressor_smooth",
         doc: "",
         aliases: &[],
@@ -898,6 +1154,7 @@ pub const QUANTITIES: &[Quantity] = &[
         shape: Shape::BaseRegressor,
         available: Availability::Regressor,
         public: false,
+        reads: &[],
         make: |cx| {
             let (graph, y) = cx.regressor();
             let p = cx.columns.len();
@@ -910,6 +1167,7 @@ pub const QUANTITIES: &[Quantity] = &[
         arm: None,
     },
     Quantity {
+        key: Key::BaseRegressor,
         name: "base_regressor",
         doc: "The base regressor Y_b(q, q̇, q̈), `DOF × BASE_PARAMETERS`: the independent \
               columns of `regressor` (`BASE_COLUMNS`), with τ = Y_b π_b for π_b = \
@@ -919,17 +1177,19 @@ pub const QUANTITIES: &[Quantity] = &[
         shape: Shape::BaseRegressor,
         available: Availability::Regressor,
         public: true,
+        reads: &[Key::BaseRegressorSmooth],
         make: |cx| {
             with_coulomb_columns(
                 cx,
                 cx.base_parameters().independent.iter().copied(),
                 quote!(self.base_regressor_smooth(qd, qdd)),
-                &["base_regressor_smooth"],
+                &[Key::BaseRegressorSmooth],
             )
         },
         arm: None,
     },
     Quantity {
+        key: Key::BiasSmooth,
         name: "bias_smooth",
         doc: "",
         aliases: &[],
@@ -937,15 +1197,17 @@ pub const QUANTITIES: &[Quantity] = &[
         shape: Shape::Vector,
         available: Availability::Dynamics,
         public: false,
+        reads: &[],
         make: |cx| {
             let graph = SharedGraph::default();
-            let bias = newton_euler::rnea_exprs(cx.chain, &graph, true, true);
+            let bias = newton_euler::rnea_exprs(cx.chain, &graph, Acceleration::Zero);
             let bias = crate::derive::without_ignored_joints(cx.chain, &graph, &bias);
             derived(graph, bias)
         },
         arm: None,
     },
     Quantity {
+        key: Key::Bias,
         name: "bias",
         doc: "The torques at zero acceleration, C(q, q̇) q̇ + g(q) + friction: what a \
               computed-torque law adds to D(q) v.",
@@ -954,10 +1216,12 @@ pub const QUANTITIES: &[Quantity] = &[
         shape: Shape::Vector,
         available: Availability::Dynamics,
         public: true,
-        make: |cx| with_coulomb(cx, quote!(self.bias_smooth(qd)), &["bias_smooth"]),
+        reads: &[Key::BiasSmooth],
+        make: |cx| with_coulomb(cx, quote!(self.bias_smooth(qd)), &[Key::BiasSmooth]),
         arm: Some(ArmMethod::Dynamics),
     },
     Quantity {
+        key: Key::ForwardDynamicsLanes,
         name: "forward_dynamics_lanes",
         doc: "Forward dynamics q̈ = D⁻¹(τ − C q̇ − g − friction) by a Cholesky solve \
               without branches, and the mask of the lanes where it is an answer: a pivot \
@@ -969,6 +1233,7 @@ pub const QUANTITIES: &[Quantity] = &[
         shape: Shape::VectorMask,
         available: Availability::Dynamics,
         public: true,
+        reads: &[Key::MassMatrix, Key::Bias],
         make: |cx| {
             if cx.mass_matrix().is_none() {
                 // D and the bias torques from one pass of the runtime's loops.
@@ -979,20 +1244,21 @@ pub const QUANTITIES: &[Quantity] = &[
                             CHAIN, &self.c, &self.s, &self.d, qd,
                         );
                     },
-                    &["mass_matrix"],
-                    true,
+                    &[Key::MassMatrix],
+                    SolveOps::Report,
                 );
             }
             solved(
                 cx,
                 quote!(let dm = self.mass_matrix(); let h = self.bias(qd);),
-                &["mass_matrix", "bias"],
-                true,
+                &[Key::MassMatrix, Key::Bias],
+                SolveOps::Report,
             )
         },
         arm: None,
     },
     Quantity {
+        key: Key::ForwardDynamics,
         name: "forward_dynamics",
         doc: "Forward dynamics q̈ = D⁻¹(τ − C q̇ − g − friction) by a Cholesky solve; \
               `None` where D(q) is singular to working precision (a pivot at or below \
@@ -1004,15 +1270,17 @@ pub const QUANTITIES: &[Quantity] = &[
         shape: Shape::OptionVector,
         available: Availability::Dynamics,
         public: true,
+        reads: &[Key::ForwardDynamicsLanes],
         make: |_| {
             all_lanes(
                 quote!(self.forward_dynamics_lanes(qd, tau)),
-                &["forward_dynamics_lanes"],
+                &[Key::ForwardDynamicsLanes],
             )
         },
         arm: Some(ArmMethod::Dynamics),
     },
     Quantity {
+        key: Key::ForwardDynamicsWithPayloadLanes,
         name: "forward_dynamics_with_payload_lanes",
         doc: "`forward_dynamics_with_payload` with the mask of the lanes where it is an answer, \
               as `forward_dynamics_lanes` is to `forward_dynamics`.",
@@ -1021,6 +1289,7 @@ pub const QUANTITIES: &[Quantity] = &[
         shape: Shape::VectorMask,
         available: Availability::Dynamics,
         public: true,
+        reads: &[Key::BiasWithPayload, Key::MassMatrixWithPayload],
         make: |cx| {
             solved(
                 cx,
@@ -1028,13 +1297,14 @@ pub const QUANTITIES: &[Quantity] = &[
                     let dm = self.mass_matrix_with_payload(payload);
                     let h = self.bias_with_payload(qd, payload);
                 },
-                &["mass_matrix_with_payload", "bias_with_payload"],
-                false,
+                &[Key::MassMatrixWithPayload, Key::BiasWithPayload],
+                SolveOps::Reported,
             )
         },
         arm: None,
     },
     Quantity {
+        key: Key::ForwardDynamicsWithPayload,
         name: "forward_dynamics_with_payload",
         doc: "Forward dynamics with a payload held by the tool (`payload`: its ten parameters, \
               as for `inverse_dynamics_with_payload`), by the unrolled Cholesky solve of \
@@ -1045,15 +1315,17 @@ pub const QUANTITIES: &[Quantity] = &[
         shape: Shape::OptionVector,
         available: Availability::Dynamics,
         public: true,
+        reads: &[Key::ForwardDynamicsWithPayloadLanes],
         make: |_| {
             all_lanes(
                 quote!(self.forward_dynamics_with_payload_lanes(qd, tau, payload)),
-                &["forward_dynamics_with_payload_lanes"],
+                &[Key::ForwardDynamicsWithPayloadLanes],
             )
         },
         arm: None,
     },
     Quantity {
+        key: Key::KineticEnergy,
         name: "kinetic_energy",
         doc: "Kinetic energy T(q, q̇) = ½ q̇ᵀ D(q) q̇ of the links and rotors.",
         aliases: &["computeKineticEnergy"],
@@ -1061,6 +1333,7 @@ pub const QUANTITIES: &[Quantity] = &[
         shape: Shape::Scalar,
         available: Availability::Dynamics,
         public: true,
+        reads: &[],
         make: |cx| {
             let (graph, t) = energy::kinetic_energy(&cx.derivation);
             derived(graph, t)
@@ -1068,6 +1341,7 @@ pub const QUANTITIES: &[Quantity] = &[
         arm: Some(ArmMethod::Dynamics),
     },
     Quantity {
+        key: Key::PotentialEnergy,
         name: "potential_energy",
         doc: "Potential energy P(q) = −Σ m_k gravity · c_k of the links in the description's \
               gravity, centres of mass c_k in the world frame (zero at the world origin): \
@@ -1077,6 +1351,7 @@ pub const QUANTITIES: &[Quantity] = &[
         shape: Shape::Scalar,
         available: Availability::Dynamics,
         public: true,
+        reads: &[],
         make: |cx| {
             let (graph, p) = energy::potential_energy(&cx.derivation);
             derived(graph, p)
@@ -1084,6 +1359,7 @@ pub const QUANTITIES: &[Quantity] = &[
         arm: Some(ArmMethod::Dynamics),
     },
     Quantity {
+        key: Key::CenterOfMass,
         name: "center_of_mass",
         doc: "The links' total mass M and their centre of mass c in the world frame, \
               `(M, c)` (links fixed to the base, which no joint moves, are not counted; c is \
@@ -1093,6 +1369,7 @@ pub const QUANTITIES: &[Quantity] = &[
         shape: Shape::MassAndPoint,
         available: Availability::Dynamics,
         public: true,
+        reads: &[],
         make: |cx| {
             let (graph, c) = center_of_mass::center_of_mass(cx.chain);
             derived(graph, c)
@@ -1100,6 +1377,7 @@ pub const QUANTITIES: &[Quantity] = &[
         arm: Some(ArmMethod::Dynamics),
     },
     Quantity {
+        key: Key::CenterOfMassJacobian,
         name: "center_of_mass_jacobian",
         doc: "The Jacobian of the centre of mass, 3×n in world axes: `ċ = J_c q̇`, and the \
               gravity torques are `g(q) = −M J_cᵀ gravity` (zero if the links have no mass).",
@@ -1108,6 +1386,7 @@ pub const QUANTITIES: &[Quantity] = &[
         shape: Shape::PointJacobian,
         available: Availability::Dynamics,
         public: true,
+        reads: &[],
         make: |cx| {
             let (graph, j) = center_of_mass::center_of_mass_jacobian(cx.chain);
             derived(graph, j)
@@ -1115,6 +1394,7 @@ pub const QUANTITIES: &[Quantity] = &[
         arm: Some(ArmMethod::Dynamics),
     },
     Quantity {
+        key: Key::KineticEnergyWithPayload,
         name: "kinetic_energy_with_payload",
         doc: "Kinetic energy with a payload held by the tool (`payload`: its ten parameters, as \
               for `inverse_dynamics_with_payload`): ½ q̇ᵀ D(q) q̇ with \
@@ -1124,6 +1404,7 @@ pub const QUANTITIES: &[Quantity] = &[
         shape: Shape::Scalar,
         available: Availability::Dynamics,
         public: true,
+        reads: &[],
         make: |cx| {
             let (graph, t) = payload::kinetic_energy(cx.chain);
             derived(graph, t)
@@ -1131,6 +1412,7 @@ pub const QUANTITIES: &[Quantity] = &[
         arm: None,
     },
     Quantity {
+        key: Key::PotentialEnergyWithPayload,
         name: "potential_energy_with_payload",
         doc: "Potential energy with a payload held by the tool (`payload`: its ten parameters, \
               as for `inverse_dynamics_with_payload`): `potential_energy` and the payload's \
@@ -1141,6 +1423,7 @@ pub const QUANTITIES: &[Quantity] = &[
         shape: Shape::Scalar,
         available: Availability::Dynamics,
         public: true,
+        reads: &[],
         make: |cx| {
             let (graph, p) = payload::potential_energy(cx.chain);
             derived(graph, p)
@@ -1148,16 +1431,18 @@ pub const QUANTITIES: &[Quantity] = &[
         arm: None,
     },
     Quantity {
+        key: Key::InverseDynamicsDerivatives,
         name: "inverse_dynamics_derivatives",
         doc: "The derivatives of inverse dynamics, `(∂τ/∂q, ∂τ/∂q̇)` at (q, q̇, q̈), entry \
               `(k, m)` = ∂τ_k/∂x_m (∂τ/∂q̈ is D(q)); what MPC and trajectory optimisation \
               linearise. Coulomb friction, constant away from q̇ = 0, contributes 0 (its \
               subgradient at 0 too).",
-        aliases: &["computeRNEADerivatives", "rnea_derivatives"],
+        aliases: &["computeRNEADerivatives"],
         inputs: &[Input::Qd, Input::Qdd],
         shape: Shape::SquarePair,
         available: Availability::Derivatives,
         public: true,
+        reads: &[],
         make: |cx| {
             let (graph, e) = cx.inverse_dynamics_derivatives().clone();
             // ∂τ/∂q̇ does not read q̈: `forward_dynamics_derivatives` takes the bias torques
@@ -1167,6 +1452,7 @@ pub const QUANTITIES: &[Quantity] = &[
         arm: None,
     },
     Quantity {
+        key: Key::InverseDynamicsDerivativesWithPayload,
         name: "inverse_dynamics_derivatives_with_payload",
         doc: "The derivatives of inverse dynamics with a payload held by the tool, `(∂τ/∂q, \
               ∂τ/∂q̇)` at (q, q̇, q̈) (`payload`: its ten parameters, as for \
@@ -1179,6 +1465,7 @@ pub const QUANTITIES: &[Quantity] = &[
         shape: Shape::SquarePair,
         available: Availability::Derivatives,
         public: true,
+        reads: &[],
         make: |cx| {
             let (graph, e) = payload::inverse_dynamics_derivatives(cx.chain);
             // ∂τ/∂q̇ does not read q̈: `forward_dynamics_derivatives_with_payload` takes the
@@ -1188,15 +1475,17 @@ pub const QUANTITIES: &[Quantity] = &[
         arm: None,
     },
     Quantity {
+        key: Key::MassMatrixRate,
         name: "mass_matrix_rate",
         doc: "The time derivative of the inertia matrix, Ḋ(q, q̇) = Σ_i ∂D/∂q_i q̇_i \
               (= C + Cᵀ): with [`coriolis_transpose_qd`](Self::coriolis_transpose_qd), what \
               a generalized-momentum collision observer needs every cycle.",
-        aliases: &["dD", "computeMassMatrixTimeVariation"],
+        aliases: &[],
         inputs: &[Input::Qd],
         shape: Shape::Square,
         available: Availability::Derivatives,
         public: true,
+        reads: &[Key::Coriolis],
         make: |cx| {
             // Past `LOOPED_ABOVE` joints, C + Cᵀ from C's loop (the runtime path's own way):
             // straight-line, general 30 took 0.84× the runtime's time. Below, straight-line
@@ -1205,7 +1494,7 @@ pub const QUANTITIES: &[Quantity] = &[
             if cx.looped() {
                 return composed(
                     quote!(let c = self.coriolis(qd); c + c.transpose()),
-                    &["coriolis"],
+                    &[Key::Coriolis],
                 );
             }
             let (graph, e) = derivatives::mass_matrix_rate(cx.chain, cx.coriolis_derivations());
@@ -1214,14 +1503,16 @@ pub const QUANTITIES: &[Quantity] = &[
         arm: None,
     },
     Quantity {
+        key: Key::CoriolisTransposeQd,
         name: "coriolis_transpose_qd",
         doc: "Cᵀ(q, q̇) q̇, the term of a generalized-momentum observer's model \
               (ṗ = τ + Cᵀq̇ − g for p = D q̇; De Luca's residual).",
-        aliases: &["momentum_observer"],
+        aliases: &[],
         inputs: &[Input::Qd],
         shape: Shape::Vector,
         available: Availability::Derivatives,
         public: true,
+        reads: &[Key::Coriolis],
         make: |cx| {
             // As `mass_matrix_rate`: from C's loop past `LOOPED_ABOVE` joints (straight-line,
             // general 30 took 0.91× the runtime's time), straight-line below (general 12: 751–784
@@ -1229,7 +1520,7 @@ pub const QUANTITIES: &[Quantity] = &[
             if cx.looped() {
                 return composed(
                     quote!(self.coriolis(qd).transpose() * na::SVector::<T, DOF>::from(*qd)),
-                    &["coriolis"],
+                    &[Key::Coriolis],
                 );
             }
             let (graph, e) =
@@ -1239,6 +1530,7 @@ pub const QUANTITIES: &[Quantity] = &[
         arm: None,
     },
     Quantity {
+        key: Key::MassMatrixInverseLanes,
         name: "mass_matrix_inverse_lanes",
         doc: "D(q)⁻¹ by the Cholesky factorisation of `forward_dynamics`, without \
               branches, and the mask of the lanes where it is an answer (pivots above \
@@ -1248,38 +1540,43 @@ pub const QUANTITIES: &[Quantity] = &[
         shape: Shape::SquareMask,
         available: Availability::Derivatives,
         public: true,
+        reads: &[Key::MassMatrix],
         make: |cx| {
-            let (inverse, ops) = cholesky::inverse(cx.chain.dof(), true);
+            let (inverse, ops) =
+                cholesky::inverse(cx.chain.dof(), cholesky::Check::PivotsAndFinite);
             Made::Composed {
                 body: quote! {
                     let dm = self.mass_matrix();
                     #inverse
                 },
-                reads: &["mass_matrix"],
+                reads: &[Key::MassMatrix],
                 ops: Some(("cholesky_inverse", ops)),
             }
         },
         arm: None,
     },
     Quantity {
+        key: Key::MassMatrixInverse,
         name: "mass_matrix_inverse",
         doc: "D(q)⁻¹ by Cholesky factorisation; `None` where D(q) is singular to working \
               precision (the pivot rule of `forward_dynamics`); for a SIMD pack, `None` unless \
               every lane has an answer (`mass_matrix_inverse_lanes` gives them lane by lane).",
-        aliases: &["computeMinverse", "inertia_inverse"],
+        aliases: &["computeMinverse"],
         inputs: &[],
         shape: Shape::OptionSquare,
         available: Availability::Derivatives,
         public: true,
+        reads: &[Key::MassMatrixInverseLanes],
         make: |_| {
             all_lanes(
                 quote!(self.mass_matrix_inverse_lanes()),
-                &["mass_matrix_inverse_lanes"],
+                &[Key::MassMatrixInverseLanes],
             )
         },
         arm: None,
     },
     Quantity {
+        key: Key::ForwardDynamicsTerms,
         name: "forward_dynamics_terms",
         doc: "∂τ/∂q, ∂τ/∂q̇ and D(q) in one derivation, staged at q̈: what \
               `forward_dynamics_derivatives` evaluates where D costs less beside ∂τ.",
@@ -1288,6 +1585,7 @@ pub const QUANTITIES: &[Quantity] = &[
         shape: Shape::SquareTriple,
         available: Availability::DerivativesWithMassMatrix,
         public: false,
+        reads: &[],
         make: |cx| {
             let (graph, e) = cx
                 .derivatives_with_mass_matrix()
@@ -1298,6 +1596,7 @@ pub const QUANTITIES: &[Quantity] = &[
         arm: None,
     },
     Quantity {
+        key: Key::ForwardDynamicsDerivativesLanes,
         name: "forward_dynamics_derivatives_lanes",
         doc: "`forward_dynamics_derivatives` with the mask of the lanes where it is an answer \
               (D(q) not singular to working precision and q̈ finite; for a scalar, a `bool`), \
@@ -1308,25 +1607,45 @@ pub const QUANTITIES: &[Quantity] = &[
         shape: Shape::SquareTripleMask,
         available: Availability::Derivatives,
         public: true,
-        make: |cx| forward_dynamics_derivatives(cx, true, false),
+        reads: &[
+            Key::Gravity,
+            Key::MassMatrixWithPayload,
+            Key::GravityWithPayload,
+            Key::InverseDynamicsDerivatives,
+            Key::InverseDynamicsDerivativesWithPayload,
+            Key::MassMatrixInverseLanes,
+            Key::ForwardDynamicsTerms,
+        ],
+        make: |cx| forward_dynamics_derivatives(cx, Answer::Lanes, Held::Nothing),
         arm: None,
     },
     Quantity {
+        key: Key::ForwardDynamicsDerivatives,
         name: "forward_dynamics_derivatives",
         doc: "The derivatives of forward dynamics, `(∂q̈/∂q, ∂q̈/∂q̇, ∂q̈/∂τ = D⁻¹)` at (q, q̇, τ), \
               from ∂q̈/∂x = −D⁻¹ ∂τ/∂x at q̈ = D⁻¹(τ − C q̇ − g − friction); `None` where D(q) \
               is singular to working precision or q̈ is not finite, as for `forward_dynamics` \
               (for a SIMD pack, unless every lane has an answer: \
               `forward_dynamics_derivatives_lanes` gives them lane by lane).",
-        aliases: &["computeABADerivatives", "aba_derivatives"],
+        aliases: &["computeABADerivatives"],
         inputs: &[Input::Qd, Input::Tau],
         shape: Shape::OptionSquareTriple,
         available: Availability::Derivatives,
         public: true,
-        make: |cx| forward_dynamics_derivatives(cx, false, false),
+        reads: &[
+            Key::Gravity,
+            Key::MassMatrixWithPayload,
+            Key::GravityWithPayload,
+            Key::InverseDynamicsDerivatives,
+            Key::InverseDynamicsDerivativesWithPayload,
+            Key::MassMatrixInverseLanes,
+            Key::ForwardDynamicsTerms,
+        ],
+        make: |cx| forward_dynamics_derivatives(cx, Answer::Option, Held::Nothing),
         arm: None,
     },
     Quantity {
+        key: Key::ForwardDynamicsDerivativesWithPayloadLanes,
         name: "forward_dynamics_derivatives_with_payload_lanes",
         doc: "`forward_dynamics_derivatives_with_payload` with the mask of the lanes where it is \
               an answer, as `forward_dynamics_derivatives_lanes` is to \
@@ -1336,10 +1655,20 @@ pub const QUANTITIES: &[Quantity] = &[
         shape: Shape::SquareTripleMask,
         available: Availability::Derivatives,
         public: true,
-        make: |cx| forward_dynamics_derivatives(cx, true, true),
+        reads: &[
+            Key::Gravity,
+            Key::MassMatrixWithPayload,
+            Key::GravityWithPayload,
+            Key::InverseDynamicsDerivatives,
+            Key::InverseDynamicsDerivativesWithPayload,
+            Key::MassMatrixInverseLanes,
+            Key::ForwardDynamicsTerms,
+        ],
+        make: |cx| forward_dynamics_derivatives(cx, Answer::Lanes, Held::Payload),
         arm: None,
     },
     Quantity {
+        key: Key::ForwardDynamicsDerivativesWithPayload,
         name: "forward_dynamics_derivatives_with_payload",
         doc: "The derivatives of forward dynamics with a payload held by the tool, \
               `(∂q̈/∂q, ∂q̈/∂q̇, ∂q̈/∂τ = D⁻¹)` at (q, q̇, τ) (`payload`: its ten parameters, as \
@@ -1352,10 +1681,20 @@ pub const QUANTITIES: &[Quantity] = &[
         shape: Shape::OptionSquareTriple,
         available: Availability::Derivatives,
         public: true,
-        make: |cx| forward_dynamics_derivatives(cx, false, true),
+        reads: &[
+            Key::Gravity,
+            Key::MassMatrixWithPayload,
+            Key::GravityWithPayload,
+            Key::InverseDynamicsDerivatives,
+            Key::InverseDynamicsDerivativesWithPayload,
+            Key::MassMatrixInverseLanes,
+            Key::ForwardDynamicsTerms,
+        ],
+        make: |cx| forward_dynamics_derivatives(cx, Answer::Option, Held::Payload),
         arm: None,
     },
     Quantity {
+        key: Key::Terms,
         name: "terms",
         doc: "D, C, g and J at once, as a controller needs them, sharing one state's sines \
               and cosines.",
@@ -1364,6 +1703,7 @@ pub const QUANTITIES: &[Quantity] = &[
         shape: Shape::Terms,
         available: Availability::Dynamics,
         public: true,
+        reads: &[Key::Jacobian, Key::MassMatrix, Key::Coriolis, Key::Gravity],
         make: |_| {
             composed(
                 quote! {
@@ -1374,12 +1714,13 @@ pub const QUANTITIES: &[Quantity] = &[
                         jacobian: self.jacobian(),
                     }
                 },
-                &["mass_matrix", "coriolis", "gravity", "jacobian"],
+                &[Key::MassMatrix, Key::Coriolis, Key::Gravity, Key::Jacobian],
             )
         },
         arm: None,
     },
     Quantity {
+        key: Key::ToolTerms,
         name: "tool_terms",
         doc: "D(q), the tool's Jacobian J(q) and J̇q̇, the bias torques and g(q) at once, \
               sharing one state's sines and cosines: what task-space dynamics \
@@ -1389,6 +1730,13 @@ pub const QUANTITIES: &[Quantity] = &[
         shape: Shape::ToolTerms,
         available: Availability::Dynamics,
         public: true,
+        reads: &[
+            Key::Jacobian,
+            Key::JdotQdot,
+            Key::MassMatrix,
+            Key::Gravity,
+            Key::Bias,
+        ],
         make: |_| {
             composed(
                 quote! {
@@ -1400,9 +1748,105 @@ pub const QUANTITIES: &[Quantity] = &[
                         gravity: self.gravity(),
                     }
                 },
-                &["mass_matrix", "jacobian", "jdot_qdot", "bias", "gravity"],
+                &[
+                    Key::MassMatrix,
+                    Key::Jacobian,
+                    Key::JdotQdot,
+                    Key::Bias,
+                    Key::Gravity,
+                ],
             )
         },
         arm: Some(ArmMethod::Dynamics),
     },
 ];
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::collections::BTreeSet;
+
+    fn read(path: &str) -> String {
+        let root = concat!(env!("CARGO_MANIFEST_DIR"), "/..");
+        std::fs::read_to_string(format!("{root}/{path}")).unwrap()
+    }
+
+    /// `fn name` → the `#[doc(alias = ...)]` attributes just above it, in `source`.
+    fn aliases_in(source: &str) -> Vec<(String, BTreeSet<String>)> {
+        let lines: Vec<&str> = source.lines().collect();
+        let mut out = Vec::new();
+        for (i, line) in lines.iter().enumerate() {
+            let t = line.trim_start();
+            let Some(rest) = t.strip_prefix("fn ").or_else(|| t.strip_prefix("pub fn ")) else {
+                continue;
+            };
+            let name: String = rest
+                .chars()
+                .take_while(|c| c.is_alphanumeric() || *c == '_')
+                .collect();
+            let mut aliases = BTreeSet::new();
+            let mut k = i;
+            while k > 0 {
+                k -= 1;
+                let above = lines[k].trim_start();
+                if let Some(a) = above.strip_prefix("#[doc(alias = \"") {
+                    aliases.insert(a.trim_end_matches("\")]").to_string());
+                } else if !(above.starts_with("///") || above.starts_with("#[")) {
+                    break;
+                }
+            }
+            out.push((name, aliases));
+        }
+        out
+    }
+
+    #[test]
+    fn the_traits_and_the_runtime_carry_the_tables_aliases() {
+        let sources = [
+            "kernel/src/arm.rs",
+            "src/kinematics.rs",
+            "src/dynamics/crba.rs",
+            "src/dynamics/coriolis.rs",
+            "src/dynamics/gravity.rs",
+            "src/dynamics/rnea.rs",
+            "src/dynamics/forward.rs",
+            "src/dynamics/derivatives.rs",
+            "src/dynamics/christoffel.rs",
+            "src/dynamics/rates.rs",
+            "src/dynamics/regressor.rs",
+        ];
+        let mut wrong = Vec::new();
+        for path in sources {
+            for (name, aliases) in aliases_in(&read(path)) {
+                let Some(q) = QUANTITIES.iter().find(|q| q.name == name && q.public) else {
+                    continue;
+                };
+                let table: BTreeSet<String> = q.aliases.iter().map(|a| a.to_string()).collect();
+                if aliases != table {
+                    wrong.push(format!("{path}: {name} {aliases:?}, the table {table:?}"));
+                }
+            }
+        }
+        assert!(
+            wrong.is_empty(),
+            "aliases that disagree:\n{}",
+            wrong.join("\n")
+        );
+    }
+
+    #[test]
+    fn docs_names_md_names_every_quantity_and_alias() {
+        let names = read("docs/names.md");
+        let missing: Vec<String> = QUANTITIES
+            .iter()
+            .filter(|q| q.public && !q.name.ends_with("_lanes"))
+            .flat_map(|q| std::iter::once(q.name).chain(q.aliases.iter().copied()))
+            .filter(|word| !names.contains(&format!("`{word}")))
+            .map(str::to_string)
+            .collect();
+        assert!(
+            missing.is_empty(),
+            "docs/names.md does not name {missing:?}"
+        );
+    }
+}
